@@ -1,0 +1,112 @@
+// Ray math shared word for word by the GLSL kernels (#include "common/raymath.h") and the C++
+// CPU backend (src/raytrace/RayMath.h includes it inside a namespace with `using namespace glm`),
+// so that both backends evaluate the same float operations in the same order.
+// Only the common subset of GLSL 4.50 and C++/GLM: no swizzle writes, float literals with 'f'.
+#ifndef GPURT_RAYMATH_H
+#define GPURT_RAYMATH_H
+
+#ifdef __cplusplus
+#define GPURT_FN inline
+#define GPURT_OUT(T) T&
+#define GPURT_INOUT(T) T&
+#else
+#define GPURT_FN
+#define GPURT_OUT(T) out T
+#define GPURT_INOUT(T) inout T
+#endif
+
+// Ray states (Christen 2005, table 5.2).
+#define RAY_INACTIVE 0  // no ray in this element (missed the grid's box, or no secondary ray)
+#define RAY_ACTIVE 1    // traversing: the traverser moves it to the next non-empty cell
+#define RAY_WAIT 2      // in a non-empty cell: waiting for the intersector
+#define RAY_DEAD 3      // done: hit found (hit.w >= 0) or left the grid (hit.w < 0)
+#define RAY_OVERFLOW 4  // stopped by the step limit (a bug or a pathological grid; reported)
+
+#define GPURT_FAR 1e30f  // "no boundary": stands for +infinity in tMax and ray limits
+
+// normalize(a) = a / sqrt(dot(a, a)) exactly as the contract writes it (GLSL's and GLM's
+// normalize may use an approximate inverse square root).
+GPURT_FN vec3 contractNormalize(vec3 a) { return a / sqrt(dot(a, a)); }
+
+// The contract's primary ray through pixel (i, j), j counted from the top. `tanHalf` is
+// float(tan(fovy * pi / 360)) computed in double; `aspect` = float(W) / float(H).
+GPURT_FN vec3 cameraRayDirection(vec3 forward, vec3 right, vec3 upOrtho, float tanHalf,
+                                 float aspect, float i, float j, float width, float height) {
+    float u = ((i + 0.5f) / width * 2.0f - 1.0f) * tanHalf * aspect;
+    float v = (1.0f - (j + 0.5f) / height * 2.0f) * tanHalf;
+    return contractNormalize(forward + u * right + v * upOrtho);
+}
+
+// The parametric range [x, y] in which the ray o + t d lies inside the box; x > y when it misses.
+// Axis-parallel rays are handled without dividing by zero.
+GPURT_FN vec2 intersectBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax) {
+    float tNear = -GPURT_FAR;
+    float tFar = GPURT_FAR;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (o[a] < boxMin[a] || o[a] > boxMax[a]) return vec2(1.0f, 0.0f);
+        } else {
+            float t0 = (boxMin[a] - o[a]) / d[a];
+            float t1 = (boxMax[a] - o[a]) / d[a];
+            tNear = max(tNear, min(t0, t1));
+            tFar = min(tFar, max(t0, t1));
+        }
+    }
+    return vec2(tNear, tFar);
+}
+
+// Ray parameter at which the ray leaves cell index `cell` along one axis (3D-DDA). Computed from
+// the cell's boundary each time instead of accumulating tDelta (Amanatides & Woo 1987), so long
+// traversals do not drift.
+GPURT_FN float ddaBoundary(float o, float d, float gridMin, float cellSize, int cell) {
+    if (d > 0.0f) return (gridMin + float(cell + 1) * cellSize - o) / d;
+    if (d < 0.0f) return (gridMin + float(cell) * cellSize - o) / d;
+    return GPURT_FAR;
+}
+
+// Voxel precalculation: the cell containing the point where the ray enters the grid (t = tEnter)
+// and the ray parameter of the next boundary along each axis.
+GPURT_FN void ddaSetup(vec3 o, vec3 d, float tEnter, vec3 gridMin, vec3 cellSize, ivec3 res,
+                       GPURT_OUT(ivec3) voxel, GPURT_OUT(vec3) tMax) {
+    vec3 p = o + tEnter * d;
+    voxel = clamp(ivec3(floor((p - gridMin) / cellSize)), ivec3(0), res - ivec3(1));
+    for (int a = 0; a < 3; ++a) tMax[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], voxel[a]);
+}
+
+// The ray parameter where the ray leaves its current cell.
+GPURT_FN float ddaCellExit(vec3 tMax) { return min(tMax.x, min(tMax.y, tMax.z)); }
+
+// One 3D-DDA step to the next cell along the axis whose boundary is nearest (ties: x, then y,
+// then z). Returns false when the ray leaves the grid.
+GPURT_FN bool ddaStep(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
+                      GPURT_INOUT(ivec3) voxel, GPURT_INOUT(vec3) tMax) {
+    int a = (tMax.x <= tMax.y && tMax.x <= tMax.z) ? 0 : (tMax.y <= tMax.z ? 1 : 2);
+    voxel[a] += d[a] > 0.0f ? 1 : -1;
+    if (voxel[a] < 0 || voxel[a] >= res[a]) return false;
+    tMax[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], voxel[a]);
+    return true;
+}
+
+// Moller-Trumbore ray/triangle test (Moller & Trumbore 1997) with precomputed edges
+// e1 = v1 - v0, e2 = v2 - v0. Returns true with t, u, v on a hit (edges inclusive, any facing);
+// degenerate triangles (det == 0) are never hit.
+GPURT_FN bool intersectTriangle(vec3 o, vec3 d, vec3 v0, vec3 e1, vec3 e2, GPURT_OUT(float) t,
+                                GPURT_OUT(float) u, GPURT_OUT(float) v) {
+    vec3 p = cross(d, e2);
+    float det = dot(e1, p);
+    t = 0.0f;
+    u = 0.0f;
+    v = 0.0f;
+    if (det == 0.0f) return false;
+    float invDet = 1.0f / det;
+    vec3 s = o - v0;
+    u = dot(s, p) * invDet;
+    if (u < 0.0f || u > 1.0f) return false;
+    vec3 q = cross(s, e1);
+    v = dot(d, q) * invDet;
+    if (v < 0.0f || u + v > 1.0f) return false;
+    t = dot(e2, q) * invDet;
+    return true;
+}
+
+#endif

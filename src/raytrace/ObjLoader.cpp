@@ -1,0 +1,345 @@
+// OBJ loading: tinyobjloader parses, after a light pre-scan of the lines has rejected what it
+// would accept silently (a NaN read as 0, a zero or out-of-range index, a two-vertex face, a
+// vertex with two coordinates, binary data). The pre-scan also records each face's vertex count,
+// because tinyobjloader stores that count in an unsigned char.
+#include "raytrace/ObjLoader.h"
+
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string_view>
+
+#include <tiny_obj_loader.h>
+
+#include "raytrace/InputError.h"
+
+namespace gpurt {
+namespace {
+
+// What the pre-scan learns about the file.
+struct ObjPreScan {
+    size_t vertices = 0, normals = 0, texcoords = 0;
+    std::vector<uint32_t> faceSizes;  // vertex count of each `f` line, in file order
+    std::vector<size_t> vertexLines;  // line number of each `v` line (for messages)
+};
+
+// An index that refers forward (OBJ allows that for positive indices); checked at the end of
+// the file when the counts are known.
+struct ForwardReference {
+    size_t line;
+    long long index;
+    int kind;  // 0 vertex, 1 texcoord, 2 normal
+};
+
+class ObjScanner {
+public:
+    explicit ObjScanner(std::string fileName) : fileName_(std::move(fileName)) {}
+
+    [[noreturn]] void fail(size_t line, const std::string& what) const {
+        throw InputError(fileName_ + ":" + std::to_string(line) + ": " + what);
+    }
+
+    // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r).
+    ObjPreScan scan(std::string_view text) {
+        ObjPreScan result;
+        std::vector<ForwardReference> forward;
+        size_t line = 0;
+        size_t pos = 0;
+        while (pos < text.size()) {
+            size_t end = text.find_first_of("\r\n", pos);
+            if (end == std::string_view::npos) end = text.size();
+            ++line;
+            scanLine(text.substr(pos, end - pos), line, result, forward);
+            pos = end;
+            if (pos < text.size() && text[pos] == '\r') ++pos;
+            if (pos < text.size() && text[pos] == '\n' && (pos == 0 || text[pos - 1] != '\r' || end == pos))
+                ++pos;
+        }
+        const size_t counts[3] = {result.vertices, result.texcoords, result.normals};
+        for (const ForwardReference& ref : forward)
+            if (static_cast<size_t>(ref.index) > counts[ref.kind])
+                fail(ref.line, std::string(kindName(ref.kind)) + " index " + std::to_string(ref.index) +
+                                   " is out of range (the file has " + std::to_string(counts[ref.kind]) + " " +
+                                   kindPlural(ref.kind) + ")");
+        return result;
+    }
+
+private:
+    static const char* kindName(int kind) { return kind == 0 ? "vertex" : kind == 1 ? "texture coordinate" : "normal"; }
+    static const char* kindPlural(int kind) {
+        return kind == 0 ? "vertices" : kind == 1 ? "texture coordinates" : "normals";
+    }
+
+    static std::vector<std::string_view> tokens(std::string_view s) {
+        std::vector<std::string_view> out;
+        size_t i = 0;
+        while (i < s.size()) {
+            while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+            size_t start = i;
+            while (i < s.size() && s[i] != ' ' && s[i] != '\t') ++i;
+            if (i > start) out.push_back(s.substr(start, i - start));
+        }
+        return out;
+    }
+
+    // [+-]? (digits [. digits?] | . digits) ([eE] [+-]? digits)? -- what tinyobjloader reads as a
+    // whole number; it would silently read a prefix of anything else ("1.5abc") or 0 ("nan").
+    static bool isDecimal(std::string_view s) {
+        size_t i = 0;
+        auto digits = [&] {
+            size_t start = i;
+            while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+            return i - start;
+        };
+        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+        size_t mantissaDigits = digits();
+        if (i < s.size() && s[i] == '.') {
+            ++i;
+            mantissaDigits += digits();
+        }
+        if (mantissaDigits == 0) return false;
+        if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+            ++i;
+            if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+            if (digits() == 0) return false;
+        }
+        return i == s.size();
+    }
+
+    void checkNumber(std::string_view token, size_t line) const {
+        if (!isDecimal(token)) {
+            std::string lower(token);
+            for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            size_t skip = (!lower.empty() && (lower[0] == '+' || lower[0] == '-')) ? 1 : 0;
+            if (lower.compare(skip, 3, "nan") == 0 || lower.compare(skip, 3, "inf") == 0)
+                fail(line, "'" + std::string(token) + "' is not a finite number");
+            fail(line, "'" + std::string(token) + "' is not a number");
+        }
+        // The value only matters for range: doubles at or above 2^128 - 2^103 round to float infinity.
+        const double value = std::strtod(std::string(token).c_str(), nullptr);
+        if (!(std::fabs(value) < 0x1.ffffffp127))
+            fail(line, "'" + std::string(token) + "' does not fit in a 32-bit float");
+    }
+
+    // Parses one index of a face element and checks 0 and range; `count` is how many elements of
+    // that kind precede this line (negative indices are relative to it).
+    void checkIndex(std::string_view token, std::string_view element, int kind, size_t count, size_t line,
+                    std::vector<ForwardReference>& forward) const {
+        long long value = 0;
+        std::string_view digits = token;
+        if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
+        auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size() || value < INT_MIN ||
+            value > INT_MAX) {
+            if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == digits.data() + digits.size()))
+                fail(line, std::string(kindName(kind)) + " index " + std::string(token) + " is out of range");
+            fail(line, "'" + std::string(element) + "' is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
+        }
+        if (value == 0) fail(line, std::string(kindName(kind)) + " index 0 is invalid (OBJ indices start at 1)");
+        if (value < 0 && static_cast<unsigned long long>(-value) > count)
+            fail(line, std::string(kindName(kind)) + " index " + std::to_string(value) + " is out of range (" +
+                           std::to_string(count) + " " + kindPlural(kind) + " defined before this line)");
+        if (value > 0 && static_cast<size_t>(value) > count) forward.push_back({line, value, kind});
+    }
+
+    void scanLine(std::string_view text, size_t line, ObjPreScan& result, std::vector<ForwardReference>& forward) {
+        // Text files have no control characters besides tab and line ends (the caller split those off).
+        for (unsigned char c : text) {
+            if ((c < 0x20 && c != '\t') || c == 0x7f) {
+                char hex[8];
+                std::snprintf(hex, sizeof hex, "0x%02x", c);
+                fail(line, std::string("binary data (byte ") + hex + "): not a text OBJ file");
+            }
+        }
+        std::vector<std::string_view> tok = tokens(text);
+        if (tok.empty() || tok[0][0] == '#') return;
+        const std::string_view keyword = tok[0];
+        if (keyword == "v" || keyword == "vn" || keyword == "vt") {
+            for (size_t i = 1; i < tok.size(); ++i) checkNumber(tok[i], line);
+            const size_t have = tok.size() - 1;
+            if (keyword == "v") {
+                if (have < 3) fail(line, "vertex has " + std::to_string(have) + " coordinates; needs x y z");
+                ++result.vertices;
+                result.vertexLines.push_back(line);
+            } else if (keyword == "vn") {
+                if (have < 3) fail(line, "normal has " + std::to_string(have) + " coordinates; needs x y z");
+                ++result.normals;
+            } else {
+                if (have < 1) fail(line, "texture coordinate has no values");
+                ++result.texcoords;
+            }
+            if (result.vertices > INT_MAX || result.normals > INT_MAX || result.texcoords > INT_MAX)
+                fail(line, "too many vertices for 32-bit indices");
+        } else if (keyword == "f" || keyword == "l" || keyword == "p") {
+            const size_t elements = tok.size() - 1;
+            if (keyword == "f" && elements < 3)
+                fail(line, "face has " + std::to_string(elements) + " vertices; a face needs at least 3");
+            if (elements < 1) fail(line, "'" + std::string(keyword) + "' without vertices");
+            for (size_t i = 1; i < tok.size(); ++i) {
+                // v, v/vt, v//vn or v/vt/vn
+                std::string_view element = tok[i];
+                std::string_view parts[3];
+                int partCount = 0;
+                size_t start = 0;
+                while (true) {
+                    size_t slash = element.find('/', start);
+                    if (partCount == 3)
+                        fail(line, "'" + std::string(element) +
+                                       "' is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
+                    parts[partCount++] = element.substr(start, slash == std::string_view::npos ? slash : slash - start);
+                    if (slash == std::string_view::npos) break;
+                    start = slash + 1;
+                }
+                const size_t counts[3] = {result.vertices, result.texcoords, result.normals};
+                for (int k = 0; k < partCount; ++k) {
+                    if (parts[k].empty() && k == 1 && partCount == 3) continue;  // v//vn
+                    checkIndex(parts[k], element, k, counts[k], line, forward);
+                }
+            }
+            if (keyword == "f") result.faceSizes.push_back(static_cast<uint32_t>(elements));
+        }
+    }
+
+    std::string fileName_;
+};
+
+// Opens material libraries next to the OBJ file and remembers which could not be opened (the
+// stock MaterialFileReader splits its folder at ':' and only reports failures as text).
+class MtlReader : public tinyobj::MaterialReader {
+public:
+    explicit MtlReader(std::filesystem::path folder) : folder_(std::move(folder)) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* matMap, std::string* warn, std::string* err) override {
+        const std::filesystem::path path = folder_ / name;
+        std::error_code ec;
+        std::ifstream in;
+        if (!std::filesystem::is_directory(path, ec)) in.open(path, std::ios::binary);
+        if (!in) {
+            missing.push_back(path.string());
+            return false;
+        }
+        tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        return true;
+    }
+
+    std::vector<std::string> missing;
+
+private:
+    std::filesystem::path folder_;
+};
+
+std::string readWholeFile(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError(name + ": is a directory, not an OBJ file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(name + ": cannot read file");
+    return buffer.str();
+}
+
+glm::vec3 toVec3(const tinyobj::real_t* p) {
+    return glm::vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+}
+
+}  // namespace
+
+Scene loadObj(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::string text = readWholeFile(path);
+    // A UTF-8 byte order mark would hide the first line's keyword from tinyobjloader.
+    if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+
+    ObjScanner scanner(name);
+    const ObjPreScan scan = scanner.scan(text);
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> mtlMaterials;
+    std::string warn, err;
+    MtlReader mtlReader(path.parent_path());
+    std::istringstream stream(text);
+    // triangulate = false: tinyobjloader splits quads along the shorter diagonal, which is not the
+    // contract's fan; we fan the polygons ourselves below.
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtlMaterials, &warn, &err, &stream, &mtlReader,
+                                     /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    if (!ok) {
+        std::string first = err.substr(0, err.find('\n'));
+        throw InputError(name + ": " + (first.empty() ? "cannot parse OBJ file" : first));
+    }
+    for (const std::string& missing : mtlReader.missing)
+        std::cerr << name << ": warning: cannot open material library " << missing
+                  << "; using the default material\n";
+
+    // Invariants the pre-scan relies on (a disagreement would misnumber triangles).
+    if (attrib.vertices.size() / 3 != scan.vertices)
+        throw InputError(name + ": read " + std::to_string(attrib.vertices.size() / 3) +
+                         " vertices but the file has " + std::to_string(scan.vertices) + " 'v' lines");
+    size_t faceCount = 0, indexCount = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        faceCount += shape.mesh.material_ids.size();
+        indexCount += shape.mesh.indices.size();
+    }
+    size_t expectedIndices = 0;
+    for (uint32_t n : scan.faceSizes) expectedIndices += n;
+    if (faceCount != scan.faceSizes.size() || indexCount != expectedIndices)
+        throw InputError(name + ": read " + std::to_string(faceCount) + " faces but the file has " +
+                         std::to_string(scan.faceSizes.size()) + " 'f' lines");
+
+    Scene scene;
+    for (const tinyobj::material_t& m : mtlMaterials) {
+        Material material;
+        material.name = m.name;
+        material.diffuse = toVec3(m.diffuse);
+        material.specular = toVec3(m.specular);
+        material.shininess = static_cast<float>(m.shininess);
+        // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
+        if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
+        scene.materials.push_back(material);
+    }
+    // Faces without a (known) material get the default one, appended after the MTL's.
+    uint32_t defaultMaterial = UINT32_MAX;
+    auto materialFor = [&](int id) -> uint32_t {
+        if (id >= 0 && static_cast<size_t>(id) < mtlMaterials.size()) return static_cast<uint32_t>(id);
+        if (defaultMaterial == UINT32_MAX) {
+            defaultMaterial = static_cast<uint32_t>(scene.materials.size());
+            scene.materials.push_back(Material{});
+        }
+        return defaultMaterial;
+    };
+
+    for (size_t k = 0; k < attrib.vertices.size(); ++k)
+        if (!std::isfinite(static_cast<float>(attrib.vertices[k])))
+            throw InputError(name + ":" + std::to_string(scan.vertexLines[k / 3]) + ": coordinate is not a finite float");
+
+    scene.triangles.reserve(expectedIndices - 2 * scan.faceSizes.size());
+    size_t face = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        size_t first = 0;
+        for (size_t f = 0; f < shape.mesh.material_ids.size(); ++f, ++face) {
+            const uint32_t n = scan.faceSizes[face];
+            const uint32_t material = materialFor(shape.mesh.material_ids[f]);
+            auto vertex = [&](size_t i) {
+                const int index = shape.mesh.indices[first + i].vertex_index;
+                return toVec3(&attrib.vertices[3 * static_cast<size_t>(index)]);
+            };
+            const glm::vec3 v0 = vertex(0);
+            for (uint32_t i = 1; i + 1 < n; ++i) {
+                scene.triangles.push_back({v0, vertex(i), vertex(i + 1)});
+                scene.materialIds.push_back(material);
+            }
+            first += n;
+        }
+    }
+    if (scene.materials.empty()) scene.materials.push_back(Material{});
+    return scene;
+}
+
+}  // namespace gpurt

@@ -1,0 +1,45 @@
+// Bounds helpers and the light list shared by both backends.
+#include "raytrace/Scene.h"
+
+#include <cmath>
+
+namespace gpurt {
+
+void Bounds::extend(glm::vec3 p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+}
+
+bool Bounds::empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+
+glm::vec3 Bounds::center() const { return (min + max) * 0.5f; }
+
+glm::vec3 Bounds::halfExtent() const { return (max - min) * 0.5f; }
+
+Bounds Scene::bounds() const {
+    Bounds b;
+    for (const Triangle& t : triangles) {
+        b.extend(t.v0);
+        b.extend(t.v1);
+        b.extend(t.v2);
+    }
+    return b;
+}
+
+std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye) {
+    if (!scene.lights.empty()) return scene.lights;
+    PointLight headlight;
+    headlight.position = eye;
+    headlight.color = glm::vec3(1.0f);
+    const Bounds b = scene.bounds();
+    // An empty scene has no centre; nothing is lit there anyway.
+    if (!b.empty()) {
+        const glm::vec3 toCenter = eye - b.center();
+        headlight.intensity = glm::dot(toCenter, toCenter);
+    }
+    // A camera at the centre would give a light of intensity 0; keep the scene visible instead.
+    if (!(headlight.intensity > 0.0f) || !std::isfinite(headlight.intensity)) headlight.intensity = 1.0f;
+    return {headlight};
+}
+
+}  // namespace gpurt

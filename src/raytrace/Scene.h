@@ -1,0 +1,72 @@
+// The scene as both backends see it: a flat triangle list in the contract's numbering (one
+// material per triangle), point lights, an optional camera and a few render parameters.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace gpurt {
+
+// Phong material from an MTL file (Kd, Ks, Ns); reflectivity is the mirror weight of a Whitted
+// reflection (Ks when the MTL illumination model turns ray-traced reflection on, else 0).
+struct Material {
+    glm::vec3 diffuse{0.8f};
+    glm::vec3 specular{0.0f};
+    float shininess = 16.0f;
+    glm::vec3 reflectivity{0.0f};
+    std::string name = "default";
+};
+
+struct PointLight {
+    glm::vec3 position{0.0f};
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+};
+
+// The contract's camera parameters (CONTRACT.md, camera convention); fovy in degrees.
+struct CameraSpec {
+    glm::vec3 eye{0.0f};
+    glm::vec3 target{0.0f, 0.0f, -1.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovy = 45.0f;
+};
+
+struct Triangle {
+    glm::vec3 v0, v1, v2;
+};
+
+// Axis-aligned box; starts empty (min = +inf, max = -inf) so that extend() needs no special case.
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::infinity()};
+    glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+    void extend(glm::vec3 p);
+    bool empty() const;  // true until a point was added
+    glm::vec3 center() const;
+    glm::vec3 halfExtent() const;
+};
+
+struct Scene {
+    std::vector<Triangle> triangles;    // contract numbering: k-th triangle of the OBJ, fans (v0, vi, vi+1)
+    std::vector<uint32_t> materialIds;  // one per triangle, index into materials
+    std::vector<Material> materials;    // never empty (index 0 = default material when the OBJ has none)
+    std::vector<PointLight> lights;     // may be empty: renderers then add a headlight (lightsOrHeadlight)
+    std::optional<CameraSpec> camera;   // OBJ: none
+    glm::vec3 background{0.05f, 0.05f, 0.08f};
+    int maxBounces = 3;
+
+    // Box of all triangle vertices; empty() for a scene without triangles.
+    Bounds bounds() const;
+};
+
+// The lights a renderer uses: the scene's, or, when it has none, one headlight at the camera eye
+// with colour 1 and intensity |eye - centre|^2 of the scene's box, so that its 1/d^2 falloff gives
+// about 1 at the centre of the scene. Both backends call this, so they light identically.
+std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye);
+
+}  // namespace gpurt

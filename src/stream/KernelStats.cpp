@@ -1,0 +1,10 @@
+#include "stream/KernelStats.h"
+
+namespace gpurt {
+
+KernelStats& KernelStats::global() {
+    static KernelStats stats;
+    return stats;
+}
+
+}  // namespace gpurt

@@ -1,0 +1,33 @@
+// Per-kernel statistics, keyed by kernel name: calls, fragments written, GPU time.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace gpurt {
+
+struct PassStats {
+    uint64_t calls = 0;
+    uint64_t fragments = 0;  // summed over passes whose occlusion query was read
+    double gpuMs = 0.0;      // GL_TIME_ELAPSED, when timing is enabled
+};
+
+class KernelStats {
+  public:
+    static KernelStats& global();
+
+    // GPU timing wraps each pass in a GL_TIME_ELAPSED query (read with the pass's count).
+    void setTiming(bool enabled) { timing_ = enabled; }
+    bool timing() const { return timing_; }
+
+    PassStats& operator[](const std::string& kernelName) { return passes_[kernelName]; }
+    const std::map<std::string, PassStats>& passes() const { return passes_; }
+    void reset() { passes_.clear(); }
+
+  private:
+    std::map<std::string, PassStats> passes_;
+    bool timing_ = false;
+};
+
+}  // namespace gpurt

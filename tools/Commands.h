@@ -1,0 +1,13 @@
+// The subcommands of the gpurt program; each returns the process exit code (CONTRACT.md).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace gpurt {
+
+// Adds a subcommand to `app`; `run` is set to the function to call when it was chosen.
+void addInfoCommand(CLI::App& app, std::function<int()>& run);
+
+}  // namespace gpurt

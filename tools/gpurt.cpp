@@ -1,0 +1,40 @@
+// gpurt: the command-line program. Parses the subcommand, runs it, and maps errors to the
+// contract's exit codes: 1 for bad input or options, 2 for an environment that cannot run it.
+#include "Commands.h"
+
+#include "stream/StreamErrors.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <functional>
+
+int main(int argc, char** argv) {
+    CLI::App app{"gpurt: a GPGPU ray tracer built from OpenGL stream kernels", "gpurt"};
+    app.require_subcommand(1);
+    std::function<int()> run;
+    gpurt::addInfoCommand(app, run);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "gpurt: %s\n", e.what());
+        return 1;
+    }
+    try {
+        return run ? run() : 1;
+    } catch (const gpurt::EnvironmentError& e) {
+        std::fprintf(stderr, "gpurt: %s\n", e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "gpurt: out of memory\n");
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gpurt: %s\n", e.what());
+        return 1;
+    }
+}

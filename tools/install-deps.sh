@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages gpurt builds and tests with (only those missing): toolchain,
+# glad (GL loader generator), EGL + Mesa llvmpipe + OSMesa, GLFW, GLM, glslang, GoogleTest,
+# tinyobjloader, nlohmann-json, libpng and Embree (benchmark baseline, test cross-checks).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config python3 python3-glad
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
+  libglfw3-dev libglm-dev glslang-tools
+  libgtest-dev libgmock-dev
+  libtinyobjloader-dev nlohmann-json3-dev libpng-dev libcli11-dev
+  libembree-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q >/dev/null || true
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null
