@@ -1,11 +1,18 @@
-// Options shared by the subcommands that make a GL context: --gl egl|osmesa and --glsl-dir.
+// Options shared by the subcommands: the GL context (--gl, --glsl-dir), the camera (--eye,
+// --target, --up, --fovy), the image size (--size), and their parsing into one-line errors.
 #pragma once
 
+#include "raytrace/Camera.h"
+#include "raytrace/InputError.h"
+#include "raytrace/Scene.h"
 #include "stream/GLContext.h"
 #include "stream/ShaderLibrary.h"
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
+#include <cmath>
+#include <optional>
 #include <string>
 
 namespace gpurt {
@@ -29,5 +36,27 @@ inline void addContextOptions(CLI::App& cmd, ContextOptions& options) {
                    "Load GLSL kernels from this folder instead of the embedded copies")
         ->check(CLI::ExistingDirectory);
 }
+
+// "x,y,z" -> vec3; InputError naming the option otherwise.
+glm::vec3 parseVec3(const std::string& option, const std::string& text);
+// "WxH" -> (W, H) with 1 <= W, H <= 16384 and W * H <= 8192 * 8192.
+glm::ivec2 parseSize(const std::string& option, const std::string& text);
+
+struct CameraOptions {
+    std::string eye, target, up, fovy, size;
+
+    void add(CLI::App& cmd) {
+        cmd.add_option("--eye", eye, "Camera position x,y,z (overrides the scene's camera)");
+        cmd.add_option("--target", target, "Point the camera looks at, x,y,z");
+        cmd.add_option("--up", up, "Up vector x,y,z (default 0,1,0)");
+        cmd.add_option("--fovy", fovy, "Vertical field of view in degrees (default 45)");
+        cmd.add_option("--size", size, "Image size WxH (default 512x512, or the scene's)");
+    }
+    // The image size: --size, else the scene file's, else 512x512.
+    glm::ivec2 imageSize(std::optional<glm::ivec2> sceneSize) const;
+    // The camera: the scene's (or the contract's default camera for its bounds), with each
+    // option given overriding its part. Throws InputError for an unusable camera.
+    CameraBasis camera(const Scene& scene, glm::ivec2 size) const;
+};
 
 }  // namespace gpurt

@@ -4,12 +4,16 @@
 // because tinyobjloader stores that count in an unsigned char.
 #include "raytrace/ObjLoader.h"
 
+#include <cerrno>
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string_view>
 
@@ -19,6 +23,14 @@
 
 namespace gpurt {
 namespace {
+
+// 'text', built by appending (GCC 12 warns falsely on "'" + std::string).
+std::string quote(std::string_view text) {
+    std::string out(1, '\'');
+    out.append(text);
+    out += '\'';
+    return out;
+}
 
 // What the pre-scan learns about the file.
 struct ObjPreScan {
@@ -55,9 +67,12 @@ public:
             ++line;
             scanLine(text.substr(pos, end - pos), line, result, forward);
             pos = end;
-            if (pos < text.size() && text[pos] == '\r') ++pos;
-            if (pos < text.size() && text[pos] == '\n' && (pos == 0 || text[pos - 1] != '\r' || end == pos))
+            if (pos < text.size() && text[pos] == '\r') {
                 ++pos;
+                if (pos < text.size() && text[pos] == '\n') ++pos;
+            } else if (pos < text.size()) {
+                ++pos;  // '\n'
+            }
         }
         const size_t counts[3] = {result.vertices, result.texcoords, result.normals};
         for (const ForwardReference& ref : forward)
@@ -116,13 +131,13 @@ private:
             for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
             size_t skip = (!lower.empty() && (lower[0] == '+' || lower[0] == '-')) ? 1 : 0;
             if (lower.compare(skip, 3, "nan") == 0 || lower.compare(skip, 3, "inf") == 0)
-                fail(line, "'" + std::string(token) + "' is not a finite number");
-            fail(line, "'" + std::string(token) + "' is not a number");
+                fail(line, quote(token) + " is not a finite number");
+            fail(line, quote(token) + " is not a number");
         }
         // The value only matters for range: doubles at or above 2^128 - 2^103 round to float infinity.
         const double value = std::strtod(std::string(token).c_str(), nullptr);
         if (!(std::fabs(value) < 0x1.ffffffp127))
-            fail(line, "'" + std::string(token) + "' does not fit in a 32-bit float");
+            fail(line, quote(token) + " does not fit in a 32-bit float");
     }
 
     // Parses one index of a face element and checks 0 and range; `count` is how many elements of
@@ -137,7 +152,7 @@ private:
             value > INT_MAX) {
             if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == digits.data() + digits.size()))
                 fail(line, std::string(kindName(kind)) + " index " + std::string(token) + " is out of range");
-            fail(line, "'" + std::string(element) + "' is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
+            fail(line, quote(element) + " is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
         }
         if (value == 0) fail(line, std::string(kindName(kind)) + " index 0 is invalid (OBJ indices start at 1)");
         if (value < 0 && static_cast<unsigned long long>(-value) > count)
@@ -178,7 +193,7 @@ private:
             const size_t elements = tok.size() - 1;
             if (keyword == "f" && elements < 3)
                 fail(line, "face has " + std::to_string(elements) + " vertices; a face needs at least 3");
-            if (elements < 1) fail(line, "'" + std::string(keyword) + "' without vertices");
+            if (elements < 1) fail(line, quote(keyword) + " without vertices");
             for (size_t i = 1; i < tok.size(); ++i) {
                 // v, v/vt, v//vn or v/vt/vn
                 std::string_view element = tok[i];
@@ -188,8 +203,8 @@ private:
                 while (true) {
                     size_t slash = element.find('/', start);
                     if (partCount == 3)
-                        fail(line, "'" + std::string(element) +
-                                       "' is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
+                        fail(line, quote(element) +
+                                       " is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
                     parts[partCount++] = element.substr(start, slash == std::string_view::npos ? slash : slash - start);
                     if (slash == std::string_view::npos) break;
                     start = slash + 1;

@@ -307,6 +307,11 @@ int GPUKernel::loop(int maxCalls) {
     }
 }
 
+void GPUKernel::flushStats() {
+    readPending(1 - slot_);
+    readPending(slot_);
+}
+
 GLuint GPUKernel::lastQueryId() const { return counters_[slot_].id(); }
 
 }  // namespace gpurt

@@ -89,6 +89,10 @@ class GPUKernel {
     // included. Throws LoopLimitError after `maxCalls` calls that all wrote something.
     int loop(int maxCalls);
 
+    // Reads the counts (and timings) of passes not read yet into KernelStats. Blocks until they
+    // have finished.
+    void flushStats();
+
     GLuint lastQueryId() const;
     int calls() const { return calls_; }
 

@@ -1,0 +1,23 @@
+// How the scene is laid out in textures (SceneTextures.cpp writes it, glsl/trace/scene.glsl reads
+// it). Valid C++ and GLSL; tests/raytrace checks that both sides agree.
+#ifndef GPURT_SCENE_LAYOUT_H
+#define GPURT_SCENE_LAYOUT_H
+
+// Voxel index: RG32UI, one texel per grid cell c = x + nx * (y + ny * z), wrapped into rows of
+// this width: (start of the cell's list in the list texture, number of triangles; 0 = empty).
+#define GPURT_INDEX_WIDTH 4096
+// Grid element lists: R32UI triangle ids, wrapped into rows of this width.
+#define GPURT_LIST_WIDTH 4096
+// Triangles: RGBA32F, three texels each, one triangle never split across rows:
+// (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
+#define GPURT_TRIANGLES_PER_ROW 1024
+// Materials: RGBA32F, three texels each on one row: (diffuse, shininess), (specular, 0),
+// (reflectivity, 0).
+#define GPURT_MATERIAL_TEXELS 3
+
+// Stream element (x, y) of the image-sized ray streams is pixel column x, row y counted from the
+// TOP (so a download is in the contract's top-first order).
+#define GPURT_NO_RAY -2.0f    // rayDir.w: this element carries no ray in this trace
+#define GPURT_MISSED_BOX -1.0f // rayDir.w: a ray that misses the grid's box (a miss, counted)
+
+#endif

@@ -1,0 +1,73 @@
+// Whitted shading at one hit, shared word for word by the GLSL kernels (#include
+// "common/shading.h" after "common/raymath.h") and the C++ CPU backend (included after
+// raytrace/RayMath.h, inside namespace gpurt::raymath), so both backends colour a hit with the
+// same float operations. Same rules as raymath.h: the common subset of GLSL 4.50 and C++/GLM, no
+// swizzle writes, float literals with 'f'.
+//
+// Per hit p with material (kd, ks, ns) seen along direction d (Whitted 1980; Christen 2005, eq. 5.1):
+//   local = 0.1 kd + sum over lights in front of the surface and not in shadow of
+//           (kd max(0, n.l) + ks max(0, reflect(-l, n).(-d))^ns) * colour * intensity / |light - p|^2
+//   colour = sum over bounces of (product of reflectivities so far) * local; a miss adds
+//            product * background.
+// A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by the surface itself
+// and gets no shadow ray.
+#ifndef GPURT_SHADING_H
+#define GPURT_SHADING_H
+
+#ifndef GPURT_RAYMATH_H
+#error "include common/raymath.h before common/shading.h"
+#endif
+
+#define GPURT_AMBIENT 0.1f  // ambient term: this fraction of the diffuse colour
+
+// Geometric unit normal of the triangle with edges e1 = v1 - v0, e2 = v2 - v0, turned to face
+// the incoming ray direction d. Hit triangles are never degenerate (their det != 0).
+GPURT_FN vec3 facingNormal(vec3 e1, vec3 e2, vec3 d) {
+    vec3 n = contractNormalize(cross(e1, e2));
+    if (dot(n, d) > 0.0f) n = -n;
+    return n;
+}
+
+// Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
+// languages evaluate the same operations.
+GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }
+
+// Origin of a shadow or reflected ray leaving hit point p: off the surface along its facing
+// normal by eps (UniformGrid::rayOffset, 1e-4 of the grid box's largest extent).
+GPURT_FN vec3 offsetOrigin(vec3 p, vec3 n, float eps) { return p + n * eps; }
+
+// Whether the light at lightPos is on the side of the surface that n faces.
+GPURT_FN bool lightInFront(vec3 p, vec3 n, vec3 lightPos) {
+    return dot(n, contractNormalize(lightPos - p)) > 0.0f;
+}
+
+// The shadow ray from a hit towards a light: it is occluded if the traversal finds a hit with
+// 0 < t < tLimit.
+GPURT_FN void shadowRay(vec3 p, vec3 n, float eps, vec3 lightPos, GPURT_OUT(vec3) origin,
+                        GPURT_OUT(vec3) dir, GPURT_OUT(float) tLimit) {
+    origin = offsetOrigin(p, n, eps);
+    vec3 toLight = lightPos - origin;
+    dir = contractNormalize(toLight);
+    tLimit = sqrt(dot(toLight, toLight));
+}
+
+// Diffuse + specular light from one unshadowed point light.
+GPURT_FN vec3 lightContribution(vec3 p, vec3 n, vec3 d, vec3 kd, vec3 ks, float ns, vec3 lightPos,
+                                vec3 lightColor, float intensity) {
+    vec3 toLight = lightPos - p;
+    float dist2 = dot(toLight, toLight);
+    vec3 l = contractNormalize(toLight);
+    float diffuse = max(0.0f, dot(n, l));
+    float s = max(0.0f, dot(mirrorDirection(-l, n), -d));
+    // GLSL leaves pow(0, y) undefined; a zero base contributes nothing.
+    float specular = s > 0.0f ? pow(s, ns) : 0.0f;
+    return (kd * diffuse + ks * specular) * lightColor * intensity / dist2;
+}
+
+// The ambient part of the local colour.
+GPURT_FN vec3 ambientColor(vec3 kd) { return GPURT_AMBIENT * kd; }
+
+// Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).
+GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) { return contractNormalize(mirrorDirection(d, n)); }
+
+#endif

@@ -1,0 +1,27 @@
+// Adds one point light's diffuse and specular term to the local colour of each surface point
+// whose shadow ray found no occluder.
+#include "shading.glsl"
+
+uniform sampler2D surfacePoint;
+uniform sampler2D surfaceNormal;
+uniform sampler2D surfaceView;
+uniform sampler2D hitState;    // the shadow rays' hits
+uniform sampler2D localState;  // in place
+uniform vec3 lightPosition;
+uniform vec3 lightColor;
+uniform float lightIntensity;
+
+layout(location = 0) out vec4 localColor;
+
+void main() {
+    vec4 s = readStream(surfacePoint);
+    vec4 nm = readStream(surfaceNormal);
+    if (s.w < 0.0f || !lightInFront(s.xyz, nm.xyz, lightPosition) || readStream(hitState).w >= 0.0f)
+        discard;  // no surface, light behind it, or in shadow: the local colour stays
+    vec3 kd, ks, reflectivity;
+    float ns;
+    fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
+    vec3 add = lightContribution(s.xyz, nm.xyz, readStream(surfaceView).xyz, kd, ks, ns,
+                                 lightPosition, lightColor, lightIntensity);
+    localColor = vec4(readStream(localState).xyz + add, 0.0f);
+}

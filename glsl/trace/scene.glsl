@@ -1,0 +1,45 @@
+// Scene access for the tracing kernels: the grid parameters and the packed scene textures of
+// SceneTextures (layout in common/scene_layout.h).
+#include "../common/scene_layout.h"
+#include "../common/raymath.h"
+#include "../common/stream.glsl"
+
+uniform usampler2D voxelIndex;  // (list start, count) per cell
+uniform usampler2D cellList;    // triangle ids
+uniform sampler2D triangles;    // v0 + material, e1, e2
+uniform sampler2D materials;
+
+uniform vec3 gridMin;
+uniform vec3 gridMax;
+uniform vec3 cellSize;
+uniform ivec3 gridRes;
+uniform float cellTolerance;  // a hit up to this far beyond the cell's exit still counts in it
+uniform int maxCellSteps;     // more cells than a ray can cross: RAY_OVERFLOW
+
+// (start, count) of the triangle list of cell v.
+uvec2 cellRange(ivec3 v) {
+    int c = v.x + gridRes.x * (v.y + gridRes.y * v.z);
+    return texelFetch(voxelIndex, ivec2(c % GPURT_INDEX_WIDTH, c / GPURT_INDEX_WIDTH), 0).xy;
+}
+
+uint listEntry(uint i) {
+    return texelFetch(cellList, ivec2(int(i % uint(GPURT_LIST_WIDTH)), int(i / uint(GPURT_LIST_WIDTH))), 0).x;
+}
+
+// Vertex 0, the two edges and the material id of triangle `id`.
+void fetchTriangle(int id, out vec3 v0, out vec3 e1, out vec3 e2, out int material) {
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangles, at, 0);
+    v0 = a.xyz;
+    material = int(a.w);
+    e1 = texelFetch(triangles, at + ivec2(1, 0), 0).xyz;
+    e2 = texelFetch(triangles, at + ivec2(2, 0), 0).xyz;
+}
+
+// The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX when the segment
+// [0, tLimit] misses the box (primary ray generation, Purcell 2002: rays that miss are rejected).
+float gridEntry(vec3 o, vec3 d, float tLimit) {
+    vec2 box = intersectBox(o, d, gridMin, gridMax);
+    float tEnter = max(box.x, 0.0f);
+    return tEnter > min(box.y, tLimit) ? GPURT_MISSED_BOX : tEnter;
+}

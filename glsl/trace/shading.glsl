@@ -1,0 +1,14 @@
+// Shared by the shading kernels: the shading math of common/shading.h (shared with the CPU
+// backend) and the material fetch.
+#include "scene.glsl"
+#include "../common/shading.h"
+
+uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
+
+void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 reflectivity) {
+    vec4 a = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m, 0), 0);
+    kd = a.xyz;
+    ns = a.w;
+    ks = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).xyz;
+    reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
+}

@@ -1,0 +1,45 @@
+// Shading, step 1 of a bounce (Whitted 1980; Christen 2005, 5.5): turns the traced ray's hit into
+// a surface record (point, facing normal, material, view direction) and starts the local colour
+// with the ambient term. A path whose ray missed adds weight * background to the pixel and ends.
+#include "shading.glsl"
+
+uniform sampler2D rayOrigin;
+uniform sampler2D rayDir;
+uniform sampler2D hitState;
+uniform sampler2D weight;      // (product of reflectivities, alive)
+uniform sampler2D colorState;  // in place
+uniform vec3 background;
+
+layout(location = 0) out vec4 color;          // (accumulated colour, 0)
+layout(location = 1) out vec4 surfacePoint;   // (p, triangle | -1 when this path has no hit)
+layout(location = 2) out vec4 surfaceNormal;  // (n facing the ray, material)
+layout(location = 3) out vec4 surfaceView;    // (ray direction, 0)
+layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
+
+void main() {
+    vec4 w = readStream(weight);
+    vec4 c = readStream(colorState);
+    vec4 h = readStream(hitState);
+    color = c;
+    surfacePoint = vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    surfaceNormal = vec4(0.0f);
+    surfaceView = vec4(0.0f);
+    localColor = vec4(0.0f);
+    if (w.w == 0.0f) return;  // path ended at an earlier bounce
+    if (h.w < 0.0f) {
+        color = vec4(c.xyz + w.xyz * background, 0.0f);
+        return;
+    }
+    vec3 o = readStream(rayOrigin).xyz;
+    vec3 d = readStream(rayDir).xyz;
+    vec3 v0, e1, e2;
+    int material;
+    fetchTriangle(int(h.w), v0, e1, e2, material);
+    vec3 kd, ks, reflectivity;
+    float ns;
+    fetchMaterial(material, kd, ks, ns, reflectivity);
+    surfacePoint = vec4(o + h.x * d, h.w);
+    surfaceNormal = vec4(facingNormal(e1, e2, d), float(material));
+    surfaceView = vec4(d, 0.0f);
+    localColor = vec4(ambientColor(kd), 0.0f);
+}

@@ -1,0 +1,82 @@
+// Camera set-up and primary rays, exactly as CONTRACT.md writes them.
+#include "raytrace/Camera.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "raytrace/InputError.h"
+#include "raytrace/RayMath.h"
+
+namespace gpurt {
+namespace {
+
+bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string format(glm::vec3 v) {
+    std::ostringstream s;
+    s << v.x << "," << v.y << "," << v.z;
+    return s.str();
+}
+
+// tan(fovy * pi / 360) in double, rounded to float (the contract's t).
+float tanHalfFovy(float fovy) { return static_cast<float>(std::tan(double(fovy) * std::numbers::pi / 360.0)); }
+
+}  // namespace
+
+CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
+    if (width < 1 || height < 1)
+        throw InputError("--size: width and height must be at least 1, got " + std::to_string(width) + "x" +
+                         std::to_string(height));
+    if (!isFinite(spec.eye)) throw InputError("--eye: not a finite point: " + format(spec.eye));
+    if (!isFinite(spec.target)) throw InputError("--target: not a finite point: " + format(spec.target));
+    if (!isFinite(spec.up)) throw InputError("--up: not a finite vector: " + format(spec.up));
+    if (!(spec.fovy > 0.0f && spec.fovy < 180.0f))
+        throw InputError("--fovy: must be between 0 and 180 degrees (exclusive), got " + std::to_string(spec.fovy));
+
+    CameraBasis c;
+    c.eye = spec.eye;
+    const glm::vec3 view = spec.target - spec.eye;
+    if (!(glm::dot(view, view) > 0.0f))
+        throw InputError("--target: must differ from --eye (both are " + format(spec.eye) + ")");
+    c.forward = raymath::contractNormalize(view);
+    const glm::vec3 side = glm::cross(c.forward, spec.up);
+    if (!(glm::dot(side, side) > 0.0f))
+        throw InputError("--up: " + format(spec.up) + " is parallel to the viewing direction (or zero)");
+    c.right = raymath::contractNormalize(side);
+    c.upOrtho = glm::cross(c.right, c.forward);
+    if (!isFinite(c.forward) || !isFinite(c.right) || !isFinite(c.upOrtho))
+        throw InputError("--eye: eye, target and up give no valid camera frame");
+    c.tanHalf = tanHalfFovy(spec.fovy);
+    c.aspect = static_cast<float>(width) / static_cast<float>(height);
+    c.width = width;
+    c.height = height;
+    return c;
+}
+
+CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy) {
+    glm::vec3 center(0.0f), half(1.0f);
+    if (!bounds.empty()) {
+        center = bounds.center();
+        half = bounds.halfExtent();
+    }
+    CameraSpec spec;  // up = 0,1,0
+    spec.fovy = fovy;
+    const float t = tanHalfFovy(spec.fovy);
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    float dist = 1.1f * std::max(half.y / t, half.x / (t * aspect)) + half.z;
+    // A single point has no size to fit; stand back one unit rather than at the point itself.
+    if (!(dist > 0.0f)) dist = 1.0f;
+    spec.eye = center + glm::vec3(0.0f, 0.0f, dist);
+    spec.target = center;
+    return spec;
+}
+
+glm::vec3 primaryDirection(const CameraBasis& c, int i, int j) {
+    return raymath::cameraRayDirection(c.forward, c.right, c.upOrtho, c.tanHalf, c.aspect, static_cast<float>(i),
+                                       static_cast<float>(j), static_cast<float>(c.width),
+                                       static_cast<float>(c.height));
+}
+
+}  // namespace gpurt

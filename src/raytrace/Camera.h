@@ -1,0 +1,29 @@
+// The contract's pinhole camera (CONTRACT.md, camera convention), evaluated in float32 in the
+// contract's order so that both backends and outside checks shoot the same primary rays.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "raytrace/Scene.h"
+
+namespace gpurt {
+
+struct CameraBasis {
+    glm::vec3 eye, forward, right, upOrtho;
+    float tanHalf;  // float(tan(fovy * pi / 360)), computed in double
+    float aspect;   // float(width) / float(height)
+    int width, height;
+};
+
+// Throws InputError for fovy outside (0, 180), eye == target, up parallel to the view direction,
+// non-finite values or a size below 1x1; the message starts with the option's name ("--fovy: ...").
+CameraBasis makeCamera(const CameraSpec& spec, int width, int height);
+
+// The contract's default camera: from the +z side, fitting the box's front face with a 10% margin.
+// An empty box is treated as the unit cube around the origin.
+CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy = 45.0f);
+
+// Direction of the primary ray through pixel (i, j), j counted from the top row.
+glm::vec3 primaryDirection(const CameraBasis& camera, int i, int j);
+
+}  // namespace gpurt

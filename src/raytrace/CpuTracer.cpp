@@ -1,0 +1,194 @@
+// The CPU backend. trace() is the per-ray algorithm the GL kernels run as a chain of passes
+// (Christen 2005, chapter 5): a ray that misses the grid's box is INACTIVE; otherwise the voxel
+// precalculation (ddaSetup) makes it ACTIVE, and it alternates between traversal (ddaStep to the
+// next cell) and intersection (WAIT: all triangles of a non-empty cell) until it is DEAD. A hit
+// is accepted in a cell only if it lies before the cell's exit (plus a small tolerance), because
+// a triangle spanning several cells may be hit farther along, behind triangles of later cells.
+#include "raytrace/CpuTracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <thread>
+
+#include "raytrace/RayMath.h"
+
+namespace gpurt::raymath {
+#include "../../glsl/common/shading.h"
+}  // namespace gpurt::raymath
+
+namespace gpurt {
+
+using namespace raymath;
+
+CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
+    : scene_(scene),
+      grid_(grid),
+      hitTolerance_(grid.hitTolerance()),
+      rayOffset_(grid.rayOffset()),
+      // A straight line crosses at most nx + ny + nz cells; the rest is slack for rounding.
+      maxSteps_(grid.resolution.x + grid.resolution.y + grid.resolution.z + 3) {
+    triangles_.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
+}
+
+TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
+    TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, RAY_INACTIVE};
+
+    // Ray generation: clip against the grid's box.
+    const glm::vec2 box = intersectBox(o, d, grid_.min, grid_.max);
+    const float tEnter = std::max(box.x, 0.0f);
+    if (tEnter > std::min(box.y, tLimit)) return hit;
+
+    // Voxel precalculation.
+    glm::ivec3 voxel;
+    glm::vec3 tMax;
+    ddaSetup(o, d, tEnter, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax);
+    hit.state = RAY_ACTIVE;
+
+    while (true) {
+        if (hit.steps >= maxSteps_) {
+            hit.state = RAY_OVERFLOW;
+            return hit;
+        }
+        hit.steps += 1;
+        const float cellExit = ddaCellExit(tMax);
+        const int cell = grid_.cellIndex(voxel);
+        const uint32_t begin = grid_.cellStart[cell], end = grid_.cellStart[cell + 1];
+        if (begin != end) {
+            // Intersection (state WAIT): the closest accepted hit among the cell's triangles;
+            // strict < keeps the lowest id on ties, as ids are ascending.
+            hit.state = RAY_WAIT;
+            for (uint32_t k = begin; k < end; ++k) {
+                const uint32_t id = grid_.cellTriangles[k];
+                const PreparedTriangle& tri = triangles_[id];
+                float t, u, v;
+                if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;
+                if (t > 0.0f && t < tLimit && t <= cellExit + hitTolerance_ && t < hit.t) {
+                    hit.t = t;
+                    hit.prim = static_cast<int>(id);
+                    hit.u = u;
+                    hit.v = v;
+                }
+            }
+            if (hit.prim >= 0) {
+                hit.state = RAY_DEAD;
+                return hit;
+            }
+            hit.state = RAY_ACTIVE;
+        }
+        // Traversal: stop when the next cell starts beyond the ray's limit or outside the grid.
+        if (cellExit > tLimit || !ddaStep(o, d, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax)) {
+            hit.state = RAY_DEAD;
+            return hit;
+        }
+    }
+}
+
+RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
+    const auto start = std::chrono::steady_clock::now();
+    RenderOutput out;
+    out.width = camera.width;
+    out.height = camera.height;
+    const size_t pixels = size_t(camera.width) * size_t(camera.height);
+    out.color.assign(pixels, glm::vec3(0.0f));
+    out.depth.assign(pixels, std::numeric_limits<float>::infinity());
+    out.prim.assign(pixels, -1.0f);
+    out.normal.assign(pixels, glm::vec3(0.0f));
+    out.steps.assign(pixels, 0.0f);
+
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
+    const int maxBounces = std::max(0, settings.maxBounces);
+
+    // One pixel: the primary ray, then up to maxBounces mirror rays; every hit is shaded with a
+    // shadow ray per light in front of it.
+    auto shadePixel = [&](int i, int j, RenderStats& stats) {
+        const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
+        glm::vec3 o = camera.eye;
+        glm::vec3 d = primaryDirection(camera, i, j);
+        glm::vec3 color(0.0f);
+        glm::vec3 weight(1.0f);
+        for (int bounce = 0;; ++bounce) {
+            const TraceHit hit = trace(o, d, GPURT_FAR);
+            if (bounce == 0) {
+                ++stats.primaryRays;
+                out.steps[pixel] = static_cast<float>(hit.steps);
+            } else {
+                ++stats.secondaryRays;
+            }
+            if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
+            if (hit.prim < 0) {
+                color += weight * scene_.background;
+                break;
+            }
+            const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
+            const Material& material = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+            const glm::vec3 p = o + hit.t * d;
+            const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
+            if (bounce == 0) {
+                out.depth[pixel] = hit.t;
+                out.prim[pixel] = static_cast<float>(hit.prim);
+                out.normal[pixel] = n;
+            }
+
+            glm::vec3 local = ambientColor(material.diffuse);
+            for (const PointLight& light : lights) {
+                if (!lightInFront(p, n, light.position)) continue;
+                glm::vec3 shadowOrigin, shadowDir;
+                float shadowLimit;
+                shadowRay(p, n, rayOffset_, light.position, shadowOrigin, shadowDir, shadowLimit);
+                const TraceHit blocker = trace(shadowOrigin, shadowDir, shadowLimit);
+                ++stats.shadowRays;
+                if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+                if (blocker.prim >= 0) continue;
+                local += lightContribution(p, n, d, material.diffuse, material.specular, material.shininess,
+                                           light.position, light.color, light.intensity);
+            }
+            color += weight * local;
+
+            if (bounce >= maxBounces) break;
+            weight *= material.reflectivity;
+            if (weight == glm::vec3(0.0f)) break;
+            o = offsetOrigin(p, n, rayOffset_);
+            d = reflectedDirection(d, n);
+        }
+        out.color[pixel] = color;
+    };
+
+    // Rows are handed out one at a time: cost varies strongly across the image.
+    size_t threads = settings.threads > 0 ? size_t(settings.threads) : size_t(std::thread::hardware_concurrency());
+    threads = std::clamp<size_t>(threads, 1, size_t(std::max(1, camera.height)));
+    std::atomic<int> nextRow{0};
+    std::vector<RenderStats> threadStats(threads);
+    std::vector<std::exception_ptr> errors(threads);
+    {
+        std::vector<std::thread> workers;
+        for (size_t t = 0; t < threads; ++t) {
+            workers.emplace_back([&, t] {
+                try {
+                    for (int j = nextRow++; j < camera.height; j = nextRow++)
+                        for (int i = 0; i < camera.width; ++i) shadePixel(i, j, threadStats[t]);
+                } catch (...) {
+                    errors[t] = std::current_exception();
+                }
+            });
+        }
+        for (std::thread& w : workers) w.join();
+    }
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+
+    for (const RenderStats& s : threadStats) {
+        out.stats.primaryRays += s.primaryRays;
+        out.stats.shadowRays += s.shadowRays;
+        out.stats.secondaryRays += s.secondaryRays;
+        out.stats.overflowRays += s.overflowRays;
+    }
+    out.stats.totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace gpurt

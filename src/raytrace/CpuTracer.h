@@ -1,0 +1,51 @@
+// The CPU backend: the same grid, the same traversal and the same shading as the GL kernels,
+// evaluated ray by ray in C++ with the shared raymath.h / shading.h. It is the reference the GL
+// backend is tested against and the fallback with --backend cpu.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/Camera.h"
+#include "raytrace/RenderTypes.h"
+#include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
+
+namespace gpurt {
+
+// The result of one traversal. A miss has prim = -1 and t = +inf.
+struct TraceHit {
+    float t;
+    int prim;
+    float u, v;  // barycentrics of the hit (weights of v1 and v2)
+    int steps;   // grid cells visited
+    int state;   // RAY_DEAD (hit or left the grid), RAY_INACTIVE (missed the box), RAY_OVERFLOW
+};
+
+class CpuTracer {
+public:
+    // Keeps references to both: they must outlive the tracer.
+    CpuTracer(const Scene& scene, const UniformGrid& grid);
+
+    // First hit of o + t d with 0 < t < tLimit; d must be normalised.
+    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit) const;
+
+    // Renders the camera's image (its width x height) with Whitted shading and the AOVs, on
+    // settings.threads threads (0: all cores), rows handed out dynamically.
+    RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) const;
+
+private:
+    struct PreparedTriangle {
+        glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
+    };
+
+    const Scene& scene_;
+    const UniformGrid& grid_;
+    std::vector<PreparedTriangle> triangles_;
+    float hitTolerance_;
+    float rayOffset_;
+    int maxSteps_;
+};
+
+}  // namespace gpurt

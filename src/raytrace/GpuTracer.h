@@ -1,0 +1,53 @@
+// The ray tracer as a chain of stream kernels on the GL context (Purcell et al. 2002; Christen
+// 2005, chapter 5): ray generation, voxel precalculation, a traverse/intersect loop under
+// occlusion-query control, then Whitted shading with shadow rays and mirror bounces, each a
+// GPUKernel over image-sized streams.
+#pragma once
+
+#include "raytrace/Camera.h"
+#include "raytrace/RenderTypes.h"
+#include "raytrace/Scene.h"
+#include "raytrace/SceneTextures.h"
+#include "raytrace/UniformGrid.h"
+#include "stream/GPUMask.h"
+
+#include <memory>
+
+namespace gpurt {
+
+struct GpuTracerOptions {
+    MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
+    int traverseSteps = 4;           // cells per traverser pass (1 = the seed)
+};
+
+class GpuTracer {
+  public:
+    // Uploads the scene textures; `scene` and `grid` must outlive the tracer.
+    GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options = {});
+    ~GpuTracer();
+
+    // The whole image: colour and the primary AOVs.
+    RenderOutput render(const CameraBasis& camera, const RenderSettings& settings);
+
+    // Benchmark entry points: trace only (no shading); return the number of rays traced.
+    // tracePrimary leaves the primary hits for traceShadows (one ray per hit, to `light`).
+    uint64_t tracePrimary(const CameraBasis& camera);
+    uint64_t traceShadows(glm::vec3 light);
+    // Downloads the primary hits of the last tracePrimary: (t, u, v, triangle | -1), top row first.
+    std::vector<glm::vec4> primaryHits();
+
+    const SceneTextures& textures() const { return textures_; }
+
+  private:
+    struct Pipeline;  // streams and kernels for one image size
+    Pipeline& pipeline(int width, int height);
+    uint64_t traceLoop(Pipeline& p);
+
+    const Scene& scene_;
+    const UniformGrid& grid_;
+    GpuTracerOptions options_;
+    SceneTextures textures_;
+    std::unique_ptr<Pipeline> pipeline_;
+};
+
+}  // namespace gpurt

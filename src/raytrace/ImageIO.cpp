@@ -1,0 +1,191 @@
+// PNG (libpng) and PFM writing through a temporary file and rename, so that an output file
+// appears whole or not at all (CONTRACT.md, exit codes).
+#include "raytrace/ImageIO.h"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include <fcntl.h>
+#include <png.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "raytrace/InputError.h"
+
+namespace gpurt {
+namespace {
+
+std::string errnoText() { return std::strerror(errno); }
+
+// Runs `write` on a fresh temporary file next to `path`, then renames it to `path`. On any
+// failure the temporary file is removed and InputError("<path>: ...") is thrown.
+void writeAtomically(const std::filesystem::path& path, const std::function<void(FILE*)>& write) {
+    const std::string target = path.string();
+    std::string temp = target + ".tmp-XXXXXX";
+    const int fd = mkstemp(temp.data());
+    if (fd < 0) throw InputError(target + ": cannot create file (" + errnoText() + ")");
+    // mkstemp creates the file 0600; an output image should be readable like any other file.
+    fchmod(fd, 0644);
+    FILE* file = fdopen(fd, "wb");
+    if (!file) {
+        const std::string why = errnoText();
+        close(fd);
+        unlink(temp.c_str());
+        throw InputError(target + ": cannot write file (" + why + ")");
+    }
+    try {
+        write(file);
+        if (std::fflush(file) != 0 || std::ferror(file)) throw InputError(target + ": cannot write file (" + errnoText() + ")");
+    } catch (...) {
+        std::fclose(file);
+        unlink(temp.c_str());
+        throw;
+    }
+    if (std::fclose(file) != 0) {
+        const std::string why = errnoText();
+        unlink(temp.c_str());
+        throw InputError(target + ": cannot write file (" + why + ")");
+    }
+    if (std::rename(temp.c_str(), target.c_str()) != 0) {
+        const std::string why = errnoText();
+        unlink(temp.c_str());
+        throw InputError(target + ": cannot write file (" + why + ")");
+    }
+}
+
+// libpng reports errors through longjmp; keep the message for the exception.
+struct PngErrorState {
+    std::jmp_buf jump;
+    std::string message;
+};
+
+void pngError(png_structp png, png_const_charp message) {
+    auto* state = static_cast<PngErrorState*>(png_get_error_ptr(png));
+    state->message = message;
+    std::longjmp(state->jump, 1);
+}
+
+void pngWarning(png_structp, png_const_charp) {}
+
+// Writes the PNG to an open file. Kept free of C++ objects with destructors between setjmp and
+// the libpng calls, as longjmp would skip them.
+bool writePngRows(FILE* file, int width, int height, unsigned char* const* rows, PngErrorState& state) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
+    if (!png) {
+        state.message = "out of memory";
+        return false;
+    }
+    png_infop info = png_create_info_struct(png);
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        state.message = "out of memory";
+        return false;
+    }
+    if (setjmp(state.jump)) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, file);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    png_write_image(png, const_cast<png_bytepp>(rows));
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+void checkSize(const std::filesystem::path& path, int width, int height, size_t values, size_t perPixel) {
+    if (width < 1 || height < 1 || values != size_t(width) * size_t(height) * perPixel)
+        throw InputError(path.string() + ": image of " + std::to_string(width) + "x" + std::to_string(height) +
+                         " does not match its " + std::to_string(values) + " values");
+}
+
+uint32_t byteSwap(uint32_t x) {
+    return (x >> 24) | ((x >> 8) & 0xff00u) | ((x << 8) & 0xff0000u) | (x << 24);
+}
+
+}  // namespace
+
+unsigned char linearToSrgb8(float linear) {
+    float c = std::isnan(linear) ? 0.0f : std::clamp(linear, 0.0f, 1.0f);
+    c = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+    return static_cast<unsigned char>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
+}
+
+void writePng(const std::filesystem::path& path, int width, int height, const std::vector<glm::vec3>& linearTopFirst) {
+    checkSize(path, width, height, linearTopFirst.size(), 1);
+    std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 3);
+    for (size_t k = 0; k < linearTopFirst.size(); ++k)
+        for (int c = 0; c < 3; ++c) pixels[3 * k + size_t(c)] = linearToSrgb8(linearTopFirst[k][c]);
+    std::vector<unsigned char*> rows(static_cast<size_t>(height));
+    for (int j = 0; j < height; ++j) rows[size_t(j)] = pixels.data() + size_t(j) * size_t(width) * 3;
+    writeAtomically(path, [&](FILE* file) {
+        PngErrorState state;
+        if (!writePngRows(file, width, height, rows.data(), state))
+            throw InputError(path.string() + ": cannot write PNG (" + state.message + ")");
+    });
+}
+
+void writePfm(const std::filesystem::path& path, int width, int height, int channels,
+              const std::vector<float>& topFirst) {
+    if (channels != 1 && channels != 3)
+        throw InputError(path.string() + ": a PFM has 1 or 3 channels, not " + std::to_string(channels));
+    checkSize(path, width, height, topFirst.size(), size_t(channels));
+    const size_t rowFloats = size_t(width) * size_t(channels);
+    std::vector<float> row(rowFloats);
+    writeAtomically(path, [&](FILE* file) {
+        std::fprintf(file, "%s\n%d %d\n-1.0\n", channels == 1 ? "Pf" : "PF", width, height);
+        // The file's first scanline is the image's bottom row.
+        for (int j = height - 1; j >= 0; --j) {
+            const float* src = topFirst.data() + size_t(j) * rowFloats;
+            if constexpr (std::endian::native == std::endian::little) {
+                std::copy(src, src + rowFloats, row.begin());
+            } else {
+                for (size_t k = 0; k < rowFloats; ++k)
+                    row[k] = std::bit_cast<float>(byteSwap(std::bit_cast<uint32_t>(src[k])));
+            }
+            if (std::fwrite(row.data(), sizeof(float), rowFloats, file) != rowFloats)
+                throw InputError(path.string() + ": cannot write file (" + errnoText() + ")");
+        }
+    });
+}
+
+std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height, int& channels) {
+    const std::string name = path.string();
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open file (" + errnoText() + ")");
+    std::string magic;
+    double scale = 0;
+    in >> magic >> width >> height >> scale;
+    if (!in || (magic != "Pf" && magic != "PF") || width < 1 || height < 1 || scale == 0)
+        throw InputError(name + ": not a PFM file (bad header)");
+    if (size_t(width) * size_t(height) > (size_t(1) << 28)) throw InputError(name + ": PFM image is too large");
+    // Exactly one whitespace character separates the header from the data.
+    if (!std::isspace(in.get())) throw InputError(name + ": not a PFM file (bad header)");
+    channels = magic == "PF" ? 3 : 1;
+    const size_t rowFloats = size_t(width) * size_t(channels);
+    std::vector<float> topFirst(rowFloats * size_t(height));
+    const bool fileLittle = scale < 0;
+    const bool swap = fileLittle != (std::endian::native == std::endian::little);
+    for (int j = height - 1; j >= 0; --j) {
+        float* dst = topFirst.data() + size_t(j) * rowFloats;
+        in.read(reinterpret_cast<char*>(dst), std::streamsize(rowFloats * sizeof(float)));
+        if (!in) throw InputError(name + ": PFM data is truncated");
+        if (swap)
+            for (size_t k = 0; k < rowFloats; ++k) dst[k] = std::bit_cast<float>(byteSwap(std::bit_cast<uint32_t>(dst[k])));
+    }
+    return topFirst;
+}
+
+}  // namespace gpurt

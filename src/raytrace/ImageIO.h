@@ -1,0 +1,28 @@
+// Image files: the PNG of the render and the PFM AOVs of the contract. Every write is atomic: a
+// temporary file in the target's folder is renamed over the target only once complete.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace gpurt {
+
+// 8-bit sRGB RGB PNG from linear colour (clamped to [0, 1], sRGB transfer, rounded); row 0 of
+// `linearTopFirst` is the top row. Throws InputError("<path>: ...") when it cannot be written.
+void writePng(const std::filesystem::path& path, int width, int height, const std::vector<glm::vec3>& linearTopFirst);
+
+// PFM as the contract defines it: "Pf" (channels = 1) or "PF" (3), "W H", "-1.0", then float32
+// little-endian scanlines from the BOTTOM row to the top. `topFirst` is row-major, top row first,
+// width * height * channels floats. Throws InputError("<path>: ...") when it cannot be written.
+void writePfm(const std::filesystem::path& path, int width, int height, int channels,
+              const std::vector<float>& topFirst);
+
+// Reads a PFM (either byte order) back into top-first rows. Throws InputError on a malformed file.
+std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height, int& channels);
+
+// The 8-bit sRGB encoding of one linear channel value, as writePng stores it.
+unsigned char linearToSrgb8(float linear);
+
+}  // namespace gpurt

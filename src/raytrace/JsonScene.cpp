@@ -1,0 +1,417 @@
+// JSON scene loading: nlohmann-json parses; SceneReader walks the document against the schema of
+// docs/SCENE_FORMAT.md, naming the JSON pointer of anything it refuses, and assembles the Scene
+// from the OBJ files the meshes name.
+#include "raytrace/JsonScene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "raytrace/InputError.h"
+#include "raytrace/ObjLoader.h"
+
+namespace gpurt {
+namespace {
+
+using nlohmann::json;
+using Pointer = json::json_pointer;
+
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxBounces = 64;
+
+// 'text', built by appending (GCC 12 warns falsely on "'" + std::string).
+std::string quote(std::string_view text) {
+    std::string out(1, '\'');
+    out.append(text);
+    out += '\'';
+    return out;
+}
+
+// Messages are one line of ASCII whatever the file holds: other bytes become \xNN.
+std::string printable(std::string_view text) {
+    std::string out;
+    for (unsigned char c : text) {
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", c);
+            out += hex;
+        }
+    }
+    return out;
+}
+
+std::string formatNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+std::string readSceneText(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
+    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(name + ": cannot read");
+    return buffer.str();
+}
+
+// "LINE:COLUMN" of a 1-based byte offset into text (nlohmann's parse_error::byte).
+std::string lineAndColumn(std::string_view text, size_t byte) {
+    const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+    size_t line = 1, lineStart = 0;
+    for (size_t i = 0; i < end; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            lineStart = i + 1;
+        }
+    }
+    return std::to_string(line) + ":" + std::to_string(end - lineStart + 1);
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] parse error at line 1,
+// column 2: " prefix (the position is reported separately).
+std::string parseErrorText(const std::string& what) {
+    std::string text = what;
+    const size_t bracket = text.find("] ");
+    if (text.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) text.erase(0, bracket + 2);
+    const size_t column = text.find("column ");
+    if (text.rfind("parse error", 0) == 0 && column != std::string::npos) {
+        const size_t colon = text.find(": ", column);
+        if (colon != std::string::npos) text.erase(0, colon + 2);
+    }
+    return printable(text);
+}
+
+// Walks one parsed scene document. Every accessor takes the value and its JSON pointer, so that
+// a refusal can name the place.
+class SceneReader {
+public:
+    explicit SceneReader(const std::filesystem::path& path) : file_(path.string()), folder_(path.parent_path()) {}
+
+    JsonSceneFile read(const json& root) {
+        const Pointer top;
+        requireObject(root, top, {"meshes", "lights", "camera", "background", "render"});
+        JsonSceneFile result;
+        Scene& scene = result.scene;
+
+        const Pointer meshesAt = top / "meshes";
+        const json& meshes = require(root, top, "meshes");
+        requireArray(meshes, meshesAt);
+        for (size_t i = 0; i < meshes.size(); ++i) readMesh(meshes[i], meshesAt / i, scene);
+        // A scene always has a material 0 (Scene's invariant), also without meshes.
+        if (scene.materials.empty()) scene.materials.push_back(Material{});
+
+        if (const json* lights = find(root, "lights")) {
+            const Pointer at = top / "lights";
+            requireArray(*lights, at);
+            for (size_t i = 0; i < lights->size(); ++i) scene.lights.push_back(readLight((*lights)[i], at / i));
+        }
+        if (const json* camera = find(root, "camera")) scene.camera = readCamera(*camera, top / "camera");
+        if (const json* background = find(root, "background"))
+            scene.background = color(*background, top / "background");
+        if (const json* render = find(root, "render")) {
+            const Pointer at = top / "render";
+            requireObject(*render, at, {"size", "max_bounces"});
+            if (const json* size = find(*render, "size")) {
+                const Pointer sizeAt = at / "size";
+                requireArrayOf(*size, sizeAt, 2, "2 integers");
+                result.size = glm::ivec2(integer((*size)[0], sizeAt / 0, 1, kMaxImageSide),
+                                         integer((*size)[1], sizeAt / 1, 1, kMaxImageSide));
+            }
+            if (const json* bounces = find(*render, "max_bounces"))
+                scene.maxBounces = integer(*bounces, at / "max_bounces", 0, kMaxBounces);
+        }
+        return result;
+    }
+
+private:
+    [[noreturn]] void fail(const Pointer& at, const std::string& what) const {
+        const std::string where = at.empty() ? std::string("top level") : printable(at.to_string());
+        throw InputError(file_ + ": " + where + ": " + what);
+    }
+
+    static const json* find(const json& object, const char* key) {
+        auto it = object.find(key);
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    const json& require(const json& object, const Pointer& at, const char* key) const {
+        const json* value = find(object, key);
+        if (!value) fail(at / key, "missing required key");
+        return *value;
+    }
+
+    // An object whose keys are all in `allowed`.
+    void requireObject(const json& value, const Pointer& at, std::initializer_list<const char*> allowed) const {
+        if (!value.is_object()) fail(at, std::string("expected an object, got ") + value.type_name());
+        for (const auto& item : value.items()) {
+            if (std::none_of(allowed.begin(), allowed.end(), [&](const char* key) { return item.key() == key; })) {
+                std::string expected;
+                for (const char* key : allowed) expected += (expected.empty() ? "" : ", ") + std::string(key);
+                fail(at / item.key(), "unknown key (expected one of: " + expected + ")");
+            }
+        }
+    }
+
+    void requireArray(const json& value, const Pointer& at) const {
+        if (!value.is_array()) fail(at, std::string("expected an array, got ") + value.type_name());
+    }
+
+    void requireArrayOf(const json& value, const Pointer& at, size_t count, const char* what) const {
+        if (!value.is_array()) fail(at, std::string("expected an array of ") + what + ", got " + value.type_name());
+        if (value.size() != count)
+            fail(at, "expected an array of " + std::string(what) + ", got " + std::to_string(value.size()) +
+                         " elements");
+    }
+
+    // A number that fits a float (JSON has no NaN, but 1e39 overflows float).
+    double number(const json& value, const Pointer& at) const {
+        if (!value.is_number()) fail(at, std::string("expected a number, got ") + value.type_name());
+        const double result = value.get<double>();
+        if (!std::isfinite(result)) fail(at, "number is not finite");
+        if (std::fabs(result) > FLT_MAX) fail(at, formatNumber(result) + " does not fit in a 32-bit float");
+        return result;
+    }
+
+    double numberAtLeast(const json& value, const Pointer& at, double min) const {
+        const double result = number(value, at);
+        if (result < min) fail(at, "must be >= " + formatNumber(min) + ", got " + formatNumber(result));
+        return result;
+    }
+
+    int integer(const json& value, const Pointer& at, int min, int max) const {
+        if (!value.is_number_integer()) {
+            if (value.is_number()) fail(at, "expected an integer, got " + formatNumber(value.get<double>()));
+            fail(at, std::string("expected an integer, got ") + value.type_name());
+        }
+        const bool inRange = value.is_number_unsigned() ? value.get<uint64_t>() <= static_cast<uint64_t>(max)
+                                                        : value.get<int64_t>() >= min && value.get<int64_t>() <= max;
+        if (!inRange || value.get<int64_t>() < min)
+            fail(at, "must be in " + std::to_string(min) + ".." + std::to_string(max) + ", got " + value.dump());
+        return static_cast<int>(value.get<int64_t>());
+    }
+
+    glm::dvec3 vector3(const json& value, const Pointer& at) const {
+        requireArrayOf(value, at, 3, "3 numbers");
+        return glm::dvec3(number(value[0], at / 0), number(value[1], at / 1), number(value[2], at / 2));
+    }
+
+    // [r, g, b], each >= 0 (no upper bound: HDR colours are fine).
+    glm::vec3 color(const json& value, const Pointer& at) const {
+        requireArrayOf(value, at, 3, "3 numbers (r, g, b)");
+        glm::vec3 result;
+        for (int i = 0; i < 3; ++i) result[i] = static_cast<float>(numberAtLeast(value[i], at / i, 0.0));
+        return result;
+    }
+
+    // A number or [x, y, z] (the number stands for all three).
+    glm::dvec3 scalarOrVector3(const json& value, const Pointer& at) const {
+        if (value.is_number()) return glm::dvec3(number(value, at));
+        if (!value.is_array()) fail(at, std::string("expected a number or an array of 3 numbers, got ") + value.type_name());
+        return vector3(value, at);
+    }
+
+    void readMesh(const json& mesh, const Pointer& at, Scene& scene) {
+        requireObject(mesh, at, {"file", "transform", "material"});
+        const Pointer fileAt = at / "file";
+        const json& fileValue = require(mesh, at, "file");
+        if (!fileValue.is_string()) fail(fileAt, std::string("expected a string, got ") + fileValue.type_name());
+        const std::string fileName = fileValue.get<std::string>();
+        if (fileName.empty()) fail(fileAt, "empty file name");
+        if (fileName.find('\0') != std::string::npos) fail(fileAt, "file name contains a NUL byte");
+
+        // Transform and material first: their errors are cheaper to find than the OBJ's.
+        std::optional<glm::dmat4> transform;
+        if (const json* value = find(mesh, "transform")) transform = readTransform(*value, at / "transform");
+        std::optional<Material> override;
+        if (const json* value = find(mesh, "material")) override = readMaterial(*value, at / "material", fileName);
+
+        std::filesystem::path objPath(fileName);
+        if (objPath.is_relative()) objPath = folder_ / objPath;
+        std::error_code ec;
+        const std::filesystem::file_status status = std::filesystem::status(objPath, ec);
+        if (!std::filesystem::exists(status)) fail(fileAt, "no such file " + quote(printable(fileName)));
+        if (std::filesystem::is_directory(status)) fail(fileAt, quote(printable(fileName)) + " is a directory");
+
+        // The same OBJ listed twice (e.g. with two transforms) is read once.
+        const std::string key = objPath.lexically_normal().string();
+        auto cached = objCache_.find(key);
+        if (cached == objCache_.end()) cached = objCache_.emplace(key, loadObj(objPath)).first;
+        const Scene& obj = cached->second;
+
+        const uint32_t materialBase = static_cast<uint32_t>(scene.materials.size());
+        if (override) {
+            scene.materials.push_back(*override);
+        } else {
+            scene.materials.insert(scene.materials.end(), obj.materials.begin(), obj.materials.end());
+        }
+        scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
+        scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
+        for (size_t k = 0; k < obj.triangles.size(); ++k) {
+            Triangle triangle = obj.triangles[k];
+            if (transform) {
+                triangle.v0 = transformPoint(*transform, triangle.v0, at / "transform", k);
+                triangle.v1 = transformPoint(*transform, triangle.v1, at / "transform", k);
+                triangle.v2 = transformPoint(*transform, triangle.v2, at / "transform", k);
+            }
+            scene.triangles.push_back(triangle);
+            scene.materialIds.push_back(override ? materialBase : materialBase + obj.materialIds[k]);
+        }
+    }
+
+    // The product in double, rounded to float once.
+    glm::vec3 transformPoint(const glm::dmat4& m, glm::vec3 p, const Pointer& at, size_t triangle) const {
+        const glm::dvec4 q = m * glm::dvec4(glm::dvec3(p), 1.0);
+        for (int i = 0; i < 3; ++i)
+            if (!(std::fabs(q[i]) <= FLT_MAX))
+                fail(at, "moves a vertex of the mesh's triangle " + std::to_string(triangle) +
+                             " outside the 32-bit float range");
+        return glm::vec3(q);
+    }
+
+    // T * Rz * Ry * Rx * S (rotation about x first, angles in degrees), or a row-major matrix.
+    glm::dmat4 readTransform(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"translate", "rotate", "scale", "matrix"});
+        glm::dmat4 m(1.0);
+        if (const json* matrix = find(value, "matrix")) {
+            const Pointer matrixAt = at / "matrix";
+            for (const char* other : {"translate", "rotate", "scale"})
+                if (find(value, other)) fail(matrixAt, std::string("cannot be combined with \"") + other + "\"");
+            requireArrayOf(*matrix, matrixAt, 16, "16 numbers (a row-major 4x4 matrix)");
+            for (int row = 0; row < 4; ++row)
+                for (int column = 0; column < 4; ++column)
+                    m[column][row] = number((*matrix)[row * 4 + column], matrixAt / (row * 4 + column));
+            if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+                fail(matrixAt, "last row must be 0, 0, 0, 1 (an affine transform)");
+            double largest = 0.0;
+            for (int column = 0; column < 3; ++column)
+                for (int row = 0; row < 3; ++row) largest = std::max(largest, std::fabs(m[column][row]));
+            const double det = glm::determinant(glm::dmat3(m));
+            if (!std::isfinite(det) || !(std::fabs(det) > 1e-12 * largest * largest * largest))
+                fail(matrixAt, "singular matrix (the upper-left 3x3 has determinant " + formatNumber(det) + ")");
+            return m;
+        }
+        if (const json* translate = find(value, "translate")) m = glm::translate(m, vector3(*translate, at / "translate"));
+        if (const json* rotate = find(value, "rotate")) {
+            const glm::dvec3 degrees = vector3(*rotate, at / "rotate");
+            m = glm::rotate(m, glm::radians(degrees.z), glm::dvec3(0, 0, 1));
+            m = glm::rotate(m, glm::radians(degrees.y), glm::dvec3(0, 1, 0));
+            m = glm::rotate(m, glm::radians(degrees.x), glm::dvec3(1, 0, 0));
+        }
+        if (const json* scale = find(value, "scale")) {
+            const Pointer scaleAt = at / "scale";
+            const glm::dvec3 s = scalarOrVector3(*scale, scaleAt);
+            if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) fail(scaleAt, "scale must not be 0 (a singular transform)");
+            m = glm::scale(m, s);
+        }
+        return m;
+    }
+
+    Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
+        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity"});
+        Material material;
+        material.name = printable(fileName) + " (override)";
+        if (const json* name = find(value, "name")) {
+            if (!name->is_string()) fail(at / "name", std::string("expected a string, got ") + name->type_name());
+            material.name = name->get<std::string>();
+        }
+        if (const json* diffuse = find(value, "diffuse")) material.diffuse = color(*diffuse, at / "diffuse");
+        if (const json* specular = find(value, "specular")) material.specular = color(*specular, at / "specular");
+        if (const json* shininess = find(value, "shininess"))
+            material.shininess = static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));
+        if (const json* reflectivity = find(value, "reflectivity")) {
+            const Pointer reflectAt = at / "reflectivity";
+            // A mirror weight above 1 would amplify light at every bounce.
+            if (reflectivity->is_number()) {
+                const double r = numberAtLeast(*reflectivity, reflectAt, 0.0);
+                if (r > 1.0) fail(reflectAt, "must be <= 1, got " + formatNumber(r));
+                material.reflectivity = glm::vec3(static_cast<float>(r));
+            } else {
+                material.reflectivity = color(*reflectivity, reflectAt);
+                for (int i = 0; i < 3; ++i)
+                    if (material.reflectivity[i] > 1.0f)
+                        fail(reflectAt / i, "must be <= 1, got " + formatNumber(material.reflectivity[i]));
+            }
+        }
+        return material;
+    }
+
+    PointLight readLight(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"position", "color", "intensity"});
+        PointLight light;
+        light.position = glm::vec3(vector3(require(value, at, "position"), at / "position"));
+        if (const json* c = find(value, "color")) light.color = color(*c, at / "color");
+        if (const json* intensity = find(value, "intensity"))
+            light.intensity = static_cast<float>(numberAtLeast(*intensity, at / "intensity", 0.0));
+        return light;
+    }
+
+    CameraSpec readCamera(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"eye", "target", "up", "fovy"});
+        CameraSpec camera;
+        camera.eye = glm::vec3(vector3(require(value, at, "eye"), at / "eye"));
+        camera.target = glm::vec3(vector3(require(value, at, "target"), at / "target"));
+        if (const json* up = find(value, "up")) camera.up = glm::vec3(vector3(*up, at / "up"));
+        if (const json* fovy = find(value, "fovy")) {
+            const double degrees = number(*fovy, at / "fovy");
+            if (!(degrees > 0.0 && degrees < 180.0))
+                fail(at / "fovy", "must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
+            camera.fovy = static_cast<float>(degrees);
+        }
+        // The contract's basis (CONTRACT.md, camera convention) must exist.
+        const glm::vec3 forward = camera.target - camera.eye;
+        const float forwardLength2 = glm::dot(forward, forward);
+        if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
+            fail(at / "target", "target - eye must be a non-zero vector of finite length");
+        const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), camera.up);
+        const float rightLength2 = glm::dot(right, right);
+        if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
+            fail(at / "up", "up must be non-zero and not parallel to target - eye");
+        return camera;
+    }
+
+    std::string file_;
+    std::filesystem::path folder_;
+    std::map<std::string, Scene> objCache_;
+};
+
+}  // namespace
+
+JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    const std::string text = readSceneText(path);
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        throw InputError(name + ":" + lineAndColumn(text, e.byte) + ": " + parseErrorText(e.what()));
+    } catch (const json::exception& e) {
+        // e.g. out_of_range 406, "number overflow parsing '1e999'", which carries no position.
+        throw InputError(name + ": " + parseErrorText(e.what()));
+    }
+    return SceneReader(path).read(root);
+}
+
+Scene loadJsonScene(const std::filesystem::path& path) { return loadJsonSceneFile(path).scene; }
+
+}  // namespace gpurt

@@ -1,0 +1,37 @@
+// The scene in textures (Purcell et al. 2002, 3.1; Christen 2005, 5.3): the uniform grid's voxel
+// index and element lists, the triangles and the materials, laid out as glsl/common/
+// scene_layout.h says. Indices are exact: integer textures for the index and lists, and triangle
+// ids (carried as floats in the hit stream) are checked against 2^24.
+#pragma once
+
+#include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
+#include "stream/GPUFloatArray.h"
+#include "stream/GPUKernel.h"
+
+namespace gpurt {
+
+class SceneTextures {
+  public:
+    // Throws EnvironmentError when the scene does not fit the GL limits or the exact-index limits.
+    SceneTextures(const Scene& scene, const UniformGrid& grid);
+
+    // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellList, triangles,
+    // materials) and sets the grid uniforms.
+    void bind(GPUKernel& kernel) const;
+
+    const GPUFloatArray& voxelIndex() const { return voxelIndex_; }
+    const GPUFloatArray& cellList() const { return cellList_; }
+    const GPUFloatArray& triangles() const { return triangles_; }
+    const GPUFloatArray& materials() const { return materials_; }
+    size_t bytes() const;
+
+  private:
+    const UniformGrid& grid_;
+    GPUFloatArray voxelIndex_;
+    GPUFloatArray cellList_;
+    GPUFloatArray triangles_;
+    GPUFloatArray materials_;
+};
+
+}  // namespace gpurt

@@ -1,0 +1,220 @@
+// OBJ loading: the contract's triangle numbering (file order, polygon fans), MTL materials, and
+// one InputError naming file and line for each kind of bad input tinyobjloader would accept.
+#include "raytrace/ObjLoader.h"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "raytrace/InputError.h"
+
+namespace gpurt {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ObjLoaderTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("gpurt-obj-" + std::string(info->name()) + "-" + std::to_string(getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path write(const std::string& name, const std::string& text) {
+        const fs::path path = dir_ / name;
+        std::ofstream(path, std::ios::binary) << text;
+        return path;
+    }
+
+    // Loads `text` and expects an InputError whose message starts with "FILE:LINE:".
+    void expectError(const std::string& text, int line, const std::string& mentions) {
+        const fs::path path = write("bad.obj", text);
+        try {
+            loadObj(path);
+            ADD_FAILURE() << "no error for:\n" << text;
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            const std::string prefix = path.string() + ":" + std::to_string(line) + ": ";
+            EXPECT_EQ(what.rfind(prefix, 0), 0u) << "message: " << what << "\nexpected prefix: " << prefix;
+            EXPECT_NE(what.find(mentions), std::string::npos) << "message: " << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << "message is not one line: " << what;
+        }
+    }
+
+    fs::path dir_;
+};
+
+const std::string kThreeVertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+void expectTriangle(const Triangle& t, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    EXPECT_EQ(t.v0, a);
+    EXPECT_EQ(t.v1, b);
+    EXPECT_EQ(t.v2, c);
+}
+
+TEST_F(ObjLoaderTest, NumbersTrianglesInFileOrderWithPolygonFans) {
+    // The quad's shorter diagonal is B-D, so a "shortest diagonal" split would differ from the
+    // contract's fan (A,B,C), (A,C,D).
+    const fs::path path = write("fan.obj",
+                                "# comment\n"
+                                "v 0 0 0\n"      // 1 A
+                                "v 10 0 0\n"     // 2 B
+                                "v 11 1 0\n"     // 3 C
+                                "v 1 1 0\n"      // 4 D
+                                "v 5 7 1\n"      // 5 E
+                                "v 2 2 2\n"      // 6 F
+                                "vt 0 0\nvn 0 0 1\n"
+                                "f 1 2 3\n"
+                                "f 1 2 3 4\n"
+                                "g second\n"
+                                "o object\n"
+                                "f 1/1 2/1/1 3//1 4 5\n"
+                                "f -1 -2 -3\n"
+                                "\tf  2 6 4 \n");
+    const Scene scene = loadObj(path);
+    const glm::vec3 A(0, 0, 0), B(10, 0, 0), C(11, 1, 0), D(1, 1, 0), E(5, 7, 1), F(2, 2, 2);
+    ASSERT_EQ(scene.triangles.size(), 1u + 2u + 3u + 1u + 1u);
+    expectTriangle(scene.triangles[0], A, B, C);
+    expectTriangle(scene.triangles[1], A, B, C);
+    expectTriangle(scene.triangles[2], A, C, D);
+    expectTriangle(scene.triangles[3], A, B, C);
+    expectTriangle(scene.triangles[4], A, C, D);
+    expectTriangle(scene.triangles[5], A, D, E);
+    expectTriangle(scene.triangles[6], F, E, D);  // -1 is the last vertex so far
+    expectTriangle(scene.triangles[7], B, F, D);
+    ASSERT_EQ(scene.materialIds.size(), scene.triangles.size());
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.materials[0].name, "default");
+    for (uint32_t id : scene.materialIds) EXPECT_EQ(id, 0u);
+    EXPECT_FALSE(scene.camera.has_value());
+}
+
+TEST_F(ObjLoaderTest, ReadsExactFloatCoordinates) {
+    const fs::path path = write("exact.obj", "v 0.1 -16.070313 1e-3\nv +3 .5 -0.0E-3\nv 1. 2.5e+2 7\nf 1 2 3\n");
+    const Scene scene = loadObj(path);
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    expectTriangle(scene.triangles[0], {0.1f, -16.070313f, 1e-3f}, {3.0f, 0.5f, 0.0f}, {1.0f, 250.0f, 7.0f});
+}
+
+TEST_F(ObjLoaderTest, AcceptsForwardReferencesAndOtherLineEndings) {
+    const Scene forward = loadObj(write("forward.obj", "f 1 2 3\n" + kThreeVertices));
+    ASSERT_EQ(forward.triangles.size(), 1u);
+    expectTriangle(forward.triangles[0], {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+
+    const Scene crlf = loadObj(write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n"));
+    EXPECT_EQ(crlf.triangles.size(), 1u);
+    const Scene cr = loadObj(write("cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 3 2 1"));
+    ASSERT_EQ(cr.triangles.size(), 1u);
+    expectTriangle(cr.triangles[0], {0, 1, 0}, {1, 0, 0}, {0, 0, 0});
+    const Scene bom = loadObj(write("bom.obj", "\xEF\xBB\xBF" + kThreeVertices + "f 1 2 3\n"));
+    EXPECT_EQ(bom.triangles.size(), 1u);
+}
+
+TEST_F(ObjLoaderTest, EmptyFileHasNoTriangles) {
+    const Scene scene = loadObj(write("empty.obj", ""));
+    EXPECT_TRUE(scene.triangles.empty());
+    EXPECT_EQ(scene.materials.size(), 1u);
+    EXPECT_TRUE(scene.bounds().empty());
+    EXPECT_TRUE(loadObj(write("comments.obj", "# nothing\n\n   \n" + kThreeVertices)).triangles.empty());
+}
+
+TEST_F(ObjLoaderTest, ReadsMtlMaterials) {
+    write("scene.mtl",
+          "newmtl red\nKd 1 0 0\nKs 0.5 0.25 0.125\nNs 32\nillum 2\n"
+          "newmtl mirror\nKd 0.1 0.2 0.3\nKs 0.9 0.8 0.7\nNs 100\nillum 3\n");
+    const fs::path path = write("scene.obj", "mtllib scene.mtl\n" + kThreeVertices +
+                                                 "f 1 2 3\n"          // no usemtl yet: default
+                                                 "usemtl red\nf 1 2 3\nf 3 2 1\n"
+                                                 "usemtl mirror\nf 1 2 3\n"
+                                                 "usemtl nosuch\nf 1 2 3\n");
+    const Scene scene = loadObj(path);
+    ASSERT_EQ(scene.triangles.size(), 5u);
+    ASSERT_EQ(scene.materials.size(), 3u);  // red, mirror, default
+    const Material& red = scene.materials[scene.materialIds[1]];
+    EXPECT_EQ(red.name, "red");
+    EXPECT_EQ(red.diffuse, glm::vec3(1, 0, 0));
+    EXPECT_EQ(red.specular, glm::vec3(0.5f, 0.25f, 0.125f));
+    EXPECT_EQ(red.shininess, 32.0f);
+    EXPECT_EQ(red.reflectivity, glm::vec3(0.0f));
+    EXPECT_EQ(scene.materialIds[2], scene.materialIds[1]);
+    const Material& mirror = scene.materials[scene.materialIds[3]];
+    EXPECT_EQ(mirror.name, "mirror");
+    EXPECT_EQ(mirror.reflectivity, glm::vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_EQ(mirror.shininess, 100.0f);
+    EXPECT_EQ(scene.materials[scene.materialIds[0]].name, "default");
+    EXPECT_EQ(scene.materials[scene.materialIds[4]].name, "default");
+    EXPECT_EQ(scene.materialIds[0], scene.materialIds[4]);
+}
+
+TEST_F(ObjLoaderTest, MissingMtlIsAWarning) {
+    const fs::path path = write("nomtl.obj", "mtllib missing.mtl\n" + kThreeVertices + "usemtl red\nf 1 2 3\n");
+    ::testing::internal::CaptureStderr();
+    const Scene scene = loadObj(path);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("warning"), std::string::npos) << err;
+    EXPECT_NE(err.find("missing.mtl"), std::string::npos) << err;
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.materials[0].name, "default");
+}
+
+TEST_F(ObjLoaderTest, MissingOrUnreadableFile) {
+    for (const fs::path& path : {dir_ / "does_not_exist.obj", dir_}) {
+        try {
+            loadObj(path);
+            ADD_FAILURE() << "no error for " << path;
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": ", 0), 0u) << e.what();
+        }
+    }
+}
+
+TEST_F(ObjLoaderTest, BinaryGarbage) {
+    std::string garbage = "\x7f" "ELF\x02\x01\x01";
+    garbage += std::string(1, '\0');
+    for (int k = 0; k < 200; ++k) garbage += static_cast<char>((k * 73 + 11) % 256);
+    expectError(garbage, 1, "binary");
+    expectError(kThreeVertices + "f 1 2 3\n" + garbage, 5, "binary");
+}
+
+TEST_F(ObjLoaderTest, BadFaceIndices) {
+    expectError(kThreeVertices + "f 0 1 2\n", 4, "index 0");
+    expectError(kThreeVertices + "f 1 2 4\n", 4, "out of range");
+    expectError(kThreeVertices + "f 1 2 3\nf 1 2 40\n", 5, "out of range");
+    expectError(kThreeVertices + "f -1 -2 -4\n", 4, "out of range");
+    expectError("v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", 3, "out of range");  // relative to line 3
+    expectError(kThreeVertices + "f 1 2 99999999999999999999\n", 4, "out of range");
+    expectError(kThreeVertices + "f 1 2 x\n", 4, "'x'");
+    expectError(kThreeVertices + "f 1 2 3.5\n", 4, "'3.5'");
+    expectError(kThreeVertices + "f 1 2 3 # trailing comment\n", 4, "'#'");
+    expectError(kThreeVertices + "vt 0 0\nf 1/0 2/1 3/1\n", 5, "index 0");
+    expectError(kThreeVertices + "vt 0 0\nf 1/2 2/1 3/1\n", 5, "texture coordinate index 2");
+    expectError(kThreeVertices + "f 1// 2 3\n", 4, "'1//'");
+    expectError(kThreeVertices + "f 1/1/1/1 2 3\n", 4, "'1/1/1/1'");
+}
+
+TEST_F(ObjLoaderTest, FacesWithFewerThanThreeVertices) {
+    expectError(kThreeVertices + "f 1 2\n", 4, "2 vertices");
+    expectError(kThreeVertices + "f\n", 4, "0 vertices");
+}
+
+TEST_F(ObjLoaderTest, BadVertices) {
+    expectError("v 0 zero 0\n", 1, "'zero'");
+    expectError("v 0 0\n", 1, "2 coordinates");
+    expectError("v 0 0 1.5abc\n", 1, "'1.5abc'");
+    expectError("v 0 1e 0\n", 1, "'1e'");
+    expectError("v 0 0 0\nv nan 0 0\n", 2, "'nan' is not a finite number");
+    expectError("v 0 -inf 0\n", 1, "'-inf' is not a finite number");
+    expectError("v 0 0 1e39\n", 1, "'1e39'");   // overflows float
+    expectError("v -1e400 0 0\n", 1, "'-1e400'");  // overflows double
+    expectError("vn 0 x 1\n", 1, "'x'");
+}
+
+}  // namespace
+}  // namespace gpurt

@@ -1,0 +1,72 @@
+#include "CommonOptions.h"
+
+#include <sstream>
+#include <vector>
+
+namespace gpurt {
+
+namespace {
+bool parseFloat(const std::string& text, float& value) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    value = std::strtof(text.c_str(), &end);
+    return end == text.c_str() + text.size() && std::isfinite(value);
+}
+}  // namespace
+
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+    glm::vec3 v(0.0f);
+    if (parts.size() != 3 || !parseFloat(parts[0], v.x) || !parseFloat(parts[1], v.y) || !parseFloat(parts[2], v.z))
+        throw InputError(option + ": '" + text + "' is not three finite numbers x,y,z");
+    return v;
+}
+
+glm::ivec2 parseSize(const std::string& option, const std::string& text) {
+    const size_t x = text.find('x');
+    auto parseInt = [&](const std::string& s, int& v) {
+        if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+        v = std::stoi(s);
+        return true;
+    };
+    int w = 0, h = 0;
+    if (x == std::string::npos || !parseInt(text.substr(0, x), w) || !parseInt(text.substr(x + 1), h))
+        throw InputError(option + ": '" + text + "' is not a size WxH (e.g. 512x512)");
+    if (w < 1 || h < 1) throw InputError(option + ": " + text + ": width and height must be at least 1");
+    if (w > 16384 || h > 16384)
+        throw InputError(option + ": " + text + ": at most 16384 pixels on a side");
+    if (int64_t(w) * int64_t(h) > int64_t(8192) * 8192)
+        throw InputError(option + ": " + text + ": at most 67108864 (8192x8192) pixels");
+    return {w, h};
+}
+
+glm::ivec2 CameraOptions::imageSize(std::optional<glm::ivec2> sceneSize) const {
+    if (!size.empty()) return parseSize("--size", size);
+    return sceneSize.value_or(glm::ivec2(512, 512));
+}
+
+CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize) const {
+    CameraSpec spec;
+    if (!fovy.empty()) {
+        float f = 0.0f;
+        if (!parseFloat(fovy, f)) throw InputError("--fovy: '" + fovy + "' is not a number");
+        spec.fovy = f;
+        if (!(f > 0.0f && f < 180.0f)) throw InputError("--fovy: " + fovy + " is outside (0, 180)");
+    }
+    if (scene.camera) {
+        const float f = spec.fovy;
+        spec = *scene.camera;
+        if (!fovy.empty()) spec.fovy = f;
+    } else if (eye.empty() || target.empty()) {
+        const float f = spec.fovy;
+        spec = defaultCamera(scene.bounds(), imageSize.x, imageSize.y, f);
+    }
+    if (!eye.empty()) spec.eye = parseVec3("--eye", eye);
+    if (!target.empty()) spec.target = parseVec3("--target", target);
+    if (!up.empty()) spec.up = parseVec3("--up", up);
+    return makeCamera(spec, imageSize.x, imageSize.y);
+}
+
+}  // namespace gpurt

@@ -1,0 +1,164 @@
+// `gpurt render SCENE -o OUT.png`: renders a scene with the GL stream kernels (default) or the
+// CPU backend, writes the PNG and the requested AOVs (PFM), and prints statistics.
+#include "Commands.h"
+#include "CommonOptions.h"
+#include "SceneInput.h"
+
+#include "raytrace/CpuTracer.h"
+#include "raytrace/GpuTracer.h"
+#include "raytrace/ImageIO.h"
+#include "raytrace/UniformGrid.h"
+#include "stream/KernelStats.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+namespace gpurt {
+
+namespace {
+
+struct RenderOptions {
+    std::string scene;
+    std::string output;
+    std::vector<std::string> aovs;
+    std::string backend = "gl";
+    std::string stats;  // "", "text" or "json"
+    bool statsGiven = false;
+    std::string mask;
+    int traverseSteps = 4;
+    float lambda = 2.0f;
+    int bounces = -1;
+    CameraOptions camera;
+    ContextOptions context;
+};
+
+void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid, const RenderOutput& out,
+                double totalMs) {
+    const RenderStats& s = out.stats;
+    const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
+    const double mrays = totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0;
+    if (o.stats == "json") {
+        nlohmann::json j;
+        j["width"] = out.width;
+        j["height"] = out.height;
+        j["triangles"] = scene.triangles.size();
+        j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
+        j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
+        j["passes"] = nlohmann::json::object();
+        for (const auto& [name, p] : KernelStats::global().passes())
+            j["passes"][name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
+        j["total_ms"] = totalMs;
+        j["mrays_per_s"] = mrays;
+        j["backend"] = o.backend;
+        j["overflow_rays"] = s.overflowRays;
+        std::printf("%s\n", j.dump().c_str());
+        return;
+    }
+    std::printf("image      %dx%d\n", out.width, out.height);
+    std::printf("triangles  %zu\n", scene.triangles.size());
+    std::printf("grid       %dx%dx%d\n", grid.resolution.x, grid.resolution.y, grid.resolution.z);
+    std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
+                (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
+    if (s.overflowRays) std::printf("overflow   %llu rays hit the step limit\n", (unsigned long long)s.overflowRays);
+    if (!KernelStats::global().passes().empty()) {
+        std::printf("%-16s %8s %14s %10s\n", "pass", "calls", "fragments", "ms");
+        for (const auto& [name, p] : KernelStats::global().passes())
+            std::printf("%-16s %8llu %14llu %10.2f\n", name.c_str(), (unsigned long long)p.calls,
+                        (unsigned long long)p.fragments, p.gpuMs);
+    }
+    std::printf("total      %.1f ms, %.2f Mrays/s\n", totalMs, mrays);
+}
+
+int runRender(const RenderOptions& o) {
+    // Everything that can be refused is checked before anything is rendered or written.
+    std::map<std::string, std::string> aovs;
+    for (const std::string& a : o.aovs) {
+        const size_t eq = a.find('=');
+        const std::string name = a.substr(0, eq);
+        if (eq == std::string::npos || eq + 1 == a.size())
+            throw InputError("--aov: '" + a + "' is not NAME=FILE");
+        if (name != "depth" && name != "prim" && name != "normal" && name != "steps")
+            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps)");
+        aovs[name] = a.substr(eq + 1);
+    }
+    MaskMode mask = MaskMode::None;
+    if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
+        throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
+
+    const LoadedScene loaded = loadSceneFile(o.scene);
+    const Scene& scene = loaded.scene;
+    const glm::ivec2 size = o.camera.imageSize(loaded.size);
+    const CameraBasis camera = o.camera.camera(scene, size);
+    RenderSettings settings;
+    settings.width = size.x;
+    settings.height = size.y;
+    settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
+
+    const auto start = std::chrono::steady_clock::now();
+    GridOptions gridOptions;
+    gridOptions.lambda = o.lambda;
+    const UniformGrid grid = buildGrid(scene, gridOptions);
+    RenderOutput out;
+    if (o.backend == "cpu") {
+        out = CpuTracer(scene, grid).render(camera, settings);
+    } else {
+        GLContext context = o.context.makeContext();
+        KernelStats::global().setTiming(o.statsGiven);
+        GpuTracerOptions tracerOptions;
+        tracerOptions.mask = mask;
+        tracerOptions.traverseSteps = o.traverseSteps;
+        GpuTracer tracer(scene, grid, tracerOptions);
+        out = tracer.render(camera, settings);
+    }
+    const double totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    writePng(o.output, out.width, out.height, out.color);
+    for (const auto& [name, file] : aovs) {
+        if (name == "depth") writePfm(file, out.width, out.height, 1, out.depth);
+        if (name == "prim") writePfm(file, out.width, out.height, 1, out.prim);
+        if (name == "steps") writePfm(file, out.width, out.height, 1, out.steps);
+        if (name == "normal") {
+            std::vector<float> flat;
+            flat.reserve(out.normal.size() * 3);
+            for (const glm::vec3& n : out.normal) flat.insert(flat.end(), {n.x, n.y, n.z});
+            writePfm(file, out.width, out.height, 3, flat);
+        }
+    }
+    if (o.statsGiven) printStats(o, scene, grid, out, totalMs);
+    return 0;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, std::function<int()>& run) {
+    auto o = std::make_shared<RenderOptions>();
+    auto* cmd = app.add_subcommand("render", "Render a scene (.obj, .json or packed .gpscene) to a PNG");
+    cmd->add_option("scene", o->scene, "Scene file")->required();
+    cmd->add_option("-o,--output", o->output, "Output PNG")->required();
+    cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps=FILE");
+    cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
+        ->check(CLI::IsMember({"gl", "cpu"}));
+    auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")
+                      ->expected(0, 1)
+                      ->check(CLI::IsMember({"", "text", "json"}));
+    cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
+        ->check(CLI::Range(0, 64));
+    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)");
+    cmd->add_option("--traverse-steps", o->traverseSteps, "Grid cells per traverser pass (1 = the seed)")
+        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
+        ->check(CLI::Range(0.01f, 64.0f));
+    o->camera.add(*cmd);
+    addContextOptions(*cmd, o->context);
+    cmd->callback([&run, o, stats] {
+        o->statsGiven = stats->count() > 0;
+        run = [o] { return runRender(*o); };
+    });
+}
+
+}  // namespace gpurt
