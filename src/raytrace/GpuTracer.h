@@ -15,6 +15,8 @@
 
 namespace gpurt {
 
+struct GpuPipeline;
+
 struct GpuTracerOptions {
     MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
     int traverseSteps = 4;           // cells per traverser pass (1 = the seed)
@@ -39,15 +41,14 @@ class GpuTracer {
     const SceneTextures& textures() const { return textures_; }
 
   private:
-    struct Pipeline;  // streams and kernels for one image size
-    Pipeline& pipeline(int width, int height);
-    uint64_t traceLoop(Pipeline& p);
+    GpuPipeline& pipeline(int width, int height);
+    uint64_t traceLoop(GpuPipeline& p);
 
     const Scene& scene_;
     const UniformGrid& grid_;
     GpuTracerOptions options_;
     SceneTextures textures_;
-    std::unique_ptr<Pipeline> pipeline_;
+    std::unique_ptr<GpuPipeline> pipeline_;
 };
 
 }  // namespace gpurt

@@ -204,9 +204,15 @@ private:
             if (value.is_number()) fail(at, "expected an integer, got " + formatNumber(value.get<double>()));
             fail(at, std::string("expected an integer, got ") + value.type_name());
         }
-        const bool inRange = value.is_number_unsigned() ? value.get<uint64_t>() <= static_cast<uint64_t>(max)
-                                                        : value.get<int64_t>() >= min && value.get<int64_t>() <= max;
-        if (!inRange || value.get<int64_t>() < min)
+        bool inRange;
+        if (value.is_number_unsigned()) {  // nlohmann keeps every non-negative integer unsigned
+            const uint64_t u = value.get<uint64_t>();
+            inRange = u <= static_cast<uint64_t>(max) && static_cast<int64_t>(u) >= min;
+        } else {
+            const int64_t s = value.get<int64_t>();
+            inRange = s >= min && s <= max;
+        }
+        if (!inRange)
             fail(at, "must be in " + std::to_string(min) + ".." + std::to_string(max) + ", got " + value.dump());
         return static_cast<int>(value.get<int64_t>());
     }

@@ -1,0 +1,78 @@
+// The GL tracer's streams and kernels for one image size (used by GpuTracer; kernel tests drive
+// the kernels one by one). Stream element (x, y) is pixel column x, row y from the top.
+#pragma once
+
+#include "raytrace/SceneTextures.h"
+#include "stream/GPUFloatArray.h"
+#include "stream/GPUKernel.h"
+#include "stream/GPUMask.h"
+
+#include <algorithm>
+#include <string>
+
+namespace gpurt {
+
+// The streams (one element per pixel, row 0 = top) and the kernels that connect them.
+struct GpuPipeline {
+    int width, height;
+    // Ray streams, rewritten for every trace (primary, shadow, mirror).
+    GPUFloatArray rayOrigin, rayDir, dda, voxel, hit;
+    // Per-bounce surface records and the per-pixel accumulators of eq. 5.1.
+    GPUFloatArray surfacePoint, surfaceNormal, surfaceView, localColor, color, weight;
+    GPUMask activeMask, waitMask;
+    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce;
+
+    GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask)
+        : width(w),
+          height(h),
+          rayOrigin(w, h, 4, "rayOrigin"),
+          rayDir(w, h, 4, "rayDir"),
+          dda(w, h, 4, "dda"),
+          voxel(w, h, GPUFormat::RGBA32I, "voxel"),
+          hit(w, h, 4, "hit"),
+          surfacePoint(w, h, 4, "surfacePoint"),
+          surfaceNormal(w, h, 4, "surfaceNormal"),
+          surfaceView(w, h, 4, "surfaceView"),
+          localColor(w, h, 4, "localColor"),
+          color(w, h, 4, "color"),
+          weight(w, h, 4, "weight"),
+          activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
+          waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
+          raygen("raygen", "trace/raygen.frag"),
+          precalc("precalc", "trace/precalc.frag"),
+          traverse("traverse", "trace/traverse.frag",
+                   {"TRAVERSE_STEPS " + std::to_string(std::max(1, traverseSteps))}),
+          intersect("intersect", "trace/intersect.frag"),
+          surface("surface", "trace/surface.frag"),
+          shadowgen("shadowgen", "trace/shadowgen.frag"),
+          light("light", "trace/light.frag"),
+          bounce("bounce", "trace/bounce.frag") {
+        for (GPUKernel* k : {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce})
+            textures.bind(*k);
+        raygen.addOutput(rayOrigin).addOutput(rayDir);
+        precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+        precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
+        traverse.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+        traverse.addInOut(dda, "ddaState").addInOut(voxel, "voxel").setMask(&activeMask);
+        intersect.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+        intersect.addInOut(dda, "ddaState").addInOut(voxel, "voxel").addInOut(hit, "hitState");
+        intersect.setMask(&waitMask);
+        surface.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
+        surface.addInput(weight, "weight").addInOut(color, "colorState");
+        surface.addOutput(surfacePoint).addOutput(surfaceNormal).addOutput(surfaceView).addOutput(localColor);
+        shadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        shadowgen.addOutput(rayOrigin).addOutput(rayDir);
+        light.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        light.addInput(surfaceView, "surfaceView").addInput(hit, "hitState").addInOut(localColor, "localState");
+        bounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
+        bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
+        bounce.addOutput(rayOrigin).addOutput(rayDir);
+    }
+
+    // The ray states as mask values (glsl/common/raymath.h).
+    static constexpr int RAY_ACTIVE_VALUE = 1;
+    static constexpr int RAY_WAIT_VALUE = 2;
+};
+
+}  // namespace gpurt

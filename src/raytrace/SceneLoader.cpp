@@ -1,0 +1,69 @@
+// Scene format detection: a look at the first bytes, then the format's own loader.
+#include "raytrace/SceneLoader.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "raytrace/InputError.h"
+#include "raytrace/JsonScene.h"
+#include "raytrace/ObjLoader.h"
+
+namespace gpurt {
+namespace {
+
+enum class SceneFormat { Obj, Json, Packed };
+
+bool isJsonSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// Reads only as far as the decision needs: the magic, then past leading whitespace.
+SceneFormat detectFormat(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
+    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
+
+    const size_t magicSize = sizeof kPackedSceneMagic - 1;
+    char head[sizeof kPackedSceneMagic - 1] = {};
+    in.read(head, static_cast<std::streamsize>(magicSize));
+    if (in.bad()) throw InputError(name + ": cannot read");
+    const size_t got = static_cast<size_t>(in.gcount());
+    if (got == magicSize && std::memcmp(head, kPackedSceneMagic, magicSize) == 0) return SceneFormat::Packed;
+
+    // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).
+    std::string bytes(head, got);
+    size_t pos = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    char buffer[4096];
+    while (true) {
+        while (pos < bytes.size() && isJsonSpace(bytes[pos])) ++pos;
+        if (pos < bytes.size()) return bytes[pos] == '{' ? SceneFormat::Json : SceneFormat::Obj;
+        if (!in) return SceneFormat::Obj;  // empty or all whitespace: an (empty) OBJ
+        in.read(buffer, sizeof buffer);
+        if (in.bad()) throw InputError(name + ": cannot read");
+        bytes.assign(buffer, static_cast<size_t>(in.gcount()));
+        pos = 0;
+    }
+}
+
+}  // namespace
+
+LoadedScene loadScene(const std::filesystem::path& path) {
+    switch (detectFormat(path)) {
+        case SceneFormat::Packed:
+            // Hook for the packed-scene reader (`gpurt pack` output, issue 4).
+            throw InputError(path.string() + ": packed scenes are not supported yet");
+        case SceneFormat::Json: {
+            JsonSceneFile file = loadJsonSceneFile(path);
+            return LoadedScene{std::move(file.scene), file.size};
+        }
+        case SceneFormat::Obj:
+            break;
+    }
+    return LoadedScene{loadObj(path), std::nullopt};
+}
+
+}  // namespace gpurt

@@ -1,0 +1,30 @@
+// One entry point for every way of giving a scene (CONTRACT.md: an OBJ, a scene JSON or a packed
+// file), recognised by content rather than by extension.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/Scene.h"
+
+namespace gpurt {
+
+// The first bytes of a file written by `gpurt pack`.
+inline constexpr char kPackedSceneMagic[] = "GPRTSCN1";  // 8 bytes, no terminator in the file
+
+struct LoadedScene {
+    Scene scene;
+    std::optional<glm::ivec2> size;  // the image size the scene file asks for, if any
+};
+
+// Reads a scene file: the packed magic at byte 0 -> packed scene; a first non-whitespace byte '{'
+// (after an optional UTF-8 byte order mark) -> JSON scene (loadJsonSceneFile); anything else ->
+// OBJ (loadObj).
+// Throws InputError "FILE: no such file", "FILE: is a directory ...", "FILE: cannot read ..." or
+// the chosen loader's message. Packed scenes are not read yet ("FILE: packed scenes are not
+// supported yet").
+LoadedScene loadScene(const std::filesystem::path& path);
+
+}  // namespace gpurt

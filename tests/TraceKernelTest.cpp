@@ -1,0 +1,242 @@
+// The GL tracer's kernels one by one against the CPU reference (the contract's camera, the
+// raymath.h DDA and Moller-Trumbore, brute force over all triangles), on random inputs.
+#include "GLTest.h"
+
+#include "raytrace/Camera.h"
+#include "raytrace/GpuPipeline.h"
+#include "raytrace/RayMath.h"
+#include "raytrace/SceneTextures.h"
+#include "raytrace/UniformGrid.h"
+
+#include <cmath>
+
+namespace gpurt::test {
+namespace {
+
+using raymath::intersectBox;
+
+class TraceKernels : public GLTest {};
+
+constexpr float kMissedBox = -1.0f;
+
+// CPU version of glsl/trace/scene.glsl gridEntry.
+float gridEntry(const UniformGrid& g, glm::vec3 o, glm::vec3 d, float tLimit) {
+    const glm::vec2 box = intersectBox(o, d, g.min, g.max);
+    const float tEnter = std::max(box.x, 0.0f);
+    return tEnter > std::min(box.y, tLimit) ? kMissedBox : tEnter;
+}
+
+Scene randomTriangles(int n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-1.0f, 1.0f), size(0.02f, 0.4f);
+    Scene scene;
+    scene.materials.push_back(Material{});
+    for (int i = 0; i < n; ++i) {
+        const glm::vec3 c(pos(rng), pos(rng), pos(rng));
+        const float s = size(rng);
+        scene.triangles.push_back({c + s * glm::vec3(pos(rng), pos(rng), pos(rng)),
+                                   c + s * glm::vec3(pos(rng), pos(rng), pos(rng)),
+                                   c + s * glm::vec3(pos(rng), pos(rng), pos(rng))});
+        scene.materialIds.push_back(0);
+    }
+    return scene;
+}
+
+std::vector<glm::vec4> asVec4(const std::vector<float>& flat) {
+    std::vector<glm::vec4> v(flat.size() / 4);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = glm::vec4(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2], flat[i * 4 + 3]);
+    return v;
+}
+
+bool closeRel(float a, float b, float rel) { return a == b || std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b)); }
+
+TEST_F(TraceKernels, RaygenFollowsTheContractCamera) {
+    const Scene scene = randomTriangles(50, 1);
+    GridOptions options;
+    const UniformGrid grid = buildGrid(scene, options);
+    SceneTextures textures(scene, grid);
+    const int w = 37, h = 23;  // non-square, odd
+    CameraSpec spec;
+    spec.eye = {2.5f, 1.5f, 3.0f};
+    spec.target = {0.1f, -0.2f, 0.0f};
+    spec.up = {0.1f, 1.0f, 0.2f};
+    spec.fovy = 52.0f;
+    const CameraBasis camera = makeCamera(spec, w, h);
+    GpuPipeline p(w, h, textures, 1, MaskMode::EarlyExit);
+    p.raygen.setUniform("eye", camera.eye).setUniform("forward", camera.forward).setUniform("right", camera.right)
+        .setUniform("upOrtho", camera.upOrtho).setUniform("tanHalf", camera.tanHalf).setUniform("aspect", camera.aspect)
+        .setUniform("imageSize", glm::vec2(float(w), float(h)));
+    EXPECT_EQ(p.raygen.execute(), uint64_t(w * h));
+    const auto dirs = asVec4(p.rayDir.download());
+    const auto origins = asVec4(p.rayOrigin.download());
+
+    // Independent double-precision evaluation of the contract's formula.
+    const glm::dvec3 eye(spec.eye), target(spec.target), up(spec.up);
+    const glm::dvec3 f = glm::normalize(target - eye);
+    const glm::dvec3 r = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 u = glm::cross(r, f);
+    const double t = std::tan(double(spec.fovy) * M_PI / 360.0), aspect = double(w) / h;
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const size_t k = size_t(j * w + i);
+            const double pu = ((i + 0.5) / w * 2 - 1) * t * aspect, pv = (1 - (j + 0.5) / h * 2) * t;
+            const glm::dvec3 expected = glm::normalize(f + pu * r + pv * u);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(dirs[k][c], expected[c], 2e-6) << i << "," << j;
+            const glm::vec3 cpu = primaryDirection(camera, i, j);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(dirs[k][c], cpu[c], 4e-7) << i << "," << j;
+            ASSERT_EQ(glm::vec3(origins[k]), camera.eye);
+            const float entry = gridEntry(grid, camera.eye, cpu, 1e30f);
+            if (entry == kMissedBox)
+                ASSERT_EQ(dirs[k].w, kMissedBox) << i << "," << j;
+            else
+                ASSERT_TRUE(closeRel(dirs[k].w, entry, 1e-5f)) << dirs[k].w << " vs " << entry;
+        }
+}
+
+// Rays for the traversal tests: random ones from outside and inside the grid, axis-parallel
+// ones, ones starting exactly on cell boundaries, and a pinhole camera inside the grid.
+std::vector<std::pair<glm::vec3, glm::vec3>> testRays(const UniformGrid& g, int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), in(0.0f, 1.0f);
+    std::vector<std::pair<glm::vec3, glm::vec3>> rays;
+    const glm::vec3 extent = g.max - g.min;
+    auto normalized = [](glm::vec3 v) { return raymath::contractNormalize(v); };
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    while (int(rays.size()) < count) {
+        const int kind = int(rays.size()) % 4;
+        glm::vec3 o, d;
+        if (kind == 0) {  // from outside, aimed at a point inside
+            o = g.min + extent * glm::vec3(in(rng), in(rng), in(rng)) + 2.0f * extent * glm::vec3(unit(rng), unit(rng), unit(rng));
+            d = normalized(g.min + extent * glm::vec3(in(rng), in(rng), in(rng)) - o);
+        } else if (kind == 1) {  // inside, any direction
+            o = g.min + extent * glm::vec3(in(rng), in(rng), in(rng));
+            d = normalized(glm::vec3(unit(rng), unit(rng), unit(rng)));
+        } else if (kind == 2) {  // axis-parallel, from inside or outside
+            o = g.min + extent * glm::vec3(in(rng), in(rng), in(rng)) * 1.4f - 0.2f * extent;
+            d = axes[rng() % 6];
+        } else {  // starting on a cell boundary (a grid vertex or face), oblique or axis-parallel
+            const glm::ivec3 c(int(rng() % unsigned(g.resolution.x + 1)), int(rng() % unsigned(g.resolution.y + 1)),
+                               int(rng() % unsigned(g.resolution.z + 1)));
+            o = g.min + glm::vec3(c) * g.cellSize;
+            d = (rng() % 2) ? axes[rng() % 6] : normalized(glm::vec3(unit(rng), unit(rng), unit(rng)));
+        }
+        rays.emplace_back(o, d);
+    }
+    return rays;
+}
+
+TEST_F(TraceKernels, TraversalVisitsTheSameCellSequenceAsTheCpuDda) {
+    // An empty grid: every traverser pass (one cell per pass) moves each live ray one cell on.
+    Scene scene;
+    scene.materials.push_back(Material{});
+    UniformGrid grid;
+    grid.resolution = {9, 7, 5};
+    grid.min = {-1.0f, -2.0f, -1.5f};
+    grid.max = {2.0f, 1.0f, 1.0f};
+    grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
+    grid.cellStart.assign(grid.cells() + 1, 0u);
+    SceneTextures textures(scene, grid);
+
+    const int w = 32, h = 32;
+    const auto rays = testRays(grid, w * h, 2);
+    std::vector<float> origins, dirs;
+    for (const auto& [o, d] : rays) {
+        origins.insert(origins.end(), {o.x, o.y, o.z, 1e30f});
+        dirs.insert(dirs.end(), {d.x, d.y, d.z, gridEntry(grid, o, d, 1e30f)});
+    }
+    GpuPipeline p(w, h, textures, 1, MaskMode::EarlyExit);
+    p.rayOrigin.upload(origins);
+    p.rayDir.upload(dirs);
+    EXPECT_EQ(p.precalc.execute(), uint64_t(w * h));
+
+    // CPU: the cells each ray visits, from raymath's ddaSetup / ddaStep.
+    std::vector<std::vector<glm::ivec3>> expected(rays.size());
+    size_t entering = 0;
+    for (size_t k = 0; k < rays.size(); ++k) {
+        const float tEnter = dirs[k * 4 + 3];
+        if (tEnter == kMissedBox) continue;
+        ++entering;
+        glm::ivec3 cell;
+        glm::vec3 tMax;
+        raymath::ddaSetup(rays[k].first, rays[k].second, tEnter, grid.min, grid.cellSize, grid.resolution, cell, tMax);
+        do expected[k].push_back(cell);
+        while (raymath::ddaStep(rays[k].first, rays[k].second, grid.min, grid.cellSize, grid.resolution, cell, tMax));
+    }
+    ASSERT_GT(entering, rays.size() / 2);
+
+    size_t mismatches = 0, longest = 0;
+    for (const auto& cells : expected) longest = std::max(longest, cells.size());
+    std::vector<bool> bad(rays.size(), false);
+    for (int pass = 0;; ++pass) {
+        const auto cells = p.voxel.downloadInt();
+        const auto dda = asVec4(p.dda.download());
+        for (size_t k = 0; k < rays.size(); ++k) {
+            const int state = int(dda[k].w);
+            if (expected[k].empty()) {
+                if (state != RAY_INACTIVE && !bad[k]) bad[k] = true, ++mismatches;
+                continue;
+            }
+            if (state == RAY_ACTIVE) {
+                const glm::ivec3 cell(cells[k * 4], cells[k * 4 + 1], cells[k * 4 + 2]);
+                if ((size_t(pass) >= expected[k].size() || cell != expected[k][size_t(pass)]) && !bad[k])
+                    bad[k] = true, ++mismatches;
+            } else if (state == RAY_DEAD && size_t(pass) < expected[k].size() && !bad[k]) {
+                bad[k] = true, ++mismatches;  // left the grid early (late shows as a wrong cell)
+            }
+        }
+        if (p.traverse.execute() == 0) {
+            EXPECT_EQ(size_t(pass), longest);  // the longest walk's last pass made it DEAD
+            break;
+        }
+        ASSERT_LT(pass, 64) << "traversal did not end";
+    }
+    EXPECT_EQ(mismatches, 0u) << "of " << entering << " rays entering the grid";
+}
+
+TEST_F(TraceKernels, IntersectorFindsTheClosestMollerTrumboreHit) {
+    // One cell holding every triangle: one intersector pass tests them all.
+    const Scene scene = randomTriangles(300, 3);
+    GridOptions options;
+    options.resolution = glm::ivec3(1);
+    const UniformGrid grid = buildGrid(scene, options);
+    SceneTextures textures(scene, grid);
+    const int w = 40, h = 30;
+    const auto rays = testRays(grid, w * h, 4);
+    std::vector<float> origins, dirs;
+    for (const auto& [o, d] : rays) {
+        origins.insert(origins.end(), {o.x, o.y, o.z, 1e30f});
+        dirs.insert(dirs.end(), {d.x, d.y, d.z, gridEntry(grid, o, d, 1e30f)});
+    }
+    GpuPipeline p(w, h, textures, 1, MaskMode::EarlyExit);
+    p.rayOrigin.upload(origins);
+    p.rayDir.upload(dirs);
+    p.precalc.execute();
+    p.traverse.execute();  // every entering ray waits in the single cell
+    p.intersect.execute();
+    const auto hits = asVec4(p.hit.download());
+
+    size_t hitsExpected = 0, agree = 0;
+    for (size_t k = 0; k < rays.size(); ++k) {
+        // Brute force over all triangles with the same acceptance rule (t > 0, closest, lowest id).
+        float best = 1e30f;
+        int bestId = -1;
+        const bool enters = dirs[k * 4 + 3] != kMissedBox;
+        for (size_t t = 0; enters && t < scene.triangles.size(); ++t) {
+            const Triangle& tri = scene.triangles[t];
+            float tt, u, v;
+            if (raymath::intersectTriangle(rays[k].first, rays[k].second, tri.v0, tri.v1 - tri.v0, tri.v2 - tri.v0, tt, u, v) &&
+                tt > 0.0f && tt < best) {
+                best = tt;
+                bestId = int(t);
+            }
+        }
+        hitsExpected += bestId >= 0;
+        const bool same = int(hits[k].w) == bestId && (bestId < 0 || closeRel(hits[k].x, best, 1e-5f));
+        agree += same;
+    }
+    EXPECT_GT(hitsExpected, rays.size() / 8);
+    EXPECT_GE(double(agree), 0.999 * double(rays.size())) << agree << " of " << rays.size();
+}
+
+}  // namespace
+}  // namespace gpurt::test
