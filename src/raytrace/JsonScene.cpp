@@ -135,8 +135,9 @@ public:
             if (const json* size = find(*render, "size")) {
                 const Pointer sizeAt = at / "size";
                 requireArrayOf(*size, sizeAt, 2, "2 integers");
-                result.size = glm::ivec2(integer((*size)[0], sizeAt / 0, 1, kMaxImageSide),
-                                         integer((*size)[1], sizeAt / 1, 1, kMaxImageSide));
+                const int width = integer((*size)[0], sizeAt / 0, 1, kMaxImageSide);  // checked in order
+                const int height = integer((*size)[1], sizeAt / 1, 1, kMaxImageSide);
+                result.size = glm::ivec2(width, height);
             }
             if (const json* bounces = find(*render, "max_bounces"))
                 scene.maxBounces = integer(*bounces, at / "max_bounces", 0, kMaxBounces);
@@ -219,7 +220,9 @@ private:
 
     glm::dvec3 vector3(const json& value, const Pointer& at) const {
         requireArrayOf(value, at, 3, "3 numbers");
-        return glm::dvec3(number(value[0], at / 0), number(value[1], at / 1), number(value[2], at / 2));
+        glm::dvec3 result;
+        for (int i = 0; i < 3; ++i) result[i] = number(value[i], at / i);  // first bad element first
+        return result;
     }
 
     // [r, g, b], each >= 0 (no upper bound: HDR colours are fine).

@@ -214,7 +214,11 @@ void GPUKernel::readPending(int slot) {
     stats.fragments += count;
     if (slot == slot_) lastCount_ = count;
     if (timed_[slot]) {
-        stats.gpuMs += double(timers_[slot].result()) * 1e-6;
+        // llvmpipe (Mesa 22.3) can report an absolute timestamp for a context's first
+        // GL_TIME_ELAPSED query; no pass takes longer than the wall time until its result.
+        const double wallMs = std::chrono::duration<double, std::milli>(
+                                  std::chrono::steady_clock::now() - dispatchedAt_[slot]).count();
+        stats.gpuMs += std::min(double(timers_[slot].result()) * 1e-6, wallMs);
         timed_[slot] = false;
     }
 }
@@ -270,6 +274,7 @@ void GPUKernel::dispatch() {
     if (timing) timers_[slot_].end();
     pending_[slot_] = true;
     timed_[slot_] = timing;
+    if (timing) dispatchedAt_[slot_] = std::chrono::steady_clock::now();
 
     glDepthMask(GL_TRUE);
     glStencilMask(0xff);

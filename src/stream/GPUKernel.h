@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <chrono>
 #include <map>
 #include <optional>
 #include <utility>
@@ -148,6 +149,7 @@ class GPUKernel {
     std::vector<GPUQuery> timers_;
     std::array<bool, 2> pending_{};
     std::array<bool, 2> timed_{};
+    std::array<std::chrono::steady_clock::time_point, 2> dispatchedAt_{};
     int slot_ = 1;
     uint64_t lastCount_ = 0;
     int calls_ = 0;

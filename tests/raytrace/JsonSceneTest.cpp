@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -75,15 +76,15 @@ void expectNear(glm::vec3 actual, glm::dvec3 expected, double tolerance = 1e-5) 
 
 // Rotation by `degrees` about one axis, written out (not via glm), applied to p.
 glm::dvec3 rotateX(glm::dvec3 p, double degrees) {
-    const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
     return {p.x, c * p.y - s * p.z, s * p.y + c * p.z};
 }
 glm::dvec3 rotateY(glm::dvec3 p, double degrees) {
-    const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
     return {c * p.x + s * p.z, p.y, -s * p.x + c * p.z};
 }
 glm::dvec3 rotateZ(glm::dvec3 p, double degrees) {
-    const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
     return {c * p.x - s * p.y, s * p.x + c * p.y, p.z};
 }
 
@@ -173,7 +174,7 @@ TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
         "meshes": [{"file": "tri.obj"}],
         "lights": [{"position": [1, 2, 3], "color": [0.5, 0.25, 2], "intensity": 40},
                    {"position": [-1, 0, 0]}],
-        "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 0, 1], "fovy": 30.5},
+        "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "up": [1, 0, 0], "fovy": 30.5},
         "background": [0.25, 0.5, 1],
         "render": {"size": [320, 200], "max_bounces": 0}})"));
     const Scene& scene = file.scene;
@@ -186,7 +187,7 @@ TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
     ASSERT_TRUE(scene.camera.has_value());
     EXPECT_EQ(scene.camera->eye, glm::vec3(0, 1, 5));
     EXPECT_EQ(scene.camera->target, glm::vec3(0, 1, 0));
-    EXPECT_EQ(scene.camera->up, glm::vec3(0, 0, 1));
+    EXPECT_EQ(scene.camera->up, glm::vec3(1, 0, 0));
     EXPECT_EQ(scene.camera->fovy, 30.5f);
     EXPECT_EQ(scene.background, glm::vec3(0.25f, 0.5f, 1.0f));
     ASSERT_TRUE(file.size.has_value());
@@ -210,7 +211,7 @@ TEST_F(JsonSceneTest, DefaultsWhenOptionalPartsAreMissing) {
 
 TEST_F(JsonSceneTest, SyntaxErrorsNameLineAndColumn) {
     expectError("{\n  \"meshes\": [\n    ,\n  ]\n}\n", {"scene.json:3:5: ", "syntax error"});
-    expectError("", {"scene.json:1:", "empty input"});
+    expectError("", {"scene.json:1:1: ", "unexpected end of input"});
     expectError("{\"meshes\": []} trailing", {"scene.json:1:"});
     expectError("{\"meshes\": [], \"background\": [1e999, 0, 0]}", {"1e999"});
     expectError("{\"meshes\": [\"\x01\xff\"]}", {"scene.json:1:"});

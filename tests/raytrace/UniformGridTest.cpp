@@ -63,7 +63,9 @@ void expectWellFormed(const UniformGrid& grid, size_t triangleCount) {
         ASSERT_LE(grid.cellStart[c], grid.cellStart[c + 1]);
         for (uint32_t k = grid.cellStart[c]; k < grid.cellStart[c + 1]; ++k) {
             ASSERT_LT(grid.cellTriangles[k], triangleCount);
-            if (k > grid.cellStart[c]) ASSERT_LT(grid.cellTriangles[k - 1], grid.cellTriangles[k]) << "cell " << c;
+            if (k > grid.cellStart[c]) {
+                ASSERT_LT(grid.cellTriangles[k - 1], grid.cellTriangles[k]) << "cell " << c;
+            }
         }
     }
 }
