@@ -2,7 +2,7 @@
 // CPU backend, writes the PNG and the requested AOVs (PFM), and prints statistics.
 #include "Commands.h"
 #include "CommonOptions.h"
-#include "SceneInput.h"
+#include "raytrace/SceneLoader.h"
 
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
@@ -29,7 +29,8 @@ struct RenderOptions {
     std::string stats;  // "", "text" or "json"
     bool statsGiven = false;
     std::string mask;
-    int traverseSteps = 4;
+    int traverseSteps = 16;
+    float waitThreshold = 0.0f;
     float lambda = 2.0f;
     int bounces = -1;
     CameraOptions camera;
@@ -89,7 +90,7 @@ int runRender(const RenderOptions& o) {
     if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
         throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
 
-    const LoadedScene loaded = loadSceneFile(o.scene);
+    const LoadedScene loaded = loadScene(o.scene);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     const CameraBasis camera = o.camera.camera(scene, size);
@@ -111,6 +112,7 @@ int runRender(const RenderOptions& o) {
         GpuTracerOptions tracerOptions;
         tracerOptions.mask = mask;
         tracerOptions.traverseSteps = o.traverseSteps;
+        tracerOptions.waitThreshold = o.waitThreshold;
         GpuTracer tracer(scene, grid, tracerOptions);
         out = tracer.render(camera, settings);
     }
@@ -151,6 +153,9 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)");
     cmd->add_option("--traverse-steps", o->traverseSteps, "Grid cells per traverser pass (1 = the seed)")
         ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--wait-threshold", o->waitThreshold,
+                    "Run the intersector once this fraction of live rays wait (0: every iteration)")
+        ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
         ->check(CLI::Range(0.01f, 64.0f));
     o->camera.add(*cmd);

@@ -4,9 +4,10 @@
 // same float operations. Same rules as raymath.h: the common subset of GLSL 4.50 and C++/GLM, no
 // swizzle writes, float literals with 'f'.
 //
-// Per hit p with material (kd, ks, ns) seen along direction d (Whitted 1980; Christen 2005, eq. 5.1):
+// Per hit p with material (kd, ks, ns) seen along direction d (Whitted 1980; Christen 2005,
+// eq. 5.1), with l the unit vector to the light and n the normal facing the ray:
 //   local = 0.1 kd + sum over lights in front of the surface and not in shadow of
-//           (kd max(0, n.l) + ks max(0, reflect(-l, n).(-d))^ns) * colour * intensity / |light - p|^2
+//           (kd max(0, n.l) + ks max(0, reflect(-l, n).(-d))^ns) * colour * intensity / dist^2
 //   colour = sum over bounces of (product of reflectivities so far) * local; a miss adds
 //            product * background.
 // A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by the surface itself
@@ -68,6 +69,8 @@ GPURT_FN vec3 lightContribution(vec3 p, vec3 n, vec3 d, vec3 kd, vec3 ks, float 
 GPURT_FN vec3 ambientColor(vec3 kd) { return GPURT_AMBIENT * kd; }
 
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).
-GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) { return contractNormalize(mirrorDirection(d, n)); }
+GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) {
+    return contractNormalize(mirrorDirection(d, n));
+}
 
 #endif

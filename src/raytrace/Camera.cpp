@@ -12,7 +12,9 @@
 namespace gpurt {
 namespace {
 
-bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFinite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 std::string format(glm::vec3 v) {
     std::ostringstream s;
@@ -21,19 +23,23 @@ std::string format(glm::vec3 v) {
 }
 
 // tan(fovy * pi / 360) in double, rounded to float (the contract's t).
-float tanHalfFovy(float fovy) { return static_cast<float>(std::tan(double(fovy) * std::numbers::pi / 360.0)); }
+float tanHalfFovy(float fovy) {
+    return static_cast<float>(std::tan(double(fovy) * std::numbers::pi / 360.0));
+}
 
 }  // namespace
 
 CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
     if (width < 1 || height < 1)
-        throw InputError("--size: width and height must be at least 1, got " + std::to_string(width) + "x" +
-                         std::to_string(height));
+        throw InputError("--size: width and height must be at least 1, got " +
+                         std::to_string(width) + "x" + std::to_string(height));
     if (!isFinite(spec.eye)) throw InputError("--eye: not a finite point: " + format(spec.eye));
-    if (!isFinite(spec.target)) throw InputError("--target: not a finite point: " + format(spec.target));
+    if (!isFinite(spec.target))
+        throw InputError("--target: not a finite point: " + format(spec.target));
     if (!isFinite(spec.up)) throw InputError("--up: not a finite vector: " + format(spec.up));
     if (!(spec.fovy > 0.0f && spec.fovy < 180.0f))
-        throw InputError("--fovy: must be between 0 and 180 degrees (exclusive), got " + std::to_string(spec.fovy));
+        throw InputError("--fovy: must be between 0 and 180 degrees (exclusive), got " +
+                         std::to_string(spec.fovy));
 
     CameraBasis c;
     c.eye = spec.eye;
@@ -43,7 +49,8 @@ CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
     c.forward = raymath::contractNormalize(view);
     const glm::vec3 side = glm::cross(c.forward, spec.up);
     if (!(glm::dot(side, side) > 0.0f))
-        throw InputError("--up: " + format(spec.up) + " is parallel to the viewing direction (or zero)");
+        throw InputError("--up: " + format(spec.up) +
+                         " is parallel to the viewing direction (or zero)");
     c.right = raymath::contractNormalize(side);
     c.upOrtho = glm::cross(c.right, c.forward);
     if (!isFinite(c.forward) || !isFinite(c.right) || !isFinite(c.upOrtho))
@@ -74,9 +81,9 @@ CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy
 }
 
 glm::vec3 primaryDirection(const CameraBasis& c, int i, int j) {
-    return raymath::cameraRayDirection(c.forward, c.right, c.upOrtho, c.tanHalf, c.aspect, static_cast<float>(i),
-                                       static_cast<float>(j), static_cast<float>(c.width),
-                                       static_cast<float>(c.height));
+    return raymath::cameraRayDirection(c.forward, c.right, c.upOrtho, c.tanHalf, c.aspect,
+                                       static_cast<float>(i), static_cast<float>(j),
+                                       static_cast<float>(c.width), static_cast<float>(c.height));
 }
 
 }  // namespace gpurt

@@ -32,7 +32,8 @@ CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
       // A straight line crosses at most nx + ny + nz cells; the rest is slack for rounding.
       maxSteps_(grid.resolution.x + grid.resolution.y + grid.resolution.z + 3) {
     triangles_.reserve(scene.triangles.size());
-    for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
+    for (const Triangle& t : scene.triangles)
+        triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
 }
 
 TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
@@ -81,7 +82,8 @@ TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
             hit.state = RAY_ACTIVE;
         }
         // Traversal: stop when the next cell starts beyond the ray's limit or outside the grid.
-        if (cellExit > tLimit || !ddaStep(o, d, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax)) {
+        if (cellExit > tLimit ||
+            !ddaStep(o, d, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax)) {
             hit.state = RAY_DEAD;
             return hit;
         }
@@ -144,8 +146,9 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 ++stats.shadowRays;
                 if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
                 if (blocker.prim >= 0) continue;
-                local += lightContribution(p, n, d, material.diffuse, material.specular, material.shininess,
-                                           light.position, light.color, light.intensity);
+                local += lightContribution(p, n, d, material.diffuse, material.specular,
+                                           material.shininess, light.position, light.color,
+                                           light.intensity);
             }
             color += weight * local;
 
@@ -159,7 +162,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     };
 
     // Rows are handed out one at a time: cost varies strongly across the image.
-    size_t threads = settings.threads > 0 ? size_t(settings.threads) : size_t(std::thread::hardware_concurrency());
+    size_t threads = settings.threads > 0 ? size_t(settings.threads)
+                                          : size_t(std::thread::hardware_concurrency());
     threads = std::clamp<size_t>(threads, 1, size_t(std::max(1, camera.height)));
     std::atomic<int> nextRow{0};
     std::vector<RenderStats> threadStats(threads);
@@ -187,7 +191,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.stats.secondaryRays += s.secondaryRays;
         out.stats.overflowRays += s.overflowRays;
     }
-    out.stats.totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    out.stats.totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
 

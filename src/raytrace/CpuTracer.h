@@ -24,7 +24,7 @@ struct TraceHit {
 };
 
 class CpuTracer {
-public:
+  public:
     // Keeps references to both: they must outlive the tracer.
     CpuTracer(const Scene& scene, const UniformGrid& grid);
 
@@ -35,7 +35,7 @@ public:
     // settings.threads threads (0: all cores), rows handed out dynamically.
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) const;
 
-private:
+  private:
     struct PreparedTriangle {
         glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
     };

@@ -25,16 +25,26 @@ GpuPipeline& GpuTracer::pipeline(int width, int height) {
 }
 
 // Voxel precalculation, then traverse and intersect until no ray is ACTIVE or WAITing (both
-// counts zero). Every iteration moves each live ray at least one cell, so the loop is bounded by
-// the cells a ray can cross; reaching the bound throws (never a hang). Returns the rays traced.
+// counts zero). Every traverser pass moves each active ray at least one cell and every
+// intersector pass finishes or advances each waiting ray, so the loop is bounded by the cells a
+// ray can cross; reaching the bound throws (never a hang). Load balancing: the wait mask's own
+// pass counts the waiting rays, and the intersector is skipped while they are fewer than
+// waitThreshold of the live rays. Returns the rays traced.
 uint64_t GpuTracer::traceLoop(GpuPipeline& p) {
     const uint64_t rays = p.precalc.execute();
     const glm::ivec3 r = grid_.resolution;
-    const int limit = r.x + r.y + r.z + 8;
+    const int limit = 2 * (r.x + r.y + r.z) + 8;
+    const bool balance = options_.waitThreshold > 0.0f;
+    p.intersect.setMask(&p.waitMask, !balance);
     whileLoop("trace", limit, [&] {
         const uint64_t active = p.traverse.execute();
-        const uint64_t waiting = p.intersect.execute();
-        return active + waiting;
+        if (balance) {
+            const std::optional<uint64_t> waiting = p.waitMask.updateAndCount();
+            if (waiting && *waiting == 0) return active;
+            if (waiting && active > 0 && double(*waiting) < options_.waitThreshold * double(active + *waiting))
+                return active;  // keep traversing: too few rays would share the intersector pass
+        }
+        return active + p.intersect.execute();
     });
     return rays;
 }

@@ -19,7 +19,10 @@ struct GpuPipeline;
 
 struct GpuTracerOptions {
     MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
-    int traverseSteps = 4;           // cells per traverser pass (1 = the seed)
+    int traverseSteps = 16;          // cells per traverser pass (1 = the seed)
+    // Load balancing (Christen 2005, 5.6): the intersector runs only once at least this fraction
+    // of the live rays wait (or none is active any more). 0: after every traverser pass.
+    float waitThreshold = 0.0f;
 };
 
 class GpuTracer {

@@ -44,7 +44,8 @@ void writeAtomically(const std::filesystem::path& path, const std::function<void
     }
     try {
         write(file);
-        if (std::fflush(file) != 0 || std::ferror(file)) throw InputError(target + ": cannot write file (" + errnoText() + ")");
+        if (std::fflush(file) != 0 || std::ferror(file))
+            throw InputError(target + ": cannot write file (" + errnoText() + ")");
     } catch (...) {
         std::fclose(file);
         unlink(temp.c_str());
@@ -78,7 +79,8 @@ void pngWarning(png_structp, png_const_charp) {}
 
 // Writes the PNG to an open file. Kept free of C++ objects with destructors between setjmp and
 // the libpng calls, as longjmp would skip them.
-bool writePngRows(FILE* file, int width, int height, unsigned char* const* rows, PngErrorState& state) {
+bool writePngRows(FILE* file, int width, int height, unsigned char* const* rows,
+                  PngErrorState& state) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
     if (!png) {
         state.message = "out of memory";
@@ -95,8 +97,9 @@ bool writePngRows(FILE* file, int width, int height, unsigned char* const* rows,
         return false;
     }
     png_init_io(png, file);
-    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
     png_write_image(png, const_cast<png_bytepp>(rows));
@@ -105,10 +108,12 @@ bool writePngRows(FILE* file, int width, int height, unsigned char* const* rows,
     return true;
 }
 
-void checkSize(const std::filesystem::path& path, int width, int height, size_t values, size_t perPixel) {
+void checkSize(const std::filesystem::path& path, int width, int height, size_t values,
+               size_t perPixel) {
     if (width < 1 || height < 1 || values != size_t(width) * size_t(height) * perPixel)
-        throw InputError(path.string() + ": image of " + std::to_string(width) + "x" + std::to_string(height) +
-                         " does not match its " + std::to_string(values) + " values");
+        throw InputError(path.string() + ": image of " + std::to_string(width) + "x" +
+                         std::to_string(height) + " does not match its " + std::to_string(values) +
+                         " values");
 }
 
 uint32_t byteSwap(uint32_t x) {
@@ -123,13 +128,15 @@ unsigned char linearToSrgb8(float linear) {
     return static_cast<unsigned char>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
 }
 
-void writePng(const std::filesystem::path& path, int width, int height, const std::vector<glm::vec3>& linearTopFirst) {
+void writePng(const std::filesystem::path& path, int width, int height,
+              const std::vector<glm::vec3>& linearTopFirst) {
     checkSize(path, width, height, linearTopFirst.size(), 1);
     std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 3);
     for (size_t k = 0; k < linearTopFirst.size(); ++k)
         for (int c = 0; c < 3; ++c) pixels[3 * k + size_t(c)] = linearToSrgb8(linearTopFirst[k][c]);
     std::vector<unsigned char*> rows(static_cast<size_t>(height));
-    for (int j = 0; j < height; ++j) rows[size_t(j)] = pixels.data() + size_t(j) * size_t(width) * 3;
+    for (int j = 0; j < height; ++j)
+        rows[size_t(j)] = pixels.data() + size_t(j) * size_t(width) * 3;
     writeAtomically(path, [&](FILE* file) {
         PngErrorState state;
         if (!writePngRows(file, width, height, rows.data(), state))
@@ -140,7 +147,8 @@ void writePng(const std::filesystem::path& path, int width, int height, const st
 void writePfm(const std::filesystem::path& path, int width, int height, int channels,
               const std::vector<float>& topFirst) {
     if (channels != 1 && channels != 3)
-        throw InputError(path.string() + ": a PFM has 1 or 3 channels, not " + std::to_string(channels));
+        throw InputError(path.string() + ": a PFM has 1 or 3 channels, not " +
+                         std::to_string(channels));
     checkSize(path, width, height, topFirst.size(), size_t(channels));
     const size_t rowFloats = size_t(width) * size_t(channels);
     std::vector<float> row(rowFloats);
@@ -161,7 +169,8 @@ void writePfm(const std::filesystem::path& path, int width, int height, int chan
     });
 }
 
-std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height, int& channels) {
+std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,
+                           int& channels) {
     const std::string name = path.string();
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot open file (" + errnoText() + ")");
@@ -170,7 +179,8 @@ std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& h
     in >> magic >> width >> height >> scale;
     if (!in || (magic != "Pf" && magic != "PF") || width < 1 || height < 1 || scale == 0)
         throw InputError(name + ": not a PFM file (bad header)");
-    if (size_t(width) * size_t(height) > (size_t(1) << 28)) throw InputError(name + ": PFM image is too large");
+    if (size_t(width) * size_t(height) > (size_t(1) << 28))
+        throw InputError(name + ": PFM image is too large");
     // Exactly one whitespace character separates the header from the data.
     if (!std::isspace(in.get())) throw InputError(name + ": not a PFM file (bad header)");
     channels = magic == "PF" ? 3 : 1;
@@ -183,7 +193,8 @@ std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& h
         in.read(reinterpret_cast<char*>(dst), std::streamsize(rowFloats * sizeof(float)));
         if (!in) throw InputError(name + ": PFM data is truncated");
         if (swap)
-            for (size_t k = 0; k < rowFloats; ++k) dst[k] = std::bit_cast<float>(byteSwap(std::bit_cast<uint32_t>(dst[k])));
+            for (size_t k = 0; k < rowFloats; ++k)
+                dst[k] = std::bit_cast<float>(byteSwap(std::bit_cast<uint32_t>(dst[k])));
     }
     return topFirst;
 }

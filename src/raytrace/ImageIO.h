@@ -11,7 +11,8 @@ namespace gpurt {
 
 // 8-bit sRGB RGB PNG from linear colour (clamped to [0, 1], sRGB transfer, rounded); row 0 of
 // `linearTopFirst` is the top row. Throws InputError("<path>: ...") when it cannot be written.
-void writePng(const std::filesystem::path& path, int width, int height, const std::vector<glm::vec3>& linearTopFirst);
+void writePng(const std::filesystem::path& path, int width, int height,
+              const std::vector<glm::vec3>& linearTopFirst);
 
 // PFM as the contract defines it: "Pf" (channels = 1) or "PF" (3), "W H", "-1.0", then float32
 // little-endian scanlines from the BOTTOM row to the top. `topFirst` is row-major, top row first,
@@ -20,7 +21,8 @@ void writePfm(const std::filesystem::path& path, int width, int height, int chan
               const std::vector<float>& topFirst);
 
 // Reads a PFM (either byte order) back into top-first rows. Throws InputError on a malformed file.
-std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height, int& channels);
+std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,
+                           int& channels);
 
 // The 8-bit sRGB encoding of one linear channel value, as writePng stores it.
 unsigned char linearToSrgb8(float linear);

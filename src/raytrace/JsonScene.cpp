@@ -11,11 +11,14 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -66,7 +69,8 @@ std::string readSceneText(const std::filesystem::path& path) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
     if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
+    if (std::filesystem::is_directory(status))
+        throw InputError(name + ": is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
     std::ostringstream buffer;
@@ -93,7 +97,8 @@ std::string lineAndColumn(std::string_view text, size_t byte) {
 std::string parseErrorText(const std::string& what) {
     std::string text = what;
     const size_t bracket = text.find("] ");
-    if (text.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) text.erase(0, bracket + 2);
+    if (text.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos)
+        text.erase(0, bracket + 2);
     const size_t column = text.find("column ");
     if (text.rfind("parse error", 0) == 0 && column != std::string::npos) {
         const size_t colon = text.find(": ", column);
@@ -102,11 +107,63 @@ std::string parseErrorText(const std::string& what) {
     return printable(text);
 }
 
+// nlohmann keeps the last of repeated keys silently; a scene file with two "camera" objects is
+// more likely a mistake. A parser callback that follows the JSON pointer of the value being read.
+class DuplicateKeyCheck {
+  public:
+    explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+
+    bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start:
+            case json::parse_event_t::array_start:
+                enterChild();
+                frames_.push_back({event == json::parse_event_t::array_start, {}, 0, {}});
+                break;
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                frames_.pop_back();
+                break;
+            case json::parse_event_t::key: {
+                Frame& object = frames_.back();
+                object.key = parsed.get<std::string>();
+                if (!object.keys.insert(object.key).second) {
+                    Pointer at;
+                    for (const Frame& frame : frames_)
+                        at = frame.isArray ? at / (frame.count - 1) : at / frame.key;
+                    throw InputError(file_ + ": " + printable(at.to_string()) + ": duplicate key");
+                }
+                break;
+            }
+            case json::parse_event_t::value:
+                enterChild();
+                break;
+        }
+        return true;
+    }
+
+  private:
+    struct Frame {
+        bool isArray;
+        std::string key;             // object: the key being read
+        size_t count;                // array: elements started so far
+        std::set<std::string> keys;  // object: keys seen so far
+    };
+
+    void enterChild() {
+        if (!frames_.empty() && frames_.back().isArray) ++frames_.back().count;
+    }
+
+    std::string file_;
+    std::vector<Frame> frames_;
+};
+
 // Walks one parsed scene document. Every accessor takes the value and its JSON pointer, so that
 // a refusal can name the place.
 class SceneReader {
-public:
-    explicit SceneReader(const std::filesystem::path& path) : file_(path.string()), folder_(path.parent_path()) {}
+  public:
+    explicit SceneReader(const std::filesystem::path& path)
+        : file_(path.string()), folder_(path.parent_path()) {}
 
     JsonSceneFile read(const json& root) {
         const Pointer top;
@@ -124,9 +181,11 @@ public:
         if (const json* lights = find(root, "lights")) {
             const Pointer at = top / "lights";
             requireArray(*lights, at);
-            for (size_t i = 0; i < lights->size(); ++i) scene.lights.push_back(readLight((*lights)[i], at / i));
+            for (size_t i = 0; i < lights->size(); ++i)
+                scene.lights.push_back(readLight((*lights)[i], at / i));
         }
-        if (const json* camera = find(root, "camera")) scene.camera = readCamera(*camera, top / "camera");
+        if (const json* camera = find(root, "camera"))
+            scene.camera = readCamera(*camera, top / "camera");
         if (const json* background = find(root, "background"))
             scene.background = color(*background, top / "background");
         if (const json* render = find(root, "render")) {
@@ -135,7 +194,8 @@ public:
             if (const json* size = find(*render, "size")) {
                 const Pointer sizeAt = at / "size";
                 requireArrayOf(*size, sizeAt, 2, "2 integers");
-                const int width = integer((*size)[0], sizeAt / 0, 1, kMaxImageSide);  // checked in order
+                const int width =
+                    integer((*size)[0], sizeAt / 0, 1, kMaxImageSide);  // checked in order
                 const int height = integer((*size)[1], sizeAt / 1, 1, kMaxImageSide);
                 result.size = glm::ivec2(width, height);
             }
@@ -145,7 +205,7 @@ public:
         return result;
     }
 
-private:
+  private:
     [[noreturn]] void fail(const Pointer& at, const std::string& what) const {
         const std::string where = at.empty() ? std::string("top level") : printable(at.to_string());
         throw InputError(file_ + ": " + where + ": " + what);
@@ -163,12 +223,16 @@ private:
     }
 
     // An object whose keys are all in `allowed`.
-    void requireObject(const json& value, const Pointer& at, std::initializer_list<const char*> allowed) const {
-        if (!value.is_object()) fail(at, std::string("expected an object, got ") + value.type_name());
+    void requireObject(const json& value, const Pointer& at,
+                       std::initializer_list<const char*> allowed) const {
+        if (!value.is_object())
+            fail(at, std::string("expected an object, got ") + value.type_name());
         for (const auto& item : value.items()) {
-            if (std::none_of(allowed.begin(), allowed.end(), [&](const char* key) { return item.key() == key; })) {
+            if (std::none_of(allowed.begin(), allowed.end(),
+                             [&](const char* key) { return item.key() == key; })) {
                 std::string expected;
-                for (const char* key : allowed) expected += (expected.empty() ? "" : ", ") + std::string(key);
+                for (const char* key : allowed)
+                    expected += (expected.empty() ? "" : ", ") + std::string(key);
                 fail(at / item.key(), "unknown key (expected one of: " + expected + ")");
             }
         }
@@ -178,31 +242,37 @@ private:
         if (!value.is_array()) fail(at, std::string("expected an array, got ") + value.type_name());
     }
 
-    void requireArrayOf(const json& value, const Pointer& at, size_t count, const char* what) const {
-        if (!value.is_array()) fail(at, std::string("expected an array of ") + what + ", got " + value.type_name());
+    void requireArrayOf(const json& value, const Pointer& at, size_t count,
+                        const char* what) const {
+        if (!value.is_array())
+            fail(at, std::string("expected an array of ") + what + ", got " + value.type_name());
         if (value.size() != count)
-            fail(at, "expected an array of " + std::string(what) + ", got " + std::to_string(value.size()) +
-                         " elements");
+            fail(at, "expected an array of " + std::string(what) + ", got " +
+                         std::to_string(value.size()) + " elements");
     }
 
     // A number that fits a float (JSON has no NaN, but 1e39 overflows float).
     double number(const json& value, const Pointer& at) const {
-        if (!value.is_number()) fail(at, std::string("expected a number, got ") + value.type_name());
+        if (!value.is_number())
+            fail(at, std::string("expected a number, got ") + value.type_name());
         const double result = value.get<double>();
         if (!std::isfinite(result)) fail(at, "number is not finite");
-        if (std::fabs(result) > FLT_MAX) fail(at, formatNumber(result) + " does not fit in a 32-bit float");
+        if (std::fabs(result) > FLT_MAX)
+            fail(at, formatNumber(result) + " does not fit in a 32-bit float");
         return result;
     }
 
     double numberAtLeast(const json& value, const Pointer& at, double min) const {
         const double result = number(value, at);
-        if (result < min) fail(at, "must be >= " + formatNumber(min) + ", got " + formatNumber(result));
+        if (result < min)
+            fail(at, "must be >= " + formatNumber(min) + ", got " + formatNumber(result));
         return result;
     }
 
     int integer(const json& value, const Pointer& at, int min, int max) const {
         if (!value.is_number_integer()) {
-            if (value.is_number()) fail(at, "expected an integer, got " + formatNumber(value.get<double>()));
+            if (value.is_number())
+                fail(at, "expected an integer, got " + formatNumber(value.get<double>()));
             fail(at, std::string("expected an integer, got ") + value.type_name());
         }
         bool inRange;
@@ -214,14 +284,16 @@ private:
             inRange = s >= min && s <= max;
         }
         if (!inRange)
-            fail(at, "must be in " + std::to_string(min) + ".." + std::to_string(max) + ", got " + value.dump());
+            fail(at, "must be in " + std::to_string(min) + ".." + std::to_string(max) + ", got " +
+                         value.dump());
         return static_cast<int>(value.get<int64_t>());
     }
 
     glm::dvec3 vector3(const json& value, const Pointer& at) const {
         requireArrayOf(value, at, 3, "3 numbers");
         glm::dvec3 result;
-        for (int i = 0; i < 3; ++i) result[i] = number(value[i], at / i);  // first bad element first
+        for (int i = 0; i < 3; ++i)
+            result[i] = number(value[i], at / i);  // first bad element first
         return result;
     }
 
@@ -229,14 +301,17 @@ private:
     glm::vec3 color(const json& value, const Pointer& at) const {
         requireArrayOf(value, at, 3, "3 numbers (r, g, b)");
         glm::vec3 result;
-        for (int i = 0; i < 3; ++i) result[i] = static_cast<float>(numberAtLeast(value[i], at / i, 0.0));
+        for (int i = 0; i < 3; ++i)
+            result[i] = static_cast<float>(numberAtLeast(value[i], at / i, 0.0));
         return result;
     }
 
     // A number or [x, y, z] (the number stands for all three).
     glm::dvec3 scalarOrVector3(const json& value, const Pointer& at) const {
         if (value.is_number()) return glm::dvec3(number(value, at));
-        if (!value.is_array()) fail(at, std::string("expected a number or an array of 3 numbers, got ") + value.type_name());
+        if (!value.is_array())
+            fail(at, std::string("expected a number or an array of 3 numbers, got ") +
+                         value.type_name());
         return vector3(value, at);
     }
 
@@ -244,23 +319,28 @@ private:
         requireObject(mesh, at, {"file", "transform", "material"});
         const Pointer fileAt = at / "file";
         const json& fileValue = require(mesh, at, "file");
-        if (!fileValue.is_string()) fail(fileAt, std::string("expected a string, got ") + fileValue.type_name());
+        if (!fileValue.is_string())
+            fail(fileAt, std::string("expected a string, got ") + fileValue.type_name());
         const std::string fileName = fileValue.get<std::string>();
         if (fileName.empty()) fail(fileAt, "empty file name");
         if (fileName.find('\0') != std::string::npos) fail(fileAt, "file name contains a NUL byte");
 
         // Transform and material first: their errors are cheaper to find than the OBJ's.
         std::optional<glm::dmat4> transform;
-        if (const json* value = find(mesh, "transform")) transform = readTransform(*value, at / "transform");
+        if (const json* value = find(mesh, "transform"))
+            transform = readTransform(*value, at / "transform");
         std::optional<Material> override;
-        if (const json* value = find(mesh, "material")) override = readMaterial(*value, at / "material", fileName);
+        if (const json* value = find(mesh, "material"))
+            override = readMaterial(*value, at / "material", fileName);
 
         std::filesystem::path objPath(fileName);
         if (objPath.is_relative()) objPath = folder_ / objPath;
         std::error_code ec;
         const std::filesystem::file_status status = std::filesystem::status(objPath, ec);
-        if (!std::filesystem::exists(status)) fail(fileAt, "no such file " + quote(printable(fileName)));
-        if (std::filesystem::is_directory(status)) fail(fileAt, quote(printable(fileName)) + " is a directory");
+        if (!std::filesystem::exists(status))
+            fail(fileAt, "no such file " + quote(printable(fileName)));
+        if (std::filesystem::is_directory(status))
+            fail(fileAt, quote(printable(fileName)) + " is a directory");
 
         // The same OBJ listed twice (e.g. with two transforms) is read once.
         const std::string key = objPath.lexically_normal().string();
@@ -272,7 +352,8 @@ private:
         if (override) {
             scene.materials.push_back(*override);
         } else {
-            scene.materials.insert(scene.materials.end(), obj.materials.begin(), obj.materials.end());
+            scene.materials.insert(scene.materials.end(), obj.materials.begin(),
+                                   obj.materials.end());
         }
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
@@ -284,12 +365,14 @@ private:
                 triangle.v2 = transformPoint(*transform, triangle.v2, at / "transform", k);
             }
             scene.triangles.push_back(triangle);
-            scene.materialIds.push_back(override ? materialBase : materialBase + obj.materialIds[k]);
+            scene.materialIds.push_back(override ? materialBase
+                                                 : materialBase + obj.materialIds[k]);
         }
     }
 
     // The product in double, rounded to float once.
-    glm::vec3 transformPoint(const glm::dmat4& m, glm::vec3 p, const Pointer& at, size_t triangle) const {
+    glm::vec3 transformPoint(const glm::dmat4& m, glm::vec3 p, const Pointer& at,
+                             size_t triangle) const {
         const glm::dvec4 q = m * glm::dvec4(glm::dvec3(p), 1.0);
         for (int i = 0; i < 3; ++i)
             if (!(std::fabs(q[i]) <= FLT_MAX))
@@ -305,22 +388,27 @@ private:
         if (const json* matrix = find(value, "matrix")) {
             const Pointer matrixAt = at / "matrix";
             for (const char* other : {"translate", "rotate", "scale"})
-                if (find(value, other)) fail(matrixAt, std::string("cannot be combined with \"") + other + "\"");
+                if (find(value, other))
+                    fail(matrixAt, std::string("cannot be combined with \"") + other + "\"");
             requireArrayOf(*matrix, matrixAt, 16, "16 numbers (a row-major 4x4 matrix)");
             for (int row = 0; row < 4; ++row)
                 for (int column = 0; column < 4; ++column)
-                    m[column][row] = number((*matrix)[row * 4 + column], matrixAt / (row * 4 + column));
+                    m[column][row] =
+                        number((*matrix)[row * 4 + column], matrixAt / (row * 4 + column));
             if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
                 fail(matrixAt, "last row must be 0, 0, 0, 1 (an affine transform)");
             double largest = 0.0;
             for (int column = 0; column < 3; ++column)
-                for (int row = 0; row < 3; ++row) largest = std::max(largest, std::fabs(m[column][row]));
+                for (int row = 0; row < 3; ++row)
+                    largest = std::max(largest, std::fabs(m[column][row]));
             const double det = glm::determinant(glm::dmat3(m));
             if (!std::isfinite(det) || !(std::fabs(det) > 1e-12 * largest * largest * largest))
-                fail(matrixAt, "singular matrix (the upper-left 3x3 has determinant " + formatNumber(det) + ")");
+                fail(matrixAt, "singular matrix (the upper-left 3x3 has determinant " +
+                                   formatNumber(det) + ")");
             return m;
         }
-        if (const json* translate = find(value, "translate")) m = glm::translate(m, vector3(*translate, at / "translate"));
+        if (const json* translate = find(value, "translate"))
+            m = glm::translate(m, vector3(*translate, at / "translate"));
         if (const json* rotate = find(value, "rotate")) {
             const glm::dvec3 degrees = vector3(*rotate, at / "rotate");
             m = glm::rotate(m, glm::radians(degrees.z), glm::dvec3(0, 0, 1));
@@ -330,7 +418,8 @@ private:
         if (const json* scale = find(value, "scale")) {
             const Pointer scaleAt = at / "scale";
             const glm::dvec3 s = scalarOrVector3(*scale, scaleAt);
-            if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) fail(scaleAt, "scale must not be 0 (a singular transform)");
+            if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0)
+                fail(scaleAt, "scale must not be 0 (a singular transform)");
             m = glm::scale(m, s);
         }
         return m;
@@ -341,13 +430,17 @@ private:
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
-            if (!name->is_string()) fail(at / "name", std::string("expected a string, got ") + name->type_name());
+            if (!name->is_string())
+                fail(at / "name", std::string("expected a string, got ") + name->type_name());
             material.name = name->get<std::string>();
         }
-        if (const json* diffuse = find(value, "diffuse")) material.diffuse = color(*diffuse, at / "diffuse");
-        if (const json* specular = find(value, "specular")) material.specular = color(*specular, at / "specular");
+        if (const json* diffuse = find(value, "diffuse"))
+            material.diffuse = color(*diffuse, at / "diffuse");
+        if (const json* specular = find(value, "specular"))
+            material.specular = color(*specular, at / "specular");
         if (const json* shininess = find(value, "shininess"))
-            material.shininess = static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));
+            material.shininess =
+                static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));
         if (const json* reflectivity = find(value, "reflectivity")) {
             const Pointer reflectAt = at / "reflectivity";
             // A mirror weight above 1 would amplify light at every bounce.
@@ -359,7 +452,8 @@ private:
                 material.reflectivity = color(*reflectivity, reflectAt);
                 for (int i = 0; i < 3; ++i)
                     if (material.reflectivity[i] > 1.0f)
-                        fail(reflectAt / i, "must be <= 1, got " + formatNumber(material.reflectivity[i]));
+                        fail(reflectAt / i,
+                             "must be <= 1, got " + formatNumber(material.reflectivity[i]));
             }
         }
         return material;
@@ -384,7 +478,8 @@ private:
         if (const json* fovy = find(value, "fovy")) {
             const double degrees = number(*fovy, at / "fovy");
             if (!(degrees > 0.0 && degrees < 180.0))
-                fail(at / "fovy", "must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
+                fail(at / "fovy",
+                     "must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
             camera.fovy = static_cast<float>(degrees);
         }
         // The contract's basis (CONTRACT.md, camera convention) must exist.
@@ -410,13 +505,22 @@ JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path) {
     const std::string name = path.string();
     const std::string text = readSceneText(path);
     json root;
+    DuplicateKeyCheck duplicates(name);
     try {
-        root = json::parse(text);
+        root = json::parse(text, std::ref(duplicates));
     } catch (const json::parse_error& e) {
-        throw InputError(name + ":" + lineAndColumn(text, e.byte) + ": " + parseErrorText(e.what()));
+        throw InputError(name + ":" + lineAndColumn(text, e.byte) + ": " +
+                         parseErrorText(e.what()));
     } catch (const json::exception& e) {
-        // e.g. out_of_range 406, "number overflow parsing '1e999'", which carries no position.
-        throw InputError(name + ": " + parseErrorText(e.what()));
+        // out_of_range 406, "number overflow parsing '1e999'", carries no position: find the
+        // number.
+        const std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const size_t at =
+            open < close ? text.find(what.substr(open + 1, close - open - 1)) : std::string::npos;
+        throw InputError(name + ":" +
+                         (at == std::string::npos ? "" : lineAndColumn(text, at + 1) + ":") + " " +
+                         parseErrorText(what));
     }
     return SceneReader(path).read(root);
 }

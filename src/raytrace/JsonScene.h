@@ -23,7 +23,8 @@ struct JsonSceneFile {
 // Throws InputError, one line naming the file and the JSON pointer of the bad value
 // ("scene.json: /lights/0/colour: unknown key"; "scene.json:3:7: syntax error ..." for bad JSON),
 // for syntax errors, unknown keys, wrong types, missing keys or files, out-of-range or non-finite
-// numbers and singular transforms. An error inside an OBJ file is the OBJ loader's (naming the OBJ).
+// numbers and singular transforms. An error inside an OBJ file is the OBJ loader's (naming the
+// OBJ).
 JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path);
 
 // loadJsonSceneFile(path).scene.

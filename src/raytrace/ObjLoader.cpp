@@ -48,7 +48,7 @@ struct ForwardReference {
 };
 
 class ObjScanner {
-public:
+  public:
     explicit ObjScanner(std::string fileName) : fileName_(std::move(fileName)) {}
 
     [[noreturn]] void fail(size_t line, const std::string& what) const {
@@ -77,14 +77,17 @@ public:
         const size_t counts[3] = {result.vertices, result.texcoords, result.normals};
         for (const ForwardReference& ref : forward)
             if (static_cast<size_t>(ref.index) > counts[ref.kind])
-                fail(ref.line, std::string(kindName(ref.kind)) + " index " + std::to_string(ref.index) +
-                                   " is out of range (the file has " + std::to_string(counts[ref.kind]) + " " +
-                                   kindPlural(ref.kind) + ")");
+                fail(ref.line, std::string(kindName(ref.kind)) + " index " +
+                                   std::to_string(ref.index) + " is out of range (the file has " +
+                                   std::to_string(counts[ref.kind]) + " " + kindPlural(ref.kind) +
+                                   ")");
         return result;
     }
 
-private:
-    static const char* kindName(int kind) { return kind == 0 ? "vertex" : kind == 1 ? "texture coordinate" : "normal"; }
+  private:
+    static const char* kindName(int kind) {
+        return kind == 0 ? "vertex" : kind == 1 ? "texture coordinate" : "normal";
+    }
     static const char* kindPlural(int kind) {
         return kind == 0 ? "vertices" : kind == 1 ? "texture coordinates" : "normals";
     }
@@ -128,13 +131,15 @@ private:
     void checkNumber(std::string_view token, size_t line) const {
         if (!isDecimal(token)) {
             std::string lower(token);
-            for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            for (char& c : lower)
+                c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
             size_t skip = (!lower.empty() && (lower[0] == '+' || lower[0] == '-')) ? 1 : 0;
             if (lower.compare(skip, 3, "nan") == 0 || lower.compare(skip, 3, "inf") == 0)
                 fail(line, quote(token) + " is not a finite number");
             fail(line, quote(token) + " is not a number");
         }
-        // The value only matters for range: doubles at or above 2^128 - 2^103 round to float infinity.
+        // The value only matters for range: doubles at or above 2^128 - 2^103 round to float
+        // infinity.
         const double value = std::strtod(std::string(token).c_str(), nullptr);
         if (!(std::fabs(value) < 0x1.ffffffp127))
             fail(line, quote(token) + " does not fit in a 32-bit float");
@@ -142,27 +147,35 @@ private:
 
     // Parses one index of a face element and checks 0 and range; `count` is how many elements of
     // that kind precede this line (negative indices are relative to it).
-    void checkIndex(std::string_view token, std::string_view element, int kind, size_t count, size_t line,
-                    std::vector<ForwardReference>& forward) const {
+    void checkIndex(std::string_view token, std::string_view element, int kind, size_t count,
+                    size_t line, std::vector<ForwardReference>& forward) const {
         long long value = 0;
         std::string_view digits = token;
         if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
         auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size() || value < INT_MIN ||
-            value > INT_MAX) {
-            if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == digits.data() + digits.size()))
-                fail(line, std::string(kindName(kind)) + " index " + std::string(token) + " is out of range");
-            fail(line, quote(element) + " is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
+        if (digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size() ||
+            value < INT_MIN || value > INT_MAX) {
+            if (ec == std::errc::result_out_of_range ||
+                (ec == std::errc() && ptr == digits.data() + digits.size()))
+                fail(line, std::string(kindName(kind)) + " index " + std::string(token) +
+                               " is out of range");
+            fail(line, quote(element) +
+                           " is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
         }
-        if (value == 0) fail(line, std::string(kindName(kind)) + " index 0 is invalid (OBJ indices start at 1)");
+        if (value == 0)
+            fail(line,
+                 std::string(kindName(kind)) + " index 0 is invalid (OBJ indices start at 1)");
         if (value < 0 && static_cast<unsigned long long>(-value) > count)
-            fail(line, std::string(kindName(kind)) + " index " + std::to_string(value) + " is out of range (" +
-                           std::to_string(count) + " " + kindPlural(kind) + " defined before this line)");
+            fail(line, std::string(kindName(kind)) + " index " + std::to_string(value) +
+                           " is out of range (" + std::to_string(count) + " " + kindPlural(kind) +
+                           " defined before this line)");
         if (value > 0 && static_cast<size_t>(value) > count) forward.push_back({line, value, kind});
     }
 
-    void scanLine(std::string_view text, size_t line, ObjPreScan& result, std::vector<ForwardReference>& forward) {
-        // Text files have no control characters besides tab and line ends (the caller split those off).
+    void scanLine(std::string_view text, size_t line, ObjPreScan& result,
+                  std::vector<ForwardReference>& forward) {
+        // Text files have no control characters besides tab and line ends (the caller split those
+        // off).
         for (unsigned char c : text) {
             if ((c < 0x20 && c != '\t') || c == 0x7f) {
                 char hex[8];
@@ -177,11 +190,13 @@ private:
             for (size_t i = 1; i < tok.size(); ++i) checkNumber(tok[i], line);
             const size_t have = tok.size() - 1;
             if (keyword == "v") {
-                if (have < 3) fail(line, "vertex has " + std::to_string(have) + " coordinates; needs x y z");
+                if (have < 3)
+                    fail(line, "vertex has " + std::to_string(have) + " coordinates; needs x y z");
                 ++result.vertices;
                 result.vertexLines.push_back(line);
             } else if (keyword == "vn") {
-                if (have < 3) fail(line, "normal has " + std::to_string(have) + " coordinates; needs x y z");
+                if (have < 3)
+                    fail(line, "normal has " + std::to_string(have) + " coordinates; needs x y z");
                 ++result.normals;
             } else {
                 if (have < 1) fail(line, "texture coordinate has no values");
@@ -192,7 +207,8 @@ private:
         } else if (keyword == "f" || keyword == "l" || keyword == "p") {
             const size_t elements = tok.size() - 1;
             if (keyword == "f" && elements < 3)
-                fail(line, "face has " + std::to_string(elements) + " vertices; a face needs at least 3");
+                fail(line,
+                     "face has " + std::to_string(elements) + " vertices; a face needs at least 3");
             if (elements < 1) fail(line, quote(keyword) + " without vertices");
             for (size_t i = 1; i < tok.size(); ++i) {
                 // v, v/vt, v//vn or v/vt/vn
@@ -204,8 +220,10 @@ private:
                     size_t slash = element.find('/', start);
                     if (partCount == 3)
                         fail(line, quote(element) +
-                                       " is not a valid vertex reference (expected v, v/vt, v//vn or v/vt/vn)");
-                    parts[partCount++] = element.substr(start, slash == std::string_view::npos ? slash : slash - start);
+                                       " is not a valid vertex reference (expected v, v/vt, v//vn "
+                                       "or v/vt/vn)");
+                    parts[partCount++] = element.substr(
+                        start, slash == std::string_view::npos ? slash : slash - start);
                     if (slash == std::string_view::npos) break;
                     start = slash + 1;
                 }
@@ -225,11 +243,12 @@ private:
 // Opens material libraries next to the OBJ file and remembers which could not be opened (the
 // stock MaterialFileReader splits its folder at ':' and only reports failures as text).
 class MtlReader : public tinyobj::MaterialReader {
-public:
+  public:
     explicit MtlReader(std::filesystem::path folder) : folder_(std::move(folder)) {}
 
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                    std::map<std::string, int>* matMap, std::string* warn, std::string* err) override {
+                    std::map<std::string, int>* matMap, std::string* warn,
+                    std::string* err) override {
         const std::filesystem::path path = folder_ / name;
         std::error_code ec;
         std::ifstream in;
@@ -244,14 +263,15 @@ public:
 
     std::vector<std::string> missing;
 
-private:
+  private:
     std::filesystem::path folder_;
 };
 
 std::string readWholeFile(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError(name + ": is a directory, not an OBJ file");
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(name + ": is a directory, not an OBJ file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
     std::ostringstream buffer;
@@ -283,8 +303,9 @@ Scene loadObj(const std::filesystem::path& path) {
     std::istringstream stream(text);
     // triangulate = false: tinyobjloader splits quads along the shorter diagonal, which is not the
     // contract's fan; we fan the polygons ourselves below.
-    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtlMaterials, &warn, &err, &stream, &mtlReader,
-                                     /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    const bool ok =
+        tinyobj::LoadObj(&attrib, &shapes, &mtlMaterials, &warn, &err, &stream, &mtlReader,
+                         /*triangulate=*/false, /*default_vcols_fallback=*/false);
     if (!ok) {
         std::string first = err.substr(0, err.find('\n'));
         throw InputError(name + ": " + (first.empty() ? "cannot parse OBJ file" : first));
@@ -296,7 +317,8 @@ Scene loadObj(const std::filesystem::path& path) {
     // Invariants the pre-scan relies on (a disagreement would misnumber triangles).
     if (attrib.vertices.size() / 3 != scan.vertices)
         throw InputError(name + ": read " + std::to_string(attrib.vertices.size() / 3) +
-                         " vertices but the file has " + std::to_string(scan.vertices) + " 'v' lines");
+                         " vertices but the file has " + std::to_string(scan.vertices) +
+                         " 'v' lines");
     size_t faceCount = 0, indexCount = 0;
     for (const tinyobj::shape_t& shape : shapes) {
         faceCount += shape.mesh.material_ids.size();
@@ -322,7 +344,8 @@ Scene loadObj(const std::filesystem::path& path) {
     // Faces without a (known) material get the default one, appended after the MTL's.
     uint32_t defaultMaterial = UINT32_MAX;
     auto materialFor = [&](int id) -> uint32_t {
-        if (id >= 0 && static_cast<size_t>(id) < mtlMaterials.size()) return static_cast<uint32_t>(id);
+        if (id >= 0 && static_cast<size_t>(id) < mtlMaterials.size())
+            return static_cast<uint32_t>(id);
         if (defaultMaterial == UINT32_MAX) {
             defaultMaterial = static_cast<uint32_t>(scene.materials.size());
             scene.materials.push_back(Material{});
@@ -332,7 +355,8 @@ Scene loadObj(const std::filesystem::path& path) {
 
     for (size_t k = 0; k < attrib.vertices.size(); ++k)
         if (!std::isfinite(static_cast<float>(attrib.vertices[k])))
-            throw InputError(name + ":" + std::to_string(scan.vertexLines[k / 3]) + ": coordinate is not a finite float");
+            throw InputError(name + ":" + std::to_string(scan.vertexLines[k / 3]) +
+                             ": coordinate is not a finite float");
 
     scene.triangles.reserve(expectedIndices - 2 * scan.faceSizes.size());
     size_t face = 0;

@@ -10,22 +10,26 @@
 namespace gpurt {
 
 struct RenderSettings {
-    int width = 512, height = 512;  // the image size is the camera's (CameraBasis); kept for callers
-    int maxBounces = 3;             // mirror reflections after the primary hit (callers copy Scene::maxBounces)
-    int threads = 0;                // CPU backend: 0 = all cores
+    // The image size is the camera's (CameraBasis); these are kept for callers.
+    int width = 512, height = 512;
+    // Mirror reflections after the primary hit (callers copy Scene::maxBounces here).
+    int maxBounces = 3;
+    int threads = 0;  // CPU backend: 0 = all cores
 };
 
 struct RenderStats {
     uint64_t primaryRays = 0, shadowRays = 0, secondaryRays = 0;
-    uint64_t overflowRays = 0;  // rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0
+    // Rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0.
+    uint64_t overflowRays = 0;
     double totalMs = 0;
 };
 
 // The image and the contract's AOVs, all row-major with row 0 = the TOP row of the image.
 struct RenderOutput {
     int width = 0, height = 0;
-    std::vector<glm::vec3> color;   // linear RGB
-    std::vector<float> depth;       // t of the first hit along the normalised primary ray; +inf on a miss
+    std::vector<glm::vec3> color;  // linear RGB
+    // t of the first hit along the normalised primary ray; +inf on a miss.
+    std::vector<float> depth;
     std::vector<float> prim;        // triangle index of the first hit; -1 on a miss
     std::vector<glm::vec3> normal;  // geometric unit normal facing the eye; 0,0,0 on a miss
     std::vector<float> steps;       // grid cells visited by the primary ray

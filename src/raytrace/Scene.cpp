@@ -38,7 +38,8 @@ std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye) {
         headlight.intensity = glm::dot(toCenter, toCenter);
     }
     // A camera at the centre would give a light of intensity 0; keep the scene visible instead.
-    if (!(headlight.intensity > 0.0f) || !std::isfinite(headlight.intensity)) headlight.intensity = 1.0f;
+    if (!(headlight.intensity > 0.0f) || !std::isfinite(headlight.intensity))
+        headlight.intensity = 1.0f;
     return {headlight};
 }
 

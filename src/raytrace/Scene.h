@@ -52,11 +52,14 @@ struct Bounds {
 };
 
 struct Scene {
-    std::vector<Triangle> triangles;    // contract numbering: k-th triangle of the OBJ, fans (v0, vi, vi+1)
+    // Contract numbering: the k-th triangle of the OBJ, polygons as fans (v0, vi, vi+1).
+    std::vector<Triangle> triangles;
     std::vector<uint32_t> materialIds;  // one per triangle, index into materials
-    std::vector<Material> materials;    // never empty (index 0 = default material when the OBJ has none)
-    std::vector<PointLight> lights;     // may be empty: renderers then add a headlight (lightsOrHeadlight)
-    std::optional<CameraSpec> camera;   // OBJ: none
+    // Never empty (index 0 = the default material when the OBJ has none).
+    std::vector<Material> materials;
+    // May be empty: renderers then add a headlight (lightsOrHeadlight).
+    std::vector<PointLight> lights;
+    std::optional<CameraSpec> camera;  // OBJ: none
     glm::vec3 background{0.05f, 0.05f, 0.08f};
     int maxBounces = 3;
 

@@ -23,7 +23,8 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
     if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
+    if (std::filesystem::is_directory(status))
+        throw InputError(name + ": is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
 
@@ -32,7 +33,8 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     in.read(head, static_cast<std::streamsize>(magicSize));
     if (in.bad()) throw InputError(name + ": cannot read");
     const size_t got = static_cast<size_t>(in.gcount());
-    if (got == magicSize && std::memcmp(head, kPackedSceneMagic, magicSize) == 0) return SceneFormat::Packed;
+    if (got == magicSize && std::memcmp(head, kPackedSceneMagic, magicSize) == 0)
+        return SceneFormat::Packed;
 
     // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).
     std::string bytes(head, got);

@@ -23,40 +23,48 @@ constexpr double kCellEnlarge = 1e-3;
 
 // Separating axis test of a triangle against an axis-aligned box (centre, half size): the 9
 // edge x box-axis cross products, the box's 3 face normals, then the triangle's plane.
-bool triangleOverlapsBox(const glm::dvec3& center, const glm::dvec3& half, const glm::dvec3 (&tri)[3]) {
+bool triangleOverlapsBox(const glm::dvec3& center, const glm::dvec3& half,
+                         const glm::dvec3 (&tri)[3]) {
     const glm::dvec3 v[3] = {tri[0] - center, tri[1] - center, tri[2] - center};
     const glm::dvec3 edges[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
     const glm::dvec3 boxAxes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     for (const glm::dvec3& e : edges) {
         for (const glm::dvec3& u : boxAxes) {
             const glm::dvec3 axis = glm::cross(e, u);
-            const double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]), p2 = glm::dot(axis, v[2]);
-            const double r = half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
+            const double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]),
+                         p2 = glm::dot(axis, v[2]);
+            const double r =
+                half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
             if (std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r) return false;
         }
     }
     for (int a = 0; a < 3; ++a) {
-        if (std::min({v[0][a], v[1][a], v[2][a]}) > half[a] || std::max({v[0][a], v[1][a], v[2][a]}) < -half[a])
+        if (std::min({v[0][a], v[1][a], v[2][a]}) > half[a] ||
+            std::max({v[0][a], v[1][a], v[2][a]}) < -half[a])
             return false;
     }
     // Plane through the triangle vs the box centred at the origin. A degenerate triangle has a
     // zero normal and passes, which is harmless (its bounding box already matched).
     const glm::dvec3 normal = glm::cross(edges[0], edges[1]);
-    const double r = half.x * std::abs(normal.x) + half.y * std::abs(normal.y) + half.z * std::abs(normal.z);
+    const double r =
+        half.x * std::abs(normal.x) + half.y * std::abs(normal.y) + half.z * std::abs(normal.z);
     return std::abs(glm::dot(normal, v[0])) <= r;
 }
 
 glm::ivec3 automaticResolution(size_t triangleCount, glm::vec3 extent, float lambda) {
     if (triangleCount == 0) return glm::ivec3(1);
     const double longest = std::max({extent.x, extent.y, extent.z});
-    const double alongLongest = std::min(double(lambda) * std::cbrt(double(triangleCount)), double(1 << 20));
+    const double alongLongest =
+        std::min(double(lambda) * std::cbrt(double(triangleCount)), double(1 << 20));
     glm::ivec3 res;
     for (int a = 0; a < 3; ++a)
-        res[a] = std::max(1, static_cast<int>(std::lround(alongLongest * double(extent[a]) / longest)));
+        res[a] =
+            std::max(1, static_cast<int>(std::lround(alongLongest * double(extent[a]) / longest)));
     auto total = [&] { return size_t(res.x) * size_t(res.y) * size_t(res.z); };
     if (total() > kMaxGridCells) {
         const double scale = std::cbrt(double(kMaxGridCells) / double(total()));
-        for (int a = 0; a < 3; ++a) res[a] = std::max(1, static_cast<int>(std::floor(res[a] * scale)));
+        for (int a = 0; a < 3; ++a)
+            res[a] = std::max(1, static_cast<int>(std::floor(res[a] * scale)));
         while (total() > kMaxGridCells) {
             int a = (res.x >= res.y && res.x >= res.z) ? 0 : (res.y >= res.z ? 1 : 2);
             res[a] -= 1;
@@ -77,8 +85,10 @@ void collectReferences(const Scene& scene, const UniformGrid& grid, size_t first
         const glm::dvec3 hi = (glm::max(tri[0], glm::max(tri[1], tri[2])) - gridMin) / cellSize;
         glm::ivec3 c0, c1;
         for (int a = 0; a < 3; ++a) {
-            c0[a] = static_cast<int>(std::clamp(std::floor(lo[a] - kCellEnlarge), 0.0, double(grid.resolution[a] - 1)));
-            c1[a] = static_cast<int>(std::clamp(std::floor(hi[a] + kCellEnlarge), 0.0, double(grid.resolution[a] - 1)));
+            c0[a] = static_cast<int>(
+                std::clamp(std::floor(lo[a] - kCellEnlarge), 0.0, double(grid.resolution[a] - 1)));
+            c1[a] = static_cast<int>(
+                std::clamp(std::floor(hi[a] + kCellEnlarge), 0.0, double(grid.resolution[a] - 1)));
         }
         const bool singleCell = c0 == c1;
         for (int z = c0.z; z <= c1.z; ++z)
@@ -86,24 +96,30 @@ void collectReferences(const Scene& scene, const UniformGrid& grid, size_t first
                 for (int x = c0.x; x <= c1.x; ++x) {
                     const glm::dvec3 center = gridMin + (glm::dvec3(x, y, z) + 0.5) * cellSize;
                     if (singleCell || triangleOverlapsBox(center, half, tri))
-                        out.emplace_back(static_cast<uint32_t>(grid.cellIndex({x, y, z})), static_cast<uint32_t>(id));
+                        out.emplace_back(static_cast<uint32_t>(grid.cellIndex({x, y, z})),
+                                         static_cast<uint32_t>(id));
                 }
     }
 }
 
 }  // namespace
 
-size_t UniformGrid::cells() const { return size_t(resolution.x) * size_t(resolution.y) * size_t(resolution.z); }
+size_t UniformGrid::cells() const {
+    return size_t(resolution.x) * size_t(resolution.y) * size_t(resolution.z);
+}
 
 float UniformGrid::rayOffset() const {
     const glm::vec3 extent = max - min;
     return 1e-4f * std::max(extent.x, std::max(extent.y, extent.z));
 }
 
-float UniformGrid::hitTolerance() const { return 1e-4f * std::min(cellSize.x, std::min(cellSize.y, cellSize.z)); }
+float UniformGrid::hitTolerance() const {
+    return 1e-4f * std::min(cellSize.x, std::min(cellSize.y, cellSize.z));
+}
 
 UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
-    if (scene.triangles.size() >= UINT32_MAX) throw InputError("scene: too many triangles for 32-bit ids");
+    if (scene.triangles.size() >= UINT32_MAX)
+        throw InputError("scene: too many triangles for 32-bit ids");
     UniformGrid grid;
 
     // The box: the scene's bounds, padded so that no extent is zero (a flat scene) and triangles
@@ -120,7 +136,8 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
         if (!(pad > 0.0f)) {
             // A point: pad by a fixed amount, large enough to survive the coordinates' rounding.
             const glm::vec3 magnitude = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
-            pad = std::max(1e-3f, 1e-4f * std::max(magnitude.x, std::max(magnitude.y, magnitude.z)));
+            pad =
+                std::max(1e-3f, 1e-4f * std::max(magnitude.x, std::max(magnitude.y, magnitude.z)));
         }
         lo = bounds.min - glm::vec3(pad);
         hi = bounds.max + glm::vec3(pad);
@@ -138,15 +155,18 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     if (options.resolution) {
         const glm::ivec3 r = *options.resolution;
         if (r.x < 1 || r.y < 1 || r.z < 1)
-            throw InputError("--grid: every resolution must be at least 1, got " + std::to_string(r.x) + "," +
-                             std::to_string(r.y) + "," + std::to_string(r.z));
+            throw InputError("--grid: every resolution must be at least 1, got " +
+                             std::to_string(r.x) + "," + std::to_string(r.y) + "," +
+                             std::to_string(r.z));
         if (size_t(r.x) * size_t(r.y) * size_t(r.z) > kMaxGridCells)
-            throw InputError("--grid: " + std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.z) +
-                             " has more than " + std::to_string(kMaxGridCells) + " cells");
+            throw InputError("--grid: " + std::to_string(r.x) + "," + std::to_string(r.y) + "," +
+                             std::to_string(r.z) + " has more than " +
+                             std::to_string(kMaxGridCells) + " cells");
         grid.resolution = r;
     } else {
         if (!(options.lambda > 0.0f) || !std::isfinite(options.lambda))
-            throw InputError("grid: lambda must be a positive number, got " + std::to_string(options.lambda));
+            throw InputError("grid: lambda must be a positive number, got " +
+                             std::to_string(options.lambda));
         grid.resolution = automaticResolution(scene.triangles.size(), hi - lo, options.lambda);
     }
     grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
@@ -154,7 +174,8 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     // Collect (cell, triangle) pairs on all cores, each thread a contiguous ascending range of
     // triangles; concatenating the threads' lists in order keeps every cell's ids ascending.
     const size_t n = scene.triangles.size();
-    size_t threads = options.threads > 0 ? size_t(options.threads) : size_t(std::thread::hardware_concurrency());
+    size_t threads =
+        options.threads > 0 ? size_t(options.threads) : size_t(std::thread::hardware_concurrency());
     threads = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / 256));
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> references(threads);
     std::vector<std::exception_ptr> errors(threads);
@@ -163,7 +184,8 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
         for (size_t t = 0; t < threads; ++t) {
             workers.emplace_back([&, t] {
                 try {
-                    collectReferences(scene, grid, n * t / threads, n * (t + 1) / threads, references[t]);
+                    collectReferences(scene, grid, n * t / threads, n * (t + 1) / threads,
+                                      references[t]);
                 } catch (...) {
                     errors[t] = std::current_exception();
                 }
@@ -177,7 +199,8 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     // Counting sort by cell.
     size_t total = 0;
     for (const auto& list : references) total += list.size();
-    if (total >= UINT32_MAX) throw InputError("scene: the grid would need more than 2^32 triangle references");
+    if (total >= UINT32_MAX)
+        throw InputError("scene: the grid would need more than 2^32 triangle references");
     grid.cellStart.assign(grid.cells() + 1, 0);
     for (const auto& list : references)
         for (const auto& [cell, id] : list) ++grid.cellStart[cell + 1];

@@ -15,16 +15,17 @@
 namespace gpurt {
 
 struct GridOptions {
-    float lambda = 2.0f;                     // cells along the longest axis ~ lambda * N^(1/3)
-    std::optional<glm::ivec3> resolution;    // overrides the automatic resolution
-    int threads = 0;                         // 0: all cores
+    float lambda = 2.0f;                   // cells along the longest axis ~ lambda * N^(1/3)
+    std::optional<glm::ivec3> resolution;  // overrides the automatic resolution
+    int threads = 0;                       // 0: all cores
 };
 
 struct UniformGrid {
-    glm::ivec3 resolution{1};                         // nx, ny, nz >= 1
-    glm::vec3 min{0.0f}, max{0.0f}, cellSize{1.0f};   // cellSize = (max-min)/resolution, all > 0
-    std::vector<uint32_t> cellStart;      // size nx*ny*nz + 1 (prefix sums)
-    std::vector<uint32_t> cellTriangles;  // triangle ids of cell c: [cellStart[c], cellStart[c+1]), ascending
+    glm::ivec3 resolution{1};                        // nx, ny, nz >= 1
+    glm::vec3 min{0.0f}, max{0.0f}, cellSize{1.0f};  // cellSize = (max-min)/resolution, all > 0
+    std::vector<uint32_t> cellStart;                 // size nx*ny*nz + 1 (prefix sums)
+    // Triangle ids of cell c: [cellStart[c], cellStart[c+1]), ascending.
+    std::vector<uint32_t> cellTriangles;
 
     int cellIndex(glm::ivec3 v) const { return v.x + resolution.x * (v.y + resolution.y * v.z); }
     size_t cells() const;

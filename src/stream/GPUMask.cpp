@@ -28,10 +28,10 @@ bool parseMaskMode(const std::string& text, MaskMode& mode) {
 }
 
 MaskMode defaultMaskMode() {
-    // Measured with `gpurt bench-mask` (docs/PERFORMANCE.md): on llvmpipe the in-shader early
-    // exit needs no mask pass and skips the same 4x2 blocks, so it wins; GPUs skip whole
-    // tiles with early depth, the seed's method.
-    return isSoftwareRenderer() ? MaskMode::EarlyExit : MaskMode::EarlyZ;
+    // Measured on the tracer's loop (docs/PERFORMANCE.md): on llvmpipe early-Z and stencil are
+    // within noise of each other and 2-4x faster than the in-shader early exit, whose SIMD code
+    // still runs the kernel's loops for discarded lanes. Early-Z is the seed's method.
+    return MaskMode::EarlyZ;
 }
 
 GPUMask::GPUMask(std::string name, MaskMode mode, const GPUFloatArray& state, int channel,
@@ -61,12 +61,21 @@ void GPUMask::init() {
     if (glCheckNamedFramebufferStatus(framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw EnvironmentError("mask '" + name_ + "': depth-stencil framebuffer is incomplete");
     program_.emplace("mask:" + name_, "stream/mask.frag");
+    counter_.emplace(GL_SAMPLES_PASSED);
     glProgramUniform1i(program_->id(), program_->uniformLocation("gpu_maskState"), 0);
 }
 
 GPUMask::~GPUMask() {
     if (framebuffer_) glDeleteFramebuffers(1, &framebuffer_);
     if (depthStencil_) glDeleteTextures(1, &depthStencil_);
+}
+
+std::optional<uint64_t> GPUMask::updateAndCount() {
+    if (mode_ != MaskMode::EarlyZ && mode_ != MaskMode::Stencil) return std::nullopt;
+    update();
+    const uint64_t count = counter_->result();
+    KernelStats::global()["mask:" + name_].fragments += count;
+    return count;
 }
 
 void GPUMask::setRange(float lo, float hi) {
@@ -99,7 +108,9 @@ void GPUMask::update() {
     glProgramUniform1i(program_->id(), program_->uniformLocation("gpu_maskChannel"), channel_);
     glProgramUniform2f(program_->id(), program_->uniformLocation("gpu_maskRange"), lo_, hi_);
     glBindTextureUnit(0, state().texture());
+    counter_->begin();
     generator_.draw({0, 0, state().width(), state().height()});
+    counter_->end();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
     glDepthMask(GL_TRUE);

@@ -14,6 +14,7 @@
 
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUProgram.h"
+#include "stream/GPUQuery.h"
 #include "stream/GPUStreamGenerator.h"
 
 #include <optional>
@@ -50,6 +51,9 @@ class GPUMask {
     // EarlyZ / Stencil: runs the mask pass, writing the depth-stencil buffer from the current
     // state. A no-op for EarlyExit and None.
     void update();
+    // update(), then the number of active elements (the mask pass's occlusion count; blocks).
+    // EarlyExit / None have no mask pass: returns std::nullopt.
+    std::optional<uint64_t> updateAndCount();
     // The depth-stencil texture kernels attach (0 for EarlyExit / None).
     GLuint depthStencil() const { return depthStencil_; }
 
@@ -65,6 +69,7 @@ class GPUMask {
     GLuint depthStencil_ = 0;
     GLuint framebuffer_ = 0;
     std::optional<GPUProgram> program_;
+    std::optional<GPUQuery> counter_;
     GPUStreamGenerator generator_;
 };
 

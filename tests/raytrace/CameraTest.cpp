@@ -35,7 +35,8 @@ struct DoubleCamera {
 };
 
 void expectNear(glm::vec3 actual, glm::dvec3 expected, double tol, const std::string& what) {
-    for (int a = 0; a < 3; ++a) EXPECT_NEAR(actual[a], expected[a], tol) << what << " component " << a;
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(actual[a], expected[a], tol) << what << " component " << a;
 }
 
 TEST(CameraTest, MatchesTheContractFormulaInDouble) {
@@ -56,8 +57,9 @@ TEST(CameraTest, MatchesTheContractFormulaInDouble) {
             expectNear(c.forward, ref.forward, 1e-6, "forward");
             expectNear(c.right, ref.right, 1e-6, "right");
             expectNear(c.upOrtho, ref.upOrtho, 1e-6, "upOrtho");
-            for (glm::ivec2 p : {glm::ivec2(0, 0), glm::ivec2(size.x - 1, 0), glm::ivec2(0, size.y - 1),
-                                 glm::ivec2(size.x - 1, size.y - 1), glm::ivec2(size.x / 2, size.y / 3)}) {
+            for (glm::ivec2 p :
+                 {glm::ivec2(0, 0), glm::ivec2(size.x - 1, 0), glm::ivec2(0, size.y - 1),
+                  glm::ivec2(size.x - 1, size.y - 1), glm::ivec2(size.x / 2, size.y / 3)}) {
                 const glm::vec3 d = primaryDirection(c, p.x, p.y);
                 expectNear(d, ref.direction(p.x, p.y), 2e-6, "direction");
                 EXPECT_NEAR(glm::dot(d, d), 1.0f, 1e-6f);
@@ -75,7 +77,8 @@ TEST(CameraTest, RowZeroIsTheTopAndColumnZeroTheLeft) {
     EXPECT_LT(bottomRight.y, 0.0f);
     EXPECT_GT(bottomRight.x, 0.0f);
     // The top edge of the image is fovy/2 above the axis: the top row's centre is just below it.
-    const double angle = std::atan2(double(primaryDirection(c, 32, 0).y), -double(primaryDirection(c, 32, 0).z));
+    const double angle =
+        std::atan2(double(primaryDirection(c, 32, 0).y), -double(primaryDirection(c, 32, 0).z));
     EXPECT_LT(angle, 30.0 * std::numbers::pi / 180.0);
     EXPECT_GT(angle, 29.0 * std::numbers::pi / 180.0);
 }

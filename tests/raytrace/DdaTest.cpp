@@ -28,7 +28,8 @@ struct CellInterval {
 };
 
 // The ray's parameter interval inside each cell (closed boxes), clipped to t >= tStart.
-std::vector<CellInterval> bruteForceIntervals(const TestGrid& g, glm::vec3 o, glm::vec3 d, double tStart) {
+std::vector<CellInterval> bruteForceIntervals(const TestGrid& g, glm::vec3 o, glm::vec3 d,
+                                              double tStart) {
     std::vector<CellInterval> out;
     for (int z = 0; z < g.res.z; ++z)
         for (int y = 0; y < g.res.y; ++y)
@@ -36,8 +37,10 @@ std::vector<CellInterval> bruteForceIntervals(const TestGrid& g, glm::vec3 o, gl
                 const glm::ivec3 c(x, y, z);
                 double tIn = tStart, tOut = 1e30;
                 for (int a = 0; a < 3; ++a) {
-                    const double lo = double(g.min[a]) + double(c[a]) * double(g.cellSize[a]);
-                    const double hi = lo + double(g.cellSize[a]);
+                    // The cell's faces where the float grid puts them (min + k * size in float),
+                    // so that an origin placed on a face is on it here too.
+                    const double lo = g.min[a] + float(c[a]) * g.cellSize[a];
+                    const double hi = g.min[a] + float(c[a] + 1) * g.cellSize[a];
                     if (d[a] == 0.0f) {
                         if (o[a] < lo || o[a] > hi) tIn = 1e31;
                         continue;
@@ -78,8 +81,10 @@ DdaWalk walk(const TestGrid& g, glm::vec3 o, glm::vec3 d, float& tEnter) {
 void checkRay(const TestGrid& g, glm::vec3 o, glm::vec3 d, const std::string& label) {
     float tEnter = 0.0f;
     const DdaWalk w = walk(g, o, d, tEnter);
-    const std::vector<CellInterval> truth = bruteForceIntervals(g, o, d, std::max(0.0, double(tEnter)) - 1e-6);
-    const double tol = 1e-4;  // in t; cells are ~0.3 wide and coordinates ~1, so float error is ~1e-6
+    const std::vector<CellInterval> truth =
+        bruteForceIntervals(g, o, d, std::max(0.0, double(tEnter)) - 1e-6);
+    const double tol =
+        1e-4;  // in t; cells are ~0.3 wide and coordinates ~1, so float error is ~1e-6
 
     auto key = [&](glm::ivec3 c) { return c.x + g.res.x * (c.y + g.res.y * c.z); };
     std::set<int> visited;
@@ -92,8 +97,9 @@ void checkRay(const TestGrid& g, glm::vec3 o, glm::vec3 d, const std::string& la
     for (const CellInterval& c : truth) {
         if (c.tOut - c.tIn <= tol) continue;
         ++significant;
-        EXPECT_TRUE(visited.count(key(c.cell))) << label << ": cell " << c.cell.x << "," << c.cell.y << ","
-                                                << c.cell.z << " [" << c.tIn << ", " << c.tOut << "] not visited";
+        EXPECT_TRUE(visited.count(key(c.cell)))
+            << label << ": cell " << c.cell.x << "," << c.cell.y << "," << c.cell.z << " [" << c.tIn
+            << ", " << c.tOut << "] not visited";
     }
     if (!w.entered) {
         EXPECT_EQ(significant, 0u) << label << ": intersectBox missed a ray that crosses the grid";
@@ -104,12 +110,14 @@ void checkRay(const TestGrid& g, glm::vec3 o, glm::vec3 d, const std::string& la
     double lastIn = -1e30;
     for (size_t k = 0; k < w.cells.size(); ++k) {
         const glm::ivec3 c = w.cells[k];
-        auto it = std::find_if(truth.begin(), truth.end(), [&](const CellInterval& t) { return t.cell == c; });
+        auto it = std::find_if(truth.begin(), truth.end(),
+                               [&](const CellInterval& t) { return t.cell == c; });
         if (it == truth.end()) {
             // Only acceptable for a zero-length touch the double test rounds away: the exit must
             // then equal the previous one.
             ASSERT_GT(k, 0u) << label;
-            EXPECT_NEAR(w.exits[k], w.exits[k - 1], tol) << label << ": visited a cell the ray does not touch";
+            EXPECT_NEAR(w.exits[k], w.exits[k - 1], tol)
+                << label << ": visited a cell the ray does not touch";
             continue;
         }
         EXPECT_GE(it->tIn, lastIn - tol) << label << ": cells out of order at step " << k;
@@ -117,7 +125,8 @@ void checkRay(const TestGrid& g, glm::vec3 o, glm::vec3 d, const std::string& la
         EXPECT_NEAR(w.exits[k], it->tOut, tol) << label << ": exit of step " << k;
         if (k > 0) {
             const glm::ivec3 step = glm::abs(c - w.cells[k - 1]);
-            EXPECT_EQ(step.x + step.y + step.z, 1) << label << ": step " << k << " is not to a face neighbour";
+            EXPECT_EQ(step.x + step.y + step.z, 1)
+                << label << ": step " << k << " is not to a face neighbour";
         }
     }
 }
@@ -142,12 +151,15 @@ TEST(DdaTest, RaysParallelToAxes) {
     const TestGrid g;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const glm::vec3 dirs[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
-                              {0.6f, 0.8f, 0}, {0, -0.6f, 0.8f}, {-0.8f, 0, -0.6f}, {0.28f, 0.96f, 0}};
+    const glm::vec3 dirs[] = {
+        {1, 0, 0},  {-1, 0, 0},      {0, 1, 0},        {0, -1, 0},        {0, 0, 1},
+        {0, 0, -1}, {0.6f, 0.8f, 0}, {0, -0.6f, 0.8f}, {-0.8f, 0, -0.6f}, {0.28f, 0.96f, 0}};
     for (int k = 0; k < 400; ++k) {
         for (const glm::vec3& d : dirs) {
-            // Origins off the cell boundaries (a ray lying in a boundary plane belongs to either side).
-            glm::vec3 o = g.min - 0.5f + (g.max() - g.min + 1.0f) * glm::vec3(u(rng), u(rng), u(rng));
+            // Origins off the cell boundaries (a ray lying in a boundary plane belongs to either
+            // side).
+            glm::vec3 o =
+                g.min - 0.5f + (g.max() - g.min + 1.0f) * glm::vec3(u(rng), u(rng), u(rng));
             checkRay(g, o, normalized(d), "axis-parallel ray " + std::to_string(k));
         }
     }
@@ -163,23 +175,30 @@ TEST(DdaTest, RaysStartingOnCellBoundaries) {
         // Put the origin on a boundary plane of one or two axes (corners and edges included).
         const int axis = k % 3;
         o[axis] = g.min[axis] + float(layer(rng)) * g.cellSize[axis];
-        if (k % 5 == 0) o[(axis + 1) % 3] = g.min[(axis + 1) % 3] + float(layer(rng)) * g.cellSize[(axis + 1) % 3];
+        if (k % 5 == 0)
+            o[(axis + 1) % 3] =
+                g.min[(axis + 1) % 3] + float(layer(rng)) * g.cellSize[(axis + 1) % 3];
         glm::vec3 d(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
         if (k % 7 == 0) d[(axis + 2) % 3] = 0.0f;  // and parallel to another axis
         checkRay(g, o, normalized(d), "boundary ray " + std::to_string(k));
     }
     // Starting exactly on the grid's box faces, pointing in and out.
-    checkRay(g, g.min + glm::vec3(0.0f, 0.3f, 0.2f), normalized({1.0f, 0.2f, 0.1f}), "min face, inwards");
-    checkRay(g, g.min + glm::vec3(0.0f, 0.3f, 0.2f), normalized({-1.0f, 0.2f, 0.1f}), "min face, outwards");
-    checkRay(g, g.max() - glm::vec3(0.0f, 0.3f, 0.2f), normalized({-1.0f, -0.2f, -0.1f}), "max face, inwards");
+    checkRay(g, g.min + glm::vec3(0.0f, 0.3f, 0.2f), normalized({1.0f, 0.2f, 0.1f}),
+             "min face, inwards");
+    checkRay(g, g.min + glm::vec3(0.0f, 0.3f, 0.2f), normalized({-1.0f, 0.2f, 0.1f}),
+             "min face, outwards");
+    checkRay(g, g.max() - glm::vec3(0.0f, 0.3f, 0.2f), normalized({-1.0f, -0.2f, -0.1f}),
+             "max face, inwards");
 }
 
 TEST(DdaTest, RayMissingTheBox) {
     const TestGrid g;
     float tEnter = 0.0f;
     EXPECT_FALSE(walk(g, g.min - 1.0f, normalized({-1, 0.3f, 0.2f}), tEnter).entered);
-    EXPECT_FALSE(walk(g, g.min - 1.0f, glm::vec3(1, 0, 0), tEnter).entered);  // parallel, beside the box
-    EXPECT_FALSE(walk(g, g.max() + 1.0f, normalized({1, 1, 1}), tEnter).entered);  // box behind the origin
+    EXPECT_FALSE(
+        walk(g, g.min - 1.0f, glm::vec3(1, 0, 0), tEnter).entered);  // parallel, beside the box
+    EXPECT_FALSE(
+        walk(g, g.max() + 1.0f, normalized({1, 1, 1}), tEnter).entered);  // box behind the origin
 }
 
 }  // namespace

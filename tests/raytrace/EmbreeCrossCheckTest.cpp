@@ -19,17 +19,17 @@ namespace {
 
 // One Embree device and scene holding the scene's triangles as geometry 0, primID = our index.
 class EmbreeScene {
-public:
+  public:
     explicit EmbreeScene(const Scene& scene) {
         device_ = rtcNewDevice(nullptr);
         scene_ = rtcNewScene(device_);
         rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
         RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
         const size_t n = scene.triangles.size();
-        auto* vertices = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-        auto* indices = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
         for (size_t k = 0; k < n; ++k) {
             const Triangle& t = scene.triangles[k];
             const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
@@ -67,11 +67,12 @@ public:
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(scene_, &context, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {std::numeric_limits<float>::infinity(), -1};
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return {std::numeric_limits<float>::infinity(), -1};
         return {rh.ray.tfar, int(rh.hit.primID)};
     }
 
-private:
+  private:
     RTCDevice device_;
     RTCScene scene_;
 };
@@ -111,8 +112,11 @@ void crossCheck(const CrossCheckCase& c) {
     const double hitMiss = double(hitMissAgree) / pixels;
     const double primShare = bothHit ? double(primAgree) / bothHit : 1.0;
     const double depthShare = bothHit ? double(depthAgree) / bothHit : 1.0;
-    std::printf("[ embree   ] %s (%dx%d): hit/miss agree %.4f%% of %d pixels; of %d hits: prim %.4f%%, depth %.4f%%\n",
-                c.name, c.width, c.height, 100.0 * hitMiss, pixels, bothHit, 100.0 * primShare, 100.0 * depthShare);
+    std::printf(
+        "[ embree   ] %s (%dx%d): hit/miss agree %.4f%% of %d pixels; of %d hits: prim %.4f%%, "
+        "depth %.4f%%\n",
+        c.name, c.width, c.height, 100.0 * hitMiss, pixels, bothHit, 100.0 * primShare,
+        100.0 * depthShare);
     EXPECT_GT(bothHit, pixels / 10) << c.name << ": the camera sees too little of the model";
     EXPECT_GE(hitMiss, 0.999) << c.name;
     EXPECT_GE(primShare, 0.995) << c.name;
@@ -120,25 +124,47 @@ void crossCheck(const CrossCheckCase& c) {
 }
 
 TEST(EmbreeCrossCheckTest, BunnyFront) {
-    crossCheck({"bunny front", "bunny.obj", {{0, 0, 3.43f}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 256, 256});
+    crossCheck(
+        {"bunny front", "bunny.obj", {{0, 0, 3.43f}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 256, 256});
 }
 
 TEST(EmbreeCrossCheckTest, CornellBox) {
-    crossCheck({"cornell box", "cornell_box.obj", {{278, 273, -800}, {278, 273, 0}, {0, 1, 0}, 39.3077f}, 256, 256});
+    crossCheck({"cornell box",
+                "cornell_box.obj",
+                {{278, 273, -800}, {278, 273, 0}, {0, 1, 0}, 39.3077f},
+                256,
+                256});
 }
 
 TEST(EmbreeCrossCheckTest, BunnyOblique) {
-    crossCheck({"bunny oblique", "bunny.obj", {{2.1f, 1.6f, -1.9f}, {0.05f, -0.1f, 0.02f}, {0, 1, 0}, 40.0f}, 256, 256});
+    crossCheck({"bunny oblique",
+                "bunny.obj",
+                {{2.1f, 1.6f, -1.9f}, {0.05f, -0.1f, 0.02f}, {0, 1, 0}, 40.0f},
+                256,
+                256});
 }
 
 TEST(EmbreeCrossCheckTest, CameraInsideTheBox) {
-    crossCheck({"inside cornell box", "cornell_box.obj", {{278, 273, 150}, {120, 200, 500}, {0, 1, 0}, 70.0f}, 256, 256});
-    crossCheck({"inside bunny box", "bunny.obj", {{0.2f, 0.1f, 0.6f}, {-0.3f, -0.2f, -0.5f}, {0, 1, 0}, 60.0f}, 256, 256});
+    crossCheck({"inside cornell box",
+                "cornell_box.obj",
+                {{278, 273, 150}, {120, 200, 500}, {0, 1, 0}, 70.0f},
+                256,
+                256});
+    crossCheck({"inside bunny box",
+                "bunny.obj",
+                {{0.2f, 0.1f, 0.6f}, {-0.3f, -0.2f, -0.5f}, {0, 1, 0}, 60.0f},
+                256,
+                256});
 }
 
 TEST(EmbreeCrossCheckTest, NonSquareImages) {
-    crossCheck({"bunny_lo wide", "bunny_lo.obj", {{0, 4.83f, 16.97f}, {0, 4.83f, 0.04f}, {0, 1, 0}, 45.0f}, 320, 180});
-    crossCheck({"teapot tall", "teapot.obj", {{0, 0, 52.68f}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 150, 256});
+    crossCheck({"bunny_lo wide",
+                "bunny_lo.obj",
+                {{0, 4.83f, 16.97f}, {0, 4.83f, 0.04f}, {0, 1, 0}, 45.0f},
+                320,
+                180});
+    crossCheck(
+        {"teapot tall", "teapot.obj", {{0, 0, 52.68f}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 150, 256});
 }
 
 }  // namespace

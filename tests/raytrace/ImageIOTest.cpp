@@ -20,10 +20,11 @@ namespace {
 namespace fs = std::filesystem;
 
 class ImageIOTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("gpurt-img-" + std::string(info->name()) + "-" + std::to_string(getpid()));
+        dir_ = fs::temp_directory_path() /
+               ("gpurt-img-" + std::string(info->name()) + "-" + std::to_string(getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -34,7 +35,8 @@ protected:
         size_t count = 0;
         for (const auto& entry : fs::directory_iterator(dir_)) {
             ++count;
-            EXPECT_NE(std::find(names.begin(), names.end(), entry.path().filename().string()), names.end())
+            EXPECT_NE(std::find(names.begin(), names.end(), entry.path().filename().string()),
+                      names.end())
                 << "unexpected file " << entry.path();
         }
         EXPECT_EQ(count, names.size());
@@ -93,7 +95,8 @@ TEST_F(ImageIOTest, ReadsBigEndianPfm) {
     for (float f : {1.5f, -2.0f}) {
         uint32_t bits;
         std::memcpy(&bits, &f, 4);
-        for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((bits >> shift) & 0xff);
+        for (int shift = 24; shift >= 0; shift -= 8)
+            bytes += static_cast<char>((bits >> shift) & 0xff);
     }
     std::ofstream(dir_ / "be.pfm", std::ios::binary) << bytes;
     int w = 0, h = 0, c = 0;
@@ -117,9 +120,14 @@ int srgb8(double linear) {
 
 TEST_F(ImageIOTest, PngIsValidAndSrgbEncoded) {
     const int w = 4, h = 2;
-    const std::vector<glm::vec3> linear = {
-        {0, 0, 0}, {1, 1, 1}, {0.5f, 0.25f, 0.001f}, {2.0f, -1.0f, 0.2f},
-        {0.8f, 0.04f, 0.6f}, {0.0031308f, 0.01f, 0.9f}, {0.3f, 0.7f, 0.1f}, {1e-6f, 0.999f, 0.5f}};
+    const std::vector<glm::vec3> linear = {{0, 0, 0},
+                                           {1, 1, 1},
+                                           {0.5f, 0.25f, 0.001f},
+                                           {2.0f, -1.0f, 0.2f},
+                                           {0.8f, 0.04f, 0.6f},
+                                           {0.0031308f, 0.01f, 0.9f},
+                                           {0.3f, 0.7f, 0.1f},
+                                           {1e-6f, 0.999f, 0.5f}};
     const fs::path path = dir_ / "image.png";
     writePng(path, w, h, linear);
     expectOnlyFiles({"image.png"});
@@ -136,7 +144,8 @@ TEST_F(ImageIOTest, PngIsValidAndSrgbEncoded) {
     ASSERT_EQ(pixels.size(), size_t(w * h * 3));
     for (size_t k = 0; k < linear.size(); ++k)
         for (int c = 0; c < 3; ++c)
-            EXPECT_EQ(int(pixels[3 * k + size_t(c)]), srgb8(linear[k][c])) << "pixel " << k << " channel " << c;
+            EXPECT_EQ(int(pixels[3 * k + size_t(c)]), srgb8(linear[k][c]))
+                << "pixel " << k << " channel " << c;
     EXPECT_EQ(srgb8(0.5), 188);  // the textbook value
 }
 

@@ -33,11 +33,11 @@ fs::path sourceDir() {
 
 // A fresh folder per test, removed afterwards.
 class JsonSceneTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("gpurt-json-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" + info->name());
+        dir_ = fs::temp_directory_path() / ("gpurt-json-" + std::to_string(::getpid()) + "-" +
+                                            info->test_suite_name() + "-" + info->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -61,7 +61,8 @@ protected:
             EXPECT_NE(message.find(path.string() + ":"), std::string::npos) << message;
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
             for (const std::string& part : expected)
-                EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+                EXPECT_NE(message.find(part), std::string::npos)
+                    << "'" << part << "' not in: " << message;
         }
     }
 
@@ -90,7 +91,8 @@ glm::dvec3 rotateZ(glm::dvec3 p, double degrees) {
 
 TEST_F(JsonSceneTest, TranslateRotateScaleIsTRzRyRxS) {
     write("tri.obj", kTriangleObj);
-    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [{"file": "tri.obj", "transform":
+    const Scene scene =
+        loadJsonScene(write("scene.json", R"({"meshes": [{"file": "tri.obj", "transform":
         {"translate": [1, -2, 3], "rotate": [30, 45, -60], "scale": [2, 0.5, -3]}}]})"));
     ASSERT_EQ(scene.triangles.size(), 1u);
     const glm::dvec3 in[3] = {{1, 2, 3}, {-4, 5, 0.5}, {0, -1, 2}};
@@ -118,7 +120,8 @@ TEST_F(JsonSceneTest, ScalarScaleAndPartialTransforms) {
 
 TEST_F(JsonSceneTest, MatrixIsRowMajor) {
     write("tri.obj", kTriangleObj);
-    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [{"file": "tri.obj", "transform":
+    const Scene scene =
+        loadJsonScene(write("scene.json", R"({"meshes": [{"file": "tri.obj", "transform":
         {"matrix": [0, -1, 0, 5,   1, 0, 0, 6,   0, 0, 2, 7,   0, 0, 0, 1]}}]})"));
     ASSERT_EQ(scene.triangles.size(), 1u);
     // x' = -y + 5, y' = x + 6, z' = 2z + 7
@@ -128,9 +131,11 @@ TEST_F(JsonSceneTest, MatrixIsRowMajor) {
 }
 
 TEST_F(JsonSceneTest, NumberingContinuesAcrossMeshesAndMaterialsAreOffset) {
-    write("quad.mtl", "newmtl red\nKd 1 0 0\nnewmtl glass\nKd 0 0 0\nKs 0.5 0.6 0.7\nNs 80\nillum 3\n");
+    write("quad.mtl",
+          "newmtl red\nKd 1 0 0\nnewmtl glass\nKd 0 0 0\nKs 0.5 0.6 0.7\nNs 80\nillum 3\n");
     write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl glass\nf 1 2 3 4\nusemtl red\nf 1 2 4\n");
+          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl glass\nf 1 2 3 4\nusemtl "
+          "red\nf 1 2 4\n");
     write("tri.obj", kTriangleObj);
     const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
         {"file": "tri.obj"},
@@ -206,14 +211,16 @@ TEST_F(JsonSceneTest, DefaultsWhenOptionalPartsAreMissing) {
     EXPECT_EQ(file.scene.maxBounces, Scene{}.maxBounces);
     EXPECT_EQ(file.scene.background, Scene{}.background);
     EXPECT_FALSE(file.size.has_value());
-    EXPECT_FALSE(loadJsonSceneFile(write("bare.json", R"({"meshes": []})")).scene.camera.has_value());
+    EXPECT_FALSE(
+        loadJsonSceneFile(write("bare.json", R"({"meshes": []})")).scene.camera.has_value());
 }
 
 TEST_F(JsonSceneTest, SyntaxErrorsNameLineAndColumn) {
     expectError("{\n  \"meshes\": [\n    ,\n  ]\n}\n", {"scene.json:3:5: ", "syntax error"});
     expectError("", {"scene.json:1:1: ", "unexpected end of input"});
     expectError("{\"meshes\": []} trailing", {"scene.json:1:"});
-    expectError("{\"meshes\": [], \"background\": [1e999, 0, 0]}", {"1e999"});
+    expectError("{\"meshes\": [],\n \"background\": [1e999, 0, 0]}",
+                {"scene.json:2:17: ", "1e999"});
     expectError("{\"meshes\": [\"\x01\xff\"]}", {"scene.json:1:"});
 }
 
@@ -223,13 +230,27 @@ TEST_F(JsonSceneTest, StructureErrorsNameTheJsonPointer) {
     expectError(R"({"meshes": [], "lihgts": []})", {"/lihgts: unknown key"});
     expectError(R"({"meshes": [], "lights": [{"position": [0, 0, 0], "colour": [1, 1, 1]}]})",
                 {"/lights/0/colour: unknown key"});
-    expectError(R"({"meshes": [{"file": "tri.obj", "transfrom": {}}]})", {"/meshes/0/transfrom: unknown key"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "transfrom": {}}]})",
+                {"/meshes/0/transfrom: unknown key"});
     expectError(R"({"meshes": [{"file": "tri.obj", "material": {"diffuse": [1, 1, 1], "kd": 1}}]})",
                 {"/meshes/0/material/kd: unknown key"});
     expectError(R"({"lights": []})", {"/meshes: missing required key"});
-    expectError(R"({"meshes": [{"file": "tri.obj"}, {"transform": {}}]})", {"/meshes/1/file: missing required key"});
-    expectError(R"({"meshes": [], "lights": [{"color": [1, 1, 1]}]})", {"/lights/0/position: missing required key"});
-    expectError(R"({"meshes": [], "camera": {"eye": [0, 0, 1]}})", {"/camera/target: missing required key"});
+    expectError(R"({"meshes": [{"file": "tri.obj"}, {"transform": {}}]})",
+                {"/meshes/1/file: missing required key"});
+    expectError(R"({"meshes": [], "lights": [{"color": [1, 1, 1]}]})",
+                {"/lights/0/position: missing required key"});
+    expectError(R"({"meshes": [], "camera": {"eye": [0, 0, 1]}})",
+                {"/camera/target: missing required key"});
+}
+
+TEST_F(JsonSceneTest, DuplicateKeysAreErrors) {
+    expectError(R"({"meshes": [], "meshes": []})", {"/meshes: duplicate key"});
+    expectError(R"({"meshes": [], "lights": [{"position": [0, 0, 0]}, [1, [2]], {"color": [1, 1, 1],
+        "position": [0, 0, 0], "color": [1, 1, 1]}]})",
+                {"/lights/2/color: duplicate key"});
+    expectError(
+        R"({"meshes": [{"file": "a.obj"}, {"file": "a.obj", "transform": {"scale": 1, "scale": 2}}]})",
+        {"/meshes/1/transform/scale: duplicate key"});
 }
 
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
@@ -237,13 +258,15 @@ TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});
     expectError(R"({"meshes": [{"file": 3}]})", {"/meshes/0/file: expected a string, got number"});
     expectError(R"({"meshes": ["tri.obj"]})", {"/meshes/0: expected an object, got string"});
-    expectError(R"({"meshes": [], "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], "fovy": "wide"}})",
-                {"/camera/fovy: expected a number, got string"});
+    expectError(
+        R"({"meshes": [], "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], "fovy": "wide"}})",
+        {"/camera/fovy: expected a number, got string"});
     expectError(R"({"meshes": [{"file": "tri.obj", "transform": {"translate": [1, null, 3]}}]})",
                 {"/meshes/0/transform/translate/1: expected a number, got null"});
     expectError(R"({"meshes": [{"file": "tri.obj", "transform": {"rotate": [1, 2]}}]})",
                 {"/meshes/0/transform/rotate: expected an array of 3 numbers, got 2 elements"});
-    expectError(R"({"meshes": [], "background": [1, true, 0]})", {"/background/1: expected a number, got boolean"});
+    expectError(R"({"meshes": [], "background": [1, true, 0]})",
+                {"/background/1: expected a number, got boolean"});
     expectError(R"({"meshes": [], "render": {"size": [256.5, 256]}})",
                 {"/render/size/0: expected an integer, got 256.5"});
     expectError(R"({"meshes": [], "render": {"max_bounces": "3"}})",
@@ -252,13 +275,16 @@ TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
 
 TEST_F(JsonSceneTest, RangeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
-    const std::string camera = R"({"meshes": [], "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], )";
+    const std::string camera =
+        R"({"meshes": [], "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], )";
     expectError(camera + R"("fovy": 0}})", {"/camera/fovy: must be between 0 and 180"});
     expectError(camera + R"("fovy": 180}})", {"/camera/fovy"});
     expectError(camera + R"("fovy": -5}})", {"/camera/fovy"});
-    expectError(camera + R"("up": [0, 0, 2]}})", {"/camera/up: up must be non-zero and not parallel"});
+    expectError(camera + R"("up": [0, 0, 2]}})",
+                {"/camera/up: up must be non-zero and not parallel"});
     expectError(camera + R"("up": [0, 0, 0]}})", {"/camera/up"});
-    expectError(R"({"meshes": [], "camera": {"eye": [1, 2, 3], "target": [1, 2, 3]}})", {"/camera/target"});
+    expectError(R"({"meshes": [], "camera": {"eye": [1, 2, 3], "target": [1, 2, 3]}})",
+                {"/camera/target"});
     expectError(R"({"meshes": [], "lights": [{"position": [0, 0, 0], "color": [1, -0.5, 1]}]})",
                 {"/lights/0/color/1: must be >= 0"});
     expectError(R"({"meshes": [], "lights": [{"position": [0, 0, 0], "intensity": -1}]})",
@@ -266,13 +292,18 @@ TEST_F(JsonSceneTest, RangeErrorsNameTheJsonPointer) {
     expectError(R"({"meshes": [], "lights": [{"position": [0, 0, 0], "intensity": 1e39}]})",
                 {"/lights/0/intensity: 1e+39 does not fit in a 32-bit float"});
     expectError(R"({"meshes": [], "background": [0, 0, -1]})", {"/background/2: must be >= 0"});
-    expectError(R"({"meshes": [], "render": {"size": [0, 256]}})", {"/render/size/0: must be in 1..16384"});
-    expectError(R"({"meshes": [], "render": {"size": [256, 16385]}})", {"/render/size/1: must be in 1..16384"});
+    expectError(R"({"meshes": [], "render": {"size": [0, 256]}})",
+                {"/render/size/0: must be in 1..16384"});
+    expectError(R"({"meshes": [], "render": {"size": [256, 16385]}})",
+                {"/render/size/1: must be in 1..16384"});
     expectError(R"({"meshes": [], "render": {"size": [-3, 16385]}})", {"/render/size/0"});
-    expectError(R"({"meshes": [], "render": {"size": [256]}})", {"/render/size: expected an array of 2 integers"});
-    expectError(R"({"meshes": [], "render": {"max_bounces": -1}})", {"/render/max_bounces: must be in 0..64"});
+    expectError(R"({"meshes": [], "render": {"size": [256]}})",
+                {"/render/size: expected an array of 2 integers"});
+    expectError(R"({"meshes": [], "render": {"max_bounces": -1}})",
+                {"/render/max_bounces: must be in 0..64"});
     expectError(R"({"meshes": [], "render": {"max_bounces": 65}})", {"/render/max_bounces"});
-    expectError(R"({"meshes": [], "render": {"max_bounces": 18446744073709551615}})", {"/render/max_bounces"});
+    expectError(R"({"meshes": [], "render": {"max_bounces": 18446744073709551615}})",
+                {"/render/max_bounces"});
     expectError(R"({"meshes": [{"file": "tri.obj", "material": {"shininess": -2}}]})",
                 {"/meshes/0/material/shininess: must be >= 0"});
     expectError(R"({"meshes": [{"file": "tri.obj", "material": {"reflectivity": 1.5}}]})",
@@ -300,7 +331,8 @@ TEST_F(JsonSceneTest, TransformErrors) {
         "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}}]})",
                 {"/meshes/0/transform/matrix: cannot be combined with \"translate\""});
     expectError(R"({"meshes": [{"file": "tri.obj", "transform": {"scale": 3e38}}]})",
-                {"/meshes/0/transform: moves a vertex of the mesh's triangle 0 outside the 32-bit float range"});
+                {"/meshes/0/transform: moves a vertex of the mesh's triangle 0 outside the 32-bit "
+                 "float range"});
 }
 
 TEST_F(JsonSceneTest, MissingAndBadMeshFiles) {
@@ -308,7 +340,8 @@ TEST_F(JsonSceneTest, MissingAndBadMeshFiles) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": [{"file": "tri.obj"}, {"file": "tri.obj"}, {"file": "x.obj"}]})",
                 {"/meshes/2/file: no such file 'x.obj'"});
-    expectError(R"({"meshes": [{"file": "folder.obj"}]})", {"/meshes/0/file: 'folder.obj' is a directory"});
+    expectError(R"({"meshes": [{"file": "folder.obj"}]})",
+                {"/meshes/0/file: 'folder.obj' is a directory"});
     expectError(R"({"meshes": [{"file": ""}]})", {"/meshes/0/file: empty file name"});
     // An error inside the OBJ keeps the OBJ loader's message, which names the OBJ and its line.
     const fs::path bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
@@ -324,24 +357,29 @@ TEST_F(JsonSceneTest, MeshPathsAreRelativeToTheJsonFile) {
     fs::create_directories(dir_ / "meshes");
     write("meshes/tri.obj", kTriangleObj);
     fs::create_directories(dir_ / "scenes");
-    const fs::path scene = write("scenes/scene.json", R"({"meshes": [{"file": "../meshes/tri.obj"}]})");
+    const fs::path scene =
+        write("scenes/scene.json", R"({"meshes": [{"file": "../meshes/tri.obj"}]})");
     EXPECT_EQ(loadJsonScene(scene).triangles.size(), 1u);
     const std::string absolute = (dir_ / "meshes" / "tri.obj").string();
-    EXPECT_EQ(loadJsonScene(write("abs.json", R"({"meshes": [{"file": ")" + absolute + R"("}]})")).triangles.size(),
+    EXPECT_EQ(loadJsonScene(write("abs.json", R"({"meshes": [{"file": ")" + absolute + R"("}]})"))
+                  .triangles.size(),
               1u);
 }
 
 TEST_F(JsonSceneTest, DeeplyNestedInputIsRefusedWithoutCrashing) {
-    expectError(std::string(100000, '[') + std::string(100000, ']'), {"top level: expected an object"});
-    expectError(R"({"meshes": [], "lights": )" + std::string(100000, '[') + std::string(100000, ']') + "}",
-                {"/lights/0: expected an object, got array"});
+    expectError(std::string(100000, '[') + std::string(100000, ']'),
+                {"top level: expected an object"});
+    expectError(
+        R"({"meshes": [], "lights": )" + std::string(100000, '[') + std::string(100000, ']') + "}",
+        {"/lights/0: expected an object, got array"});
 }
 
 TEST_F(JsonSceneTest, LoadSceneRecognisesTheFormatByContent) {
     write("tri.obj", kTriangleObj);
     // JSON content under an .obj name, with leading whitespace and a byte order mark.
-    const LoadedScene json = loadScene(write(
-        "looks-like.obj", "\xEF\xBB\xBF \n\t{\"meshes\": [{\"file\": \"tri.obj\"}], \"render\": {\"size\": [64, 32]}}"));
+    const LoadedScene json = loadScene(write("looks-like.obj",
+                                             "\xEF\xBB\xBF \n\t{\"meshes\": [{\"file\": "
+                                             "\"tri.obj\"}], \"render\": {\"size\": [64, 32]}}"));
     EXPECT_EQ(json.scene.triangles.size(), 1u);
     ASSERT_TRUE(json.size.has_value());
     EXPECT_EQ(*json.size, glm::ivec2(64, 32));
@@ -350,14 +388,18 @@ TEST_F(JsonSceneTest, LoadSceneRecognisesTheFormatByContent) {
     EXPECT_EQ(obj.scene.triangles.size(), 1u);
     EXPECT_FALSE(obj.size.has_value());
     // Long leading whitespace before the '{'.
-    EXPECT_EQ(loadScene(write("spaces.json", std::string(10000, ' ') + R"({"meshes": []})")).scene.triangles.size(), 0u);
+    EXPECT_EQ(loadScene(write("spaces.json", std::string(10000, ' ') + R"({"meshes": []})"))
+                  .scene.triangles.size(),
+              0u);
 
     auto expectLoadError = [](const fs::path& path, const std::string& expected) {
         try {
             loadScene(path);
             ADD_FAILURE() << "no error for " << path;
         } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find(path.string() + ": " + expected), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(path.string() + ": " + expected),
+                      std::string::npos)
+                << e.what();
         }
     };
     expectLoadError(write("scene.gpscene", std::string("GPRTSCN1") + std::string(32, '\0')),
@@ -406,7 +448,9 @@ TEST(ShippedScenesTest, LoadWithTheSeedsTriangleCounts) {
     // B's camera and lights are inside the room.
     const Scene room = loadJsonScene(scenes / "room.json");
     const Bounds box = room.bounds();
-    auto inside = [&](glm::vec3 p) { return glm::all(glm::lessThan(box.min, p)) && glm::all(glm::lessThan(p, box.max)); };
+    auto inside = [&](glm::vec3 p) {
+        return glm::all(glm::lessThan(box.min, p)) && glm::all(glm::lessThan(p, box.max));
+    };
     EXPECT_TRUE(inside(room.camera->eye));
     for (const PointLight& light : room.lights) EXPECT_TRUE(inside(light.position));
 }

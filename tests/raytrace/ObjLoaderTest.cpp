@@ -17,10 +17,11 @@ namespace {
 namespace fs = std::filesystem;
 
 class ObjLoaderTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("gpurt-obj-" + std::string(info->name()) + "-" + std::to_string(getpid()));
+        dir_ = fs::temp_directory_path() /
+               ("gpurt-obj-" + std::string(info->name()) + "-" + std::to_string(getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -41,7 +42,8 @@ protected:
         } catch (const InputError& e) {
             const std::string what = e.what();
             const std::string prefix = path.string() + ":" + std::to_string(line) + ": ";
-            EXPECT_EQ(what.rfind(prefix, 0), 0u) << "message: " << what << "\nexpected prefix: " << prefix;
+            EXPECT_EQ(what.rfind(prefix, 0), 0u)
+                << "message: " << what << "\nexpected prefix: " << prefix;
             EXPECT_NE(what.find(mentions), std::string::npos) << "message: " << what;
             EXPECT_EQ(what.find('\n'), std::string::npos) << "message is not one line: " << what;
         }
@@ -63,12 +65,12 @@ TEST_F(ObjLoaderTest, NumbersTrianglesInFileOrderWithPolygonFans) {
     // contract's fan (A,B,C), (A,C,D).
     const fs::path path = write("fan.obj",
                                 "# comment\n"
-                                "v 0 0 0\n"      // 1 A
-                                "v 10 0 0\n"     // 2 B
-                                "v 11 1 0\n"     // 3 C
-                                "v 1 1 0\n"      // 4 D
-                                "v 5 7 1\n"      // 5 E
-                                "v 2 2 2\n"      // 6 F
+                                "v 0 0 0\n"   // 1 A
+                                "v 10 0 0\n"  // 2 B
+                                "v 11 1 0\n"  // 3 C
+                                "v 1 1 0\n"   // 4 D
+                                "v 5 7 1\n"   // 5 E
+                                "v 2 2 2\n"   // 6 F
                                 "vt 0 0\nvn 0 0 1\n"
                                 "f 1 2 3\n"
                                 "f 1 2 3 4\n"
@@ -96,10 +98,12 @@ TEST_F(ObjLoaderTest, NumbersTrianglesInFileOrderWithPolygonFans) {
 }
 
 TEST_F(ObjLoaderTest, ReadsExactFloatCoordinates) {
-    const fs::path path = write("exact.obj", "v 0.1 -16.070313 1e-3\nv +3 .5 -0.0E-3\nv 1. 2.5e+2 7\nf 1 2 3\n");
+    const fs::path path =
+        write("exact.obj", "v 0.1 -16.070313 1e-3\nv +3 .5 -0.0E-3\nv 1. 2.5e+2 7\nf 1 2 3\n");
     const Scene scene = loadObj(path);
     ASSERT_EQ(scene.triangles.size(), 1u);
-    expectTriangle(scene.triangles[0], {0.1f, -16.070313f, 1e-3f}, {3.0f, 0.5f, 0.0f}, {1.0f, 250.0f, 7.0f});
+    expectTriangle(scene.triangles[0], {0.1f, -16.070313f, 1e-3f}, {3.0f, 0.5f, 0.0f},
+                   {1.0f, 250.0f, 7.0f});
 }
 
 TEST_F(ObjLoaderTest, AcceptsForwardReferencesAndOtherLineEndings) {
@@ -121,7 +125,8 @@ TEST_F(ObjLoaderTest, EmptyFileHasNoTriangles) {
     EXPECT_TRUE(scene.triangles.empty());
     EXPECT_EQ(scene.materials.size(), 1u);
     EXPECT_TRUE(scene.bounds().empty());
-    EXPECT_TRUE(loadObj(write("comments.obj", "# nothing\n\n   \n" + kThreeVertices)).triangles.empty());
+    EXPECT_TRUE(
+        loadObj(write("comments.obj", "# nothing\n\n   \n" + kThreeVertices)).triangles.empty());
 }
 
 TEST_F(ObjLoaderTest, ReadsMtlMaterials) {
@@ -129,7 +134,7 @@ TEST_F(ObjLoaderTest, ReadsMtlMaterials) {
           "newmtl red\nKd 1 0 0\nKs 0.5 0.25 0.125\nNs 32\nillum 2\n"
           "newmtl mirror\nKd 0.1 0.2 0.3\nKs 0.9 0.8 0.7\nNs 100\nillum 3\n");
     const fs::path path = write("scene.obj", "mtllib scene.mtl\n" + kThreeVertices +
-                                                 "f 1 2 3\n"          // no usemtl yet: default
+                                                 "f 1 2 3\n"  // no usemtl yet: default
                                                  "usemtl red\nf 1 2 3\nf 3 2 1\n"
                                                  "usemtl mirror\nf 1 2 3\n"
                                                  "usemtl nosuch\nf 1 2 3\n");
@@ -153,7 +158,8 @@ TEST_F(ObjLoaderTest, ReadsMtlMaterials) {
 }
 
 TEST_F(ObjLoaderTest, MissingMtlIsAWarning) {
-    const fs::path path = write("nomtl.obj", "mtllib missing.mtl\n" + kThreeVertices + "usemtl red\nf 1 2 3\n");
+    const fs::path path =
+        write("nomtl.obj", "mtllib missing.mtl\n" + kThreeVertices + "usemtl red\nf 1 2 3\n");
     ::testing::internal::CaptureStderr();
     const Scene scene = loadObj(path);
     const std::string err = ::testing::internal::GetCapturedStderr();
@@ -176,7 +182,9 @@ TEST_F(ObjLoaderTest, MissingOrUnreadableFile) {
 }
 
 TEST_F(ObjLoaderTest, BinaryGarbage) {
-    std::string garbage = "\x7f" "ELF\x02\x01\x01";
+    std::string garbage =
+        "\x7f"
+        "ELF\x02\x01\x01";
     garbage += std::string(1, '\0');
     for (int k = 0; k < 200; ++k) garbage += static_cast<char>((k * 73 + 11) % 256);
     expectError(garbage, 1, "binary");
@@ -188,7 +196,8 @@ TEST_F(ObjLoaderTest, BadFaceIndices) {
     expectError(kThreeVertices + "f 1 2 4\n", 4, "out of range");
     expectError(kThreeVertices + "f 1 2 3\nf 1 2 40\n", 5, "out of range");
     expectError(kThreeVertices + "f -1 -2 -4\n", 4, "out of range");
-    expectError("v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", 3, "out of range");  // relative to line 3
+    expectError("v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", 3,
+                "out of range");  // relative to line 3
     expectError(kThreeVertices + "f 1 2 99999999999999999999\n", 4, "out of range");
     expectError(kThreeVertices + "f 1 2 x\n", 4, "'x'");
     expectError(kThreeVertices + "f 1 2 3.5\n", 4, "'3.5'");
@@ -211,7 +220,7 @@ TEST_F(ObjLoaderTest, BadVertices) {
     expectError("v 0 1e 0\n", 1, "'1e'");
     expectError("v 0 0 0\nv nan 0 0\n", 2, "'nan' is not a finite number");
     expectError("v 0 -inf 0\n", 1, "'-inf' is not a finite number");
-    expectError("v 0 0 1e39\n", 1, "'1e39'");   // overflows float
+    expectError("v 0 0 1e39\n", 1, "'1e39'");      // overflows float
     expectError("v -1e400 0 0\n", 1, "'-1e400'");  // overflows double
     expectError("vn 0 x 1\n", 1, "'x'");
 }

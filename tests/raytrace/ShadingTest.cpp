@@ -43,7 +43,8 @@ RenderOutput renderCentre(const Scene& scene, int maxBounces = 3) {
 }
 
 void expectColor(glm::vec3 actual, glm::dvec3 expected) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], 1e-5 * std::max(1.0, expected[c])) << "channel " << c;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(actual[c], expected[c], 1e-5 * std::max(1.0, expected[c])) << "channel " << c;
 }
 
 const glm::dvec3 kd(0.5, 0.25, 1.0), ks(0.2, 0.3, 0.4);
@@ -85,7 +86,8 @@ TEST(ShadingTest, OccludedLightLeavesAmbient) {
     Scene scene = floorScene(material(kd, ks, 8.0f));
     scene.lights.push_back({{1, 0, 1}, {1, 1, 1}, 1.0f});
     // A small triangle across the segment from the origin to the light, off the primary ray.
-    scene.triangles.push_back({{0.45f, -0.05f, 0.55f}, {0.55f, -0.05f, 0.45f}, {0.5f, 0.08f, 0.5f}});
+    scene.triangles.push_back(
+        {{0.45f, -0.05f, 0.55f}, {0.55f, -0.05f, 0.45f}, {0.5f, 0.08f, 0.5f}});
     scene.materialIds.push_back(0);
     const RenderOutput out = renderCentre(scene);
     EXPECT_EQ(out.prim[0], 0.0f);

@@ -57,7 +57,8 @@ void expectWellFormed(const UniformGrid& grid, size_t triangleCount) {
     for (int a = 0; a < 3; ++a) {
         EXPECT_GT(grid.cellSize[a], 0.0f);
         EXPECT_LT(grid.min[a], grid.max[a]);
-        EXPECT_NEAR(grid.cellSize[a], (grid.max[a] - grid.min[a]) / float(grid.resolution[a]), 1e-6f * grid.cellSize[a]);
+        EXPECT_NEAR(grid.cellSize[a], (grid.max[a] - grid.min[a]) / float(grid.resolution[a]),
+                    1e-6f * grid.cellSize[a]);
     }
     for (size_t c = 0; c < grid.cells(); ++c) {
         ASSERT_LE(grid.cellStart[c], grid.cellStart[c + 1]);
@@ -82,10 +83,17 @@ Scene randomScene(int count, unsigned seed) {
         glm::vec3 a = base, b = base + size * glm::vec3(unit(rng), unit(rng), unit(rng)),
                   c = base + size * glm::vec3(unit(rng), unit(rng), unit(rng));
         switch (kind(rng)) {
-            case 0: b.z = c.z = a.z; break;          // in a z plane
-            case 1: b.x = c.x = a.x; break;          // in an x plane
-            case 2: c = a + 0.999f * (b - a); break; // sliver
-            default: break;
+            case 0:
+                b.z = c.z = a.z;
+                break;  // in a z plane
+            case 1:
+                b.x = c.x = a.x;
+                break;  // in an x plane
+            case 2:
+                c = a + 0.999f * (b - a);
+                break;  // sliver
+            default:
+                break;
         }
         auto inside = [](glm::vec3 p) { return glm::clamp(p, glm::vec3(0.0f), glm::vec3(10.0f)); };
         scene.triangles.push_back({inside(a), inside(b), inside(c)});
@@ -108,13 +116,16 @@ void expectNoMissingReferences(const Scene& scene, const UniformGrid& grid) {
                     // Must be referenced: overlaps the cell shrunk by a hair (rounding of the box).
                     if (clipOverlaps(scene.triangles[id], lo + 1e-6 * cell, hi - 1e-6 * cell)) {
                         ++pairs;
-                        ASSERT_TRUE(cellHas(grid, c, id)) << "triangle " << id << " missing from cell " << x << ","
-                                                          << y << "," << z;
+                        ASSERT_TRUE(cellHas(grid, c, id))
+                            << "triangle " << id << " missing from cell " << x << "," << y << ","
+                            << z;
                     } else if (cellHas(grid, c, id)) {
                         ++extra;
                         // An extra reference must at least be near the cell.
-                        EXPECT_TRUE(clipOverlaps(scene.triangles[id], lo - 0.01 * cell, hi + 0.01 * cell))
-                            << "triangle " << id << " is far from cell " << x << "," << y << "," << z;
+                        EXPECT_TRUE(
+                            clipOverlaps(scene.triangles[id], lo - 0.01 * cell, hi + 0.01 * cell))
+                            << "triangle " << id << " is far from cell " << x << "," << y << ","
+                            << z;
                     }
                 }
             }
@@ -152,8 +163,12 @@ TEST(UniformGridTest, TriangleOnACellBoundaryIsInBothCells) {
     const float zPlane = before.min.z + before.cellSize.z * 2.0f;
     const float xPlane = before.min.x + before.cellSize.x * 3.0f;
     const glm::vec3 c = before.min + before.cellSize * glm::vec3(1.5f, 1.5f, 1.5f);
-    scene.triangles.push_back({{c.x - 0.3f, c.y - 0.3f, zPlane}, {c.x + 0.3f, c.y - 0.3f, zPlane}, {c.x, c.y + 0.3f, zPlane}});
-    scene.triangles.push_back({{xPlane, c.y - 0.3f, c.z - 0.3f}, {xPlane, c.y + 0.3f, c.z - 0.3f}, {xPlane, c.y, c.z + 0.3f}});
+    scene.triangles.push_back({{c.x - 0.3f, c.y - 0.3f, zPlane},
+                               {c.x + 0.3f, c.y - 0.3f, zPlane},
+                               {c.x, c.y + 0.3f, zPlane}});
+    scene.triangles.push_back({{xPlane, c.y - 0.3f, c.z - 0.3f},
+                               {xPlane, c.y + 0.3f, c.z - 0.3f},
+                               {xPlane, c.y, c.z + 0.3f}});
     scene.materialIds.resize(3, 0);
     const UniformGrid grid = buildGrid(scene, options);
     ASSERT_EQ(grid.min, before.min);
@@ -196,7 +211,8 @@ TEST(UniformGridTest, BoxIsPaddedBoundsAndResolutionFollowsTheBoxShape) {
     const glm::dvec3 boxExtent = glm::dvec3(grid.max) - glm::dvec3(grid.min);
     const double longest = std::max({boxExtent.x, boxExtent.y, boxExtent.z});
     for (int a = 0; a < 3; ++a)
-        EXPECT_NEAR(grid.resolution[a], alongLongest * boxExtent[a] / longest, 0.5 + 1e-9) << "axis " << a;
+        EXPECT_NEAR(grid.resolution[a], alongLongest * boxExtent[a] / longest, 0.5 + 1e-9)
+            << "axis " << a;
 }
 
 TEST(UniformGridTest, DegenerateScenes) {
