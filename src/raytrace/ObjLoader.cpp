@@ -292,6 +292,16 @@ Scene loadObj(const std::filesystem::path& path) {
     // A UTF-8 byte order mark would hide the first line's keyword from tinyobjloader.
     if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
 
+    // Comments run from '#' to the end of the line, also after data ("f 1 2 3 # quad"), as
+    // exporters write them; blanking them keeps line numbers and spares tinyobjloader.
+    for (size_t at = text.find('#'); at != std::string::npos; at = text.find('#', at)) {
+        const size_t end = text.find('\n', at);
+        std::fill(text.begin() + std::ptrdiff_t(at),
+                  end == std::string::npos ? text.end() : text.begin() + std::ptrdiff_t(end), ' ');
+        if (end == std::string::npos) break;
+        at = end;
+    }
+
     ObjScanner scanner(name);
     const ObjPreScan scan = scanner.scan(text);
 

@@ -201,7 +201,6 @@ TEST_F(ObjLoaderTest, BadFaceIndices) {
     expectError(kThreeVertices + "f 1 2 99999999999999999999\n", 4, "out of range");
     expectError(kThreeVertices + "f 1 2 x\n", 4, "'x'");
     expectError(kThreeVertices + "f 1 2 3.5\n", 4, "'3.5'");
-    expectError(kThreeVertices + "f 1 2 3 # trailing comment\n", 4, "'#'");
     expectError(kThreeVertices + "vt 0 0\nf 1/0 2/1 3/1\n", 5, "index 0");
     expectError(kThreeVertices + "vt 0 0\nf 1/2 2/1 3/1\n", 5, "texture coordinate index 2");
     expectError(kThreeVertices + "f 1// 2 3\n", 4, "'1//'");
@@ -223,6 +222,13 @@ TEST_F(ObjLoaderTest, BadVertices) {
     expectError("v 0 0 1e39\n", 1, "'1e39'");      // overflows float
     expectError("v -1e400 0 0\n", 1, "'-1e400'");  // overflows double
     expectError("vn 0 x 1\n", 1, "'x'");
+}
+
+TEST_F(ObjLoaderTest, TrailingCommentsAreComments) {
+    // Exporters write "f 1 2 3 # note"; the comment runs to the end of the line.
+    const Scene scene = loadObj(write("c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # one\nf 3 2 1#two\n"));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_EQ(scene.triangles[1].v0, glm::vec3(0, 1, 0));
 }
 
 }  // namespace
