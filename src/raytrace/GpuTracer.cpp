@@ -69,28 +69,6 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 }
 }  // namespace
 
-uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
-    GpuPipeline& p = pipeline(camera.width, camera.height);
-    setCamera(p.raygen, camera);
-    p.raygen.dispatch();
-    return traceLoop(p);
-}
-
-uint64_t GpuTracer::traceShadows(glm::vec3 lightPosition) {
-    if (!pipeline_) throw UsageError("traceShadows needs a tracePrimary first");
-    GpuPipeline& p = *pipeline_;
-    p.weight.fill(1.0f);
-    p.color.fill(0.0f);
-    p.surface.setUniform("background", scene_.background).dispatch();
-    p.shadowgen.setUniform("lightPosition", lightPosition).dispatch();
-    return traceLoop(p);
-}
-
-std::vector<glm::vec4> GpuTracer::primaryHits() {
-    if (!pipeline_) return {};
-    return toVectors<glm::vec4>(pipeline_->hit.download(), 4);
-}
-
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     GpuPipeline& p = pipeline(camera.width, camera.height);

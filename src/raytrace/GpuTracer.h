@@ -34,13 +34,6 @@ class GpuTracer {
     // The whole image: colour and the primary AOVs.
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings);
 
-    // Benchmark entry points: trace only (no shading); return the number of rays traced.
-    // tracePrimary leaves the primary hits for traceShadows (one ray per hit, to `light`).
-    uint64_t tracePrimary(const CameraBasis& camera);
-    uint64_t traceShadows(glm::vec3 light);
-    // Downloads the primary hits of the last tracePrimary: (t, u, v, triangle | -1), top row first.
-    std::vector<glm::vec4> primaryHits();
-
     const SceneTextures& textures() const { return textures_; }
 
   private:
