@@ -3,6 +3,7 @@
 #include "GLTest.h"
 
 #include "stream/GPUKernel.h"
+#include "stream/GPUMask.h"
 #include "stream/GPUProgram.h"
 #include "stream/StreamErrors.h"
 
@@ -138,10 +139,7 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         if (!fragment && !vertex) continue;
         std::vector<AssembledShader> variants{library.assemble(path)};
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
-            variants.push_back(library.assemble(
-                path, "#define main gpu_kernelMain\n",
-                "#undef main\n" + library.read("stream/mask_condition.glsl") +
-                    "\nvoid main() { if (!gpu_maskAccepts()) discard; gpu_kernelMain(); }\n"));
+            variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {
             const fs::path out = dir / (std::to_string(validated) + (fragment ? ".frag" : ".vert"));
             writeFile(out, variants[v].source);

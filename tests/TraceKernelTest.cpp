@@ -63,9 +63,7 @@ TEST_F(TraceKernels, RaygenFollowsTheContractCamera) {
     spec.fovy = 52.0f;
     const CameraBasis camera = makeCamera(spec, w, h);
     GpuPipeline p(w, h, textures, 1, MaskMode::EarlyExit);
-    p.raygen.setUniform("eye", camera.eye).setUniform("forward", camera.forward).setUniform("right", camera.right)
-        .setUniform("upOrtho", camera.upOrtho).setUniform("tanHalf", camera.tanHalf).setUniform("aspect", camera.aspect)
-        .setUniform("imageSize", glm::vec2(float(w), float(h)));
+    p.setCamera(camera);
     EXPECT_EQ(p.raygen.execute(), uint64_t(w * h));
     const auto dirs = asVec4(p.rayDir.download());
     const auto origins = asVec4(p.rayOrigin.download());

@@ -2,6 +2,7 @@
 // the kernels one by one). Stream element (x, y) is pixel column x, row y from the top.
 #pragma once
 
+#include "raytrace/Camera.h"
 #include "raytrace/SceneTextures.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
@@ -68,6 +69,17 @@ struct GpuPipeline {
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
         bounce.addOutput(rayOrigin).addOutput(rayDir);
+    }
+
+    // The contract camera as the ray generator's uniforms.
+    void setCamera(const CameraBasis& c) {
+        raygen.setUniform("eye", c.eye)
+            .setUniform("forward", c.forward)
+            .setUniform("right", c.right)
+            .setUniform("upOrtho", c.upOrtho)
+            .setUniform("tanHalf", c.tanHalf)
+            .setUniform("aspect", c.aspect)
+            .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
     }
 
     // The ray states as mask values (glsl/common/raymath.h).

@@ -50,16 +50,6 @@ uint64_t GpuTracer::traceLoop(GpuPipeline& p) {
 }
 
 namespace {
-void setCamera(GPUKernel& raygen, const CameraBasis& c) {
-    raygen.setUniform("eye", c.eye)
-        .setUniform("forward", c.forward)
-        .setUniform("right", c.right)
-        .setUniform("upOrtho", c.upOrtho)
-        .setUniform("tanHalf", c.tanHalf)
-        .setUniform("aspect", c.aspect)
-        .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
-}
-
 template <typename T>
 std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
     std::vector<T> out(flat.size() / size_t(stride));
@@ -83,7 +73,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     p.weight.fill(1.0f);  // every pixel starts a path of weight 1
     p.surface.setUniform("background", scene_.background);
 
-    setCamera(p.raygen, camera);
+    p.setCamera(camera);
     p.raygen.dispatch();
     for (int b = 0; b <= maxBounces; ++b) {
         const uint64_t rays = traceLoop(p);

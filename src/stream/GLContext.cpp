@@ -32,12 +32,19 @@ struct GLContext::Impl {
     OSMesaContext osmesaContext = nullptr;
     std::array<unsigned char, 4> osmesaPixel{};  // OSMesa needs a buffer to be made current
 
-    ~Impl() {
+    // Releases the EGL context and display, if any (also between attempts at creation).
+    void releaseEgl() {
         if (eglContext != EGL_NO_CONTEXT) {
             eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display, eglContext);
         }
         if (display != EGL_NO_DISPLAY) eglTerminate(display);
+        eglContext = EGL_NO_CONTEXT;
+        display = EGL_NO_DISPLAY;
+    }
+
+    ~Impl() {
+        releaseEgl();
         if (osmesaContext) OSMesaDestroyContext(osmesaContext);
     }
 };
@@ -102,16 +109,6 @@ std::string makeEglContext(GLContext::Impl& impl, EGLDisplay display) {
     return {};
 }
 
-void resetEgl(GLContext::Impl& impl) {
-    if (impl.eglContext != EGL_NO_CONTEXT) {
-        eglMakeCurrent(impl.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(impl.display, impl.eglContext);
-    }
-    if (impl.display != EGL_NO_DISPLAY) eglTerminate(impl.display);
-    impl.eglContext = EGL_NO_CONTEXT;
-    impl.display = EGL_NO_DISPLAY;
-}
-
 void createEgl(GLContext::Impl& impl) {
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!clientExtensions)
@@ -156,7 +153,7 @@ void createEgl(GLContext::Impl& impl) {
             return true;
         }
         why += (why.empty() ? "" : "; ") + std::string("device: ") + error;
-        resetEgl(impl);
+        impl.releaseEgl();
         return false;
     };
     for (EGLDeviceEXT device : hardware)
@@ -169,7 +166,7 @@ void createEgl(GLContext::Impl& impl) {
             return;
         }
         why += (why.empty() ? "" : "; ") + std::string("surfaceless: ") + error;
-        resetEgl(impl);
+        impl.releaseEgl();
     }
     for (EGLDeviceEXT device : software)
         if (tryDevice(device)) return;

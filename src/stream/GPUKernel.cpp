@@ -119,9 +119,9 @@ void GPUKernel::build() {
     std::string epilogue;
     if (mode == MaskMode::EarlyExit) {
         // Early exit: the kernel's own main becomes gpu_kernelMain, called after the mask test.
-        preamble += "#define main gpu_kernelMain\n";
-        epilogue = "#undef main\n" + ShaderLibrary::global().read("stream/mask_condition.glsl") +
-                   "\nvoid main() {\n    if (!gpu_maskAccepts()) discard;\n    gpu_kernelMain();\n}\n";
+        const EarlyExitWrapping wrapping = earlyExitWrapping();
+        preamble += wrapping.preamble;
+        epilogue = wrapping.epilogue;
     }
     program_.emplace(name_, fragmentPath_, preamble, epilogue);
     builtFor_ = mode;
@@ -130,6 +130,8 @@ void GPUKernel::build() {
     if (mode == MaskMode::EarlyExit)
         glProgramUniform1i(program_->id(), program_->uniformLocation("gpu_maskState"),
                            GLint(inputs_.size()));
+    // NDC z 0 (window depth 0.5): in front of masked elements (depth 1), behind active ones (0).
+    glProgramUniform1f(program_->id(), program_->uniformLocation("gpu_depth"), 0.0f);
     for (auto& [uniformName, uniform] : uniforms_) uniform.dirty = true;
 }
 
@@ -247,7 +249,6 @@ void GPUKernel::dispatch() {
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
-    float depth = 0.0f;  // NDC z 0: window depth 0.5
     if (mode == MaskMode::EarlyZ) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);  // active elements hold depth 0, masked ones 1
@@ -261,7 +262,6 @@ void GPUKernel::dispatch() {
     if (inPlace_) glTextureBarrier();
 
     glUseProgram(program_->id());
-    setUniform("gpu_depth", depth);
     applyUniforms();
 
     const GPUFloatArray& first = outputs_.front().target();

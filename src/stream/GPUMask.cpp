@@ -34,6 +34,12 @@ MaskMode defaultMaskMode() {
     return MaskMode::EarlyZ;
 }
 
+EarlyExitWrapping earlyExitWrapping() {
+    return {"#define main gpu_kernelMain\n",
+            "#undef main\n" + ShaderLibrary::global().read("stream/mask_condition.glsl") +
+                "\nvoid main() {\n    if (!gpu_maskAccepts()) discard;\n    gpu_kernelMain();\n}\n"};
+}
+
 GPUMask::GPUMask(std::string name, MaskMode mode, const GPUFloatArray& state, int channel,
                  float lo, float hi)
     : name_(std::move(name)), mode_(mode), state_(&state), channel_(channel), lo_(lo), hi_(hi) {

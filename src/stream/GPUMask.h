@@ -29,6 +29,14 @@ bool parseMaskMode(const std::string& text, MaskMode& mode);
 // The fastest mode for the current driver, from the measurements in docs/PERFORMANCE.md.
 MaskMode defaultMaskMode();
 
+// How a kernel is wrapped for MaskMode::EarlyExit: the preamble renames its main to
+// gpu_kernelMain, the epilogue adds the mask condition and a main that tests it first.
+struct EarlyExitWrapping {
+    std::string preamble;
+    std::string epilogue;
+};
+EarlyExitWrapping earlyExitWrapping();
+
 class GPUMask {
   public:
     // Elements with lo <= state[channel] <= hi are active. `state` must outlive the mask.
