@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
+#include <algorithm>
 
 namespace {
 
@@ -148,6 +151,59 @@ TEST_F(Cli, RepeatedRendersAreBitIdentical) {
         EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), std::istreambuf_iterator<char>(),
                                std::istreambuf_iterator<char>(b))) << x;
     }
+}
+
+}  // namespace
+
+namespace {
+
+// gpurt bench: every backend's rate on the same rays, with the fields the issue names.
+TEST_F(Cli, BenchPrimaryReportsEveryBackendOnTheSameRays) {
+    const Result r = gpurt("bench " + kTeapot + " --size 40x30 --runs 1 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_TRUE(j.contains("backends"));
+    std::set<std::string> names;
+    for (const auto& b : j["backends"]) {
+        names.insert(b["backend"].get<std::string>());
+        for (const char* key : {"mrays_per_s", "rays", "ms", "passes", "threads", "renderer"})
+            EXPECT_TRUE(b.contains(key)) << b["backend"] << " " << key;
+        EXPECT_EQ(b["rays"], 40 * 30) << b["backend"];  // primary: one per pixel, all counted
+        EXPECT_GT(b["mrays_per_s"].get<double>(), 0.0);
+        if (b.contains("agreement")) EXPECT_GE(b["agreement"].get<double>(), 0.999) << b["backend"];
+        if (b["backend"] == "embree") EXPECT_DOUBLE_EQ(b["ratio_to_embree"].get<double>(), 1.0);
+    }
+    EXPECT_TRUE(names.count("gl") && names.count("cpu"));
+    for (const auto& b : j["backends"])
+        if (b["backend"] == "gl") EXPECT_EQ(b["passes"]["trace"]["fragments"], 40 * 30);
+}
+
+// Shadow rays: one per primary hit, counted independently from the prim AOV of a render.
+TEST_F(Cli, BenchShadowTracesOneRayPerPrimaryHit) {
+    ASSERT_EQ(gpurt("render " + kTeapot + " -o " + path("out.png") + " --size 40x30 --backend cpu --aov prim=" +
+                    path("p.pfm")).code, 0);
+    std::ifstream in(dir / "p.pfm", std::ios::binary);
+    std::string header[3];
+    in >> header[0] >> header[1] >> header[2] >> header[2];
+    in.get();
+    std::vector<float> prim(40 * 30);
+    in.read(reinterpret_cast<char*>(prim.data()), std::streamsize(prim.size() * 4));
+    const auto hits = std::count_if(prim.begin(), prim.end(), [](float p) { return p >= 0.0f; });
+    ASSERT_GT(hits, 0);
+    for (const char* backend : {"gl", "cpu"}) {
+        const Result r = gpurt("bench " + kTeapot + " --size 40x30 --runs 1 --rays shadow --json --backend " + backend);
+        ASSERT_EQ(r.code, 0) << r.err;
+        const auto j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["backend"], backend);
+        EXPECT_EQ(j["rays"], hits) << backend;
+        EXPECT_EQ(j["ray_kind"], "shadow");
+    }
+}
+
+TEST_F(Cli, BenchRefusesBadOptions) {
+    expectRefused("bench " + kTeapot + " --rays sideways", "--rays");
+    expectRefused("bench " + kTeapot + " --backend optix", "--backend");
+    expectRefused("bench " + path("missing.obj"), "missing.obj");
 }
 
 }  // namespace

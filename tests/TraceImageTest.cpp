@@ -93,17 +93,22 @@ INSTANTIATE_TEST_SUITE_P(
         return name + "_" + std::to_string(info.index);
     });
 
-TEST_F(TraceImage, EveryMaskModeAndStepCountGivesTheSameHits) {
+TEST_F(TraceImage, EveryKernelMaskModeAndStepCountGivesTheSameHits) {
     const Case c{"bunny_lo.obj", {3, 6, 12}, {0, 4.8f, 0}, 45, 64, 48};
     RenderOutput reference, cpu;
-    renderBoth(c, reference, cpu, GpuTracerOptions{MaskMode::EarlyExit, 1});
-    for (MaskMode mode : {MaskMode::EarlyZ, MaskMode::Stencil, MaskMode::EarlyExit})
-        for (int steps : {1, 3, 64}) {
-            RenderOutput gl;
-            renderBoth(c, gl, cpu, GpuTracerOptions{mode, steps});
-            EXPECT_EQ(gl.prim, reference.prim) << maskModeName(mode) << " " << steps;
-            EXPECT_EQ(gl.steps, reference.steps) << maskModeName(mode) << " " << steps;
-        }
+    renderBoth(c, reference, cpu, GpuTracerOptions{MaskMode::EarlyExit, 1, 0.0f, TraceKernel::Split});
+    EXPECT_EQ(reference.steps, cpu.steps);
+    for (TraceKernel kernel : {TraceKernel::Split, TraceKernel::Fused})
+        for (MaskMode mode : {MaskMode::EarlyZ, MaskMode::Stencil, MaskMode::EarlyExit})
+            for (int steps : {0, 1, 3, 64}) {
+                RenderOutput gl;
+                renderBoth(c, gl, cpu, GpuTracerOptions{mode, steps, 0.0f, kernel});
+                const std::string what = std::string(traceKernelName(kernel)) + " " + maskModeName(mode) + " " +
+                                         std::to_string(steps);
+                EXPECT_EQ(gl.prim, reference.prim) << what;
+                EXPECT_EQ(gl.steps, reference.steps) << what;
+                EXPECT_EQ(gl.color, reference.color) << what;
+            }
 }
 
 }  // namespace

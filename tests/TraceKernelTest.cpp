@@ -133,6 +133,7 @@ TEST_F(TraceKernels, TraversalVisitsTheSameCellSequenceAsTheCpuDda) {
     grid.max = {2.0f, 1.0f, 1.0f};
     grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
     grid.cellStart.assign(grid.cells() + 1, 0u);
+    grid.skip.assign(grid.cells(), 1);  // no empty-space skipping: every cell along the ray
     SceneTextures textures(scene, grid);
 
     const int w = 32, h = 32;

@@ -29,7 +29,8 @@ struct RenderOptions {
     std::string stats;  // "", "text" or "json"
     bool statsGiven = false;
     std::string mask;
-    int traverseSteps = 16;
+    std::string kernel = "fused";
+    int traverseSteps = 0;
     float waitThreshold = 0.0f;
     float lambda = 2.0f;
     int bounces = -1;
@@ -112,6 +113,7 @@ int runRender(const RenderOptions& o) {
         GpuTracerOptions tracerOptions;
         tracerOptions.mask = mask;
         tracerOptions.traverseSteps = o.traverseSteps;
+        parseTraceKernel(o.kernel, tracerOptions.kernel);
         tracerOptions.waitThreshold = o.waitThreshold;
         GpuTracer tracer(scene, grid, tracerOptions);
         out = tracer.render(camera, settings);
@@ -151,8 +153,14 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
     cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)");
-    cmd->add_option("--traverse-steps", o->traverseSteps, "Grid cells per traverser pass (1 = the seed)")
-        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--kernel", o->kernel,
+                    "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
+                    "(the Purcell/Christen traverser and intersector pair)")
+        ->check(CLI::IsMember({"fused", "split"}));
+    cmd->add_option("--traverse-steps", o->traverseSteps,
+                    "Grid cells per trace pass (0 = default: whole traversal when fused, 16 when split; "
+                    "1 with split = the seed)")
+        ->check(CLI::Range(0, 1 << 20));
     cmd->add_option("--wait-threshold", o->waitThreshold,
                     "Run the intersector once this fraction of live rays wait (0: every iteration)")
         ->check(CLI::Range(0.0f, 1.0f));

@@ -87,6 +87,32 @@ GPURT_FN bool ddaStep(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
     return true;
 }
 
+// Empty-space skipping with proximity clouds (Cohen & Sheffer 1994): when every cell within
+// chessboard distance k - 1 of the ray's cell is empty (UniformGrid::skip), the ray leaves that
+// cube of cells in one move and enters the next cell along it. k = 1 is exactly ddaStep. The
+// other axes never move backwards, so rounding cannot make a ray revisit cells. Returns false
+// when the ray leaves the grid.
+GPURT_FN bool ddaAdvance(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res, int k,
+                         GPURT_INOUT(ivec3) voxel, GPURT_INOUT(vec3) tMax) {
+    ivec3 lo = max(voxel - ivec3(k - 1), ivec3(0));
+    ivec3 hi = min(voxel + ivec3(k - 1), res - ivec3(1));
+    vec3 tCube;  // where the ray leaves the cube along each axis
+    for (int a = 0; a < 3; ++a)
+        tCube[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], d[a] > 0.0f ? hi[a] : lo[a]);
+    int axis = (tCube.x <= tCube.y && tCube.x <= tCube.z) ? 0 : (tCube.y <= tCube.z ? 1 : 2);
+    ivec3 next = voxel;
+    if (k > 1) {
+        vec3 p = o + tCube[axis] * d;
+        next = clamp(ivec3(floor((p - gridMin) / cellSize)), lo, hi);
+        for (int a = 0; a < 3; ++a) next[a] = d[a] > 0.0f ? max(next[a], voxel[a]) : min(next[a], voxel[a]);
+    }
+    next[axis] = d[axis] > 0.0f ? hi[axis] + 1 : lo[axis] - 1;
+    if (next[axis] < 0 || next[axis] >= res[axis]) return false;
+    voxel = next;
+    for (int a = 0; a < 3; ++a) tMax[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], voxel[a]);
+    return true;
+}
+
 // Moller-Trumbore ray/triangle test (Moller & Trumbore 1997) with precomputed edges
 // e1 = v1 - v0, e2 = v2 - v0. Returns true with t, u, v on a hit (edges inclusive, any facing);
 // degenerate triangles (det == 0) are never hit.

@@ -4,10 +4,13 @@
 #define GPURT_SCENE_LAYOUT_H
 
 // Voxel index: RG32UI, one texel per grid cell c = x + nx * (y + ny * z), wrapped into rows of
-// this width: (start of the cell's list in the list texture, number of triangles; 0 = empty).
+// this width: (start of the cell's list in the cell triangles, number of triangles) or, for an
+// empty cell, (skip distance of UniformGrid::skip, 0).
 #define GPURT_INDEX_WIDTH 4096
-// Grid element lists: R32UI triangle ids, wrapped into rows of this width.
-#define GPURT_LIST_WIDTH 4096
+// Grid element lists ("cell triangles"): RGBA32F, the triangles of every cell's list in list
+// order, three texels each as in the triangle texture but with w = the triangle id:
+// (v0.xyz, id), (e1, 0), (e2, 0); this many references a row (3 x 4096 texels).
+#define GPURT_REFS_PER_ROW 4096
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024

@@ -32,10 +32,8 @@ void main() {
     int bestId = -1;
     float bestU = 0.0f, bestV = 0.0f;
     for (uint i = range.x; i < range.x + range.y; ++i) {
-        int id = int(listEntry(i));
         vec3 v0, e1, e2;
-        int material;
-        fetchTriangle(id, v0, e1, e2, material);
+        int id = fetchListTriangle(i, v0, e1, e2);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
             t <= tExit + cellTolerance) {

@@ -5,7 +5,7 @@
 #include "../common/stream.glsl"
 
 uniform usampler2D voxelIndex;  // (list start, count) per cell
-uniform usampler2D cellList;    // triangle ids
+uniform sampler2D cellTriangles; // the cells' lists: v0 + id, e1, e2
 uniform sampler2D triangles;    // v0 + material, e1, e2
 uniform sampler2D materials;
 
@@ -22,8 +22,14 @@ uvec2 cellRange(ivec3 v) {
     return texelFetch(voxelIndex, ivec2(c % GPURT_INDEX_WIDTH, c / GPURT_INDEX_WIDTH), 0).xy;
 }
 
-uint listEntry(uint i) {
-    return texelFetch(cellList, ivec2(int(i % uint(GPURT_LIST_WIDTH)), int(i / uint(GPURT_LIST_WIDTH))), 0).x;
+// Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.
+int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2) {
+    ivec2 at = ivec2(3u * (k % uint(GPURT_REFS_PER_ROW)), k / uint(GPURT_REFS_PER_ROW));
+    vec4 a = texelFetch(cellTriangles, at, 0);
+    v0 = a.xyz;
+    e1 = texelFetch(cellTriangles, at + ivec2(1, 0), 0).xyz;
+    e2 = texelFetch(cellTriangles, at + ivec2(2, 0), 0).xyz;
+    return int(a.w);
 }
 
 // Vertex 0, the two edges and the material id of triangle `id`.

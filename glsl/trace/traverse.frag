@@ -34,11 +34,13 @@ void main() {
             break;
         }
         steps += 1;  // this cell is visited
-        if (cellRange(cell).y != 0u) {
+        uvec2 range = cellRange(cell);
+        if (range.y != 0u) {
             state = RAY_WAIT;
             break;
         }
-        if (ddaCellExit(tMax) > tLimit || !ddaStep(o, d, gridMin, cellSize, gridRes, cell, tMax)) {
+        // An empty cell: range.x is its skip distance.
+        if (ddaCellExit(tMax) > tLimit || !ddaAdvance(o, d, gridMin, cellSize, gridRes, int(range.x), cell, tMax)) {
             state = RAY_DEAD;
             break;
         }

@@ -7,13 +7,11 @@
 #include "raytrace/CpuTracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <thread>
 
+#include "raytrace/Parallel.h"
 #include "raytrace/RayMath.h"
 
 namespace gpurt::raymath {
@@ -37,6 +35,16 @@ CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
 }
 
 TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
+    return traceRay<false>(o, d, tLimit);
+}
+
+TraceHit CpuTracer::traceAny(glm::vec3 o, glm::vec3 d, float tLimit) const {
+    return traceRay<true>(o, d, tLimit);
+}
+
+// glsl/trace/trace.frag is this function as one kernel.
+template <bool AnyHit>
+TraceHit CpuTracer::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
     TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, RAY_INACTIVE};
 
     // Ray generation: clip against the grid's box.
@@ -68,11 +76,12 @@ TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
                 const PreparedTriangle& tri = triangles_[id];
                 float t, u, v;
                 if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;
-                if (t > 0.0f && t < tLimit && t <= cellExit + hitTolerance_ && t < hit.t) {
+                if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t) {
                     hit.t = t;
                     hit.prim = static_cast<int>(id);
                     hit.u = u;
                     hit.v = v;
+                    if (AnyHit) break;
                 }
             }
             if (hit.prim >= 0) {
@@ -82,12 +91,28 @@ TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const {
             hit.state = RAY_ACTIVE;
         }
         // Traversal: stop when the next cell starts beyond the ray's limit or outside the grid.
+        const int skip = begin == end ? grid_.skipDistance(size_t(cell)) : 1;
         if (cellExit > tLimit ||
-            !ddaStep(o, d, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax)) {
+            !ddaAdvance(o, d, grid_.min, grid_.cellSize, grid_.resolution, skip, voxel, tMax)) {
             hit.state = RAY_DEAD;
             return hit;
         }
     }
+}
+
+uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
+                               std::vector<glm::vec4>& hits) const {
+    const size_t n = rays.tLimit.size();
+    hits.assign(n, glm::vec4(std::numeric_limits<float>::infinity(), 0.0f, 0.0f, -1.0f));
+    parallelChunks(n, std::max<size_t>(8, size_t(rays.width)), threads, [&](size_t begin, size_t end, size_t) {
+        for (size_t i = begin; i < end; ++i) {
+            if (rays.tLimit[i] < 0.0f) continue;
+            const TraceHit h = anyHit ? traceAny(rays.origin[i], rays.direction[i], rays.tLimit[i])
+                                      : trace(rays.origin[i], rays.direction[i], rays.tLimit[i]);
+            if (h.prim >= 0) hits[i] = glm::vec4(h.t, h.u, h.v, float(h.prim));
+        }
+    });
+    return uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));
 }
 
 RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
@@ -142,7 +167,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 glm::vec3 shadowOrigin, shadowDir;
                 float shadowLimit;
                 shadowRay(p, n, rayOffset_, light.position, shadowOrigin, shadowDir, shadowLimit);
-                const TraceHit blocker = trace(shadowOrigin, shadowDir, shadowLimit);
+                const TraceHit blocker = traceAny(shadowOrigin, shadowDir, shadowLimit);
                 ++stats.shadowRays;
                 if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
                 if (blocker.prim >= 0) continue;
@@ -162,29 +187,11 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     };
 
     // Rows are handed out one at a time: cost varies strongly across the image.
-    size_t threads = settings.threads > 0 ? size_t(settings.threads)
-                                          : size_t(std::thread::hardware_concurrency());
-    threads = std::clamp<size_t>(threads, 1, size_t(std::max(1, camera.height)));
-    std::atomic<int> nextRow{0};
-    std::vector<RenderStats> threadStats(threads);
-    std::vector<std::exception_ptr> errors(threads);
-    {
-        std::vector<std::thread> workers;
-        for (size_t t = 0; t < threads; ++t) {
-            workers.emplace_back([&, t] {
-                try {
-                    for (int j = nextRow++; j < camera.height; j = nextRow++)
-                        for (int i = 0; i < camera.width; ++i) shadePixel(i, j, threadStats[t]);
-                } catch (...) {
-                    errors[t] = std::current_exception();
-                }
-            });
-        }
-        for (std::thread& w : workers) w.join();
-    }
-    for (const std::exception_ptr& e : errors)
-        if (e) std::rethrow_exception(e);
-
+    const int threads = std::min(resolveThreads(settings.threads), std::max(1, camera.height));
+    std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
+    parallelChunks(size_t(camera.height), 1, threads, [&](size_t row, size_t, size_t worker) {
+        for (int i = 0; i < camera.width; ++i) shadePixel(i, int(row), threadStats[worker]);
+    });
     for (const RenderStats& s : threadStats) {
         out.stats.primaryRays += s.primaryRays;
         out.stats.shadowRays += s.shadowRays;

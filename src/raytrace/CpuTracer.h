@@ -30,12 +30,23 @@ class CpuTracer {
 
     // First hit of o + t d with 0 < t < tLimit; d must be normalised.
     TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit) const;
+    // Any hit with 0 < t < tLimit (shadow rays): the traversal ends at the first triangle hit, so
+    // prim is some blocker, not necessarily the nearest. Blocked exactly when trace() hits.
+    TraceHit traceAny(glm::vec3 o, glm::vec3 d, float tLimit) const;
+
+    // Traces every ray of `rays` (elements with tLimit < 0 are skipped) on `threads` threads
+    // (0: all cores), closest or any hit, into hits[i] = (t, u, v, triangle | -1); returns the
+    // rays traced (gpurt bench).
+    uint64_t traceStream(const RayStream& rays, bool anyHit, int threads, std::vector<glm::vec4>& hits) const;
 
     // Renders the camera's image (its width x height) with Whitted shading and the AOVs, on
     // settings.threads threads (0: all cores), rows handed out dynamically.
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) const;
 
   private:
+    template <bool AnyHit>
+    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;
+
     struct PreparedTriangle {
         glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
     };

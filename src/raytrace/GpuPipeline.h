@@ -9,7 +9,9 @@
 #include "stream/GPUMask.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
+#include <vector>
 
 namespace gpurt {
 
@@ -22,8 +24,13 @@ struct GpuPipeline {
     GPUFloatArray surfacePoint, surfaceNormal, surfaceView, localColor, color, weight;
     GPUMask activeMask, waitMask;
     GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce;
+    // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays).
+    GPUKernel trace, traceAny;
 
-    GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask)
+    // traverseSteps: cells per traverse pass of the split pair; fusedSteps: cells per pass of the
+    // fused kernels, 0 for the whole traversal in one pass.
+    GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
+                int fusedSteps = 0)
         : width(w),
           height(h),
           rayOrigin(w, h, 4, "rayOrigin"),
@@ -47,9 +54,10 @@ struct GpuPipeline {
           surface("surface", "trace/surface.frag"),
           shadowgen("shadowgen", "trace/shadowgen.frag"),
           light("light", "trace/light.frag"),
-          bounce("bounce", "trace/bounce.frag") {
-        for (GPUKernel* k : {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce})
-            textures.bind(*k);
+          bounce("bounce", "trace/bounce.frag"),
+          trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
+          traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)) {
+        for (GPUKernel* k : allKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
         precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
         precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
@@ -69,6 +77,29 @@ struct GpuPipeline {
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
         bounce.addOutput(rayOrigin).addOutput(rayDir);
+        for (GPUKernel* k : {&trace, &traceAny}) {
+            k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+            if (fusedSteps > 0) {
+                k->addInOut(dda, "ddaState").addInOut(voxel, "voxel").addOutput(hit);
+                k->setMask(&activeMask, false);  // the trace loop updates the mask and counts with it
+            } else {
+                k->addOutput(dda).addOutput(voxel).addOutput(hit);  // from the start: no mask
+            }
+        }
+    }
+
+    std::array<GPUKernel*, 10> allKernels() {
+        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &trace, &traceAny};
+    }
+
+    // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
+    // take the whole traversal in one pass: the per-ray cell limit ends the kernel's loop.
+    static std::vector<std::string> traceDefines(int fusedSteps, bool anyHit) {
+        std::vector<std::string> defines;
+        if (fusedSteps > 0) defines.push_back("TRACE_STEPS " + std::to_string(fusedSteps));
+        else defines.insert(defines.end(), {"FROM_START", "TRACE_STEPS (1 << 30)"});
+        if (anyHit) defines.push_back("ANY_HIT");
+        return defines;
     }
 
     // The contract camera as the ray generator's uniforms.

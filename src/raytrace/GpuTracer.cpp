@@ -1,6 +1,9 @@
 #include "raytrace/GpuTracer.h"
 
 #include "raytrace/GpuPipeline.h"
+#include "raytrace/RayMath.h"
+
+#include "../../glsl/common/scene_layout.h"
 
 #include "stream/GPUKernel.h"
 #include "stream/KernelChain.h"
@@ -15,25 +18,56 @@ GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptio
 
 GpuTracer::~GpuTracer() = default;
 
+const char* traceKernelName(TraceKernel kernel) { return kernel == TraceKernel::Split ? "split" : "fused"; }
+
+bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
+    if (text == "fused") kernel = TraceKernel::Fused;
+    else if (text == "split") kernel = TraceKernel::Split;
+    else return false;
+    return true;
+}
+
 GpuPipeline& GpuTracer::pipeline(int width, int height) {
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
-        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, options_.traverseSteps, mask);
+        const int steps = options_.traverseSteps;
+        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps);
     }
     return *pipeline_;
 }
 
-// Voxel precalculation, then traverse and intersect until no ray is ACTIVE or WAITing (both
-// counts zero). Every traverser pass moves each active ray at least one cell and every
+// Voxel precalculation, then the trace loop.
+//
+// Fused with traverseSteps 0: one pass of the kernel that starts from the ray streams and takes
+// the whole traversal (no ray can still be ACTIVE after it: the per-ray cell limit ends the
+// kernel's loop first). Its count is the number of rays. Fused with N cells a pass: precalc,
+// then trace passes until the active mask counts no ray.
+//
+// Split: traverse and intersect until no ray is ACTIVE or WAITing (both counts zero). Every traverser pass moves each active ray at least one cell and every
 // intersector pass finishes or advances each waiting ray, so the loop is bounded by the cells a
 // ray can cross; reaching the bound throws (never a hang). Load balancing: the wait mask's own
 // pass counts the waiting rays, and the intersector is skipped while they are fewer than
 // waitThreshold of the live rays. Returns the rays traced.
-uint64_t GpuTracer::traceLoop(GpuPipeline& p) {
-    const uint64_t rays = p.precalc.execute();
+uint64_t GpuTracer::traceLoop(GpuPipeline& p, bool anyHit) {
     const glm::ivec3 r = grid_.resolution;
-    const int limit = 2 * (r.x + r.y + r.z) + 8;
+    const int maxCells = r.x + r.y + r.z + 3;  // as maxCellSteps in SceneTextures::bind
+    if (options_.kernel == TraceKernel::Fused) {
+        GPUKernel& trace = anyHit ? p.traceAny : p.trace;
+        const int steps = options_.traverseSteps;
+        if (steps <= 0) return trace.execute();  // from the start, whole traversal: one pass
+        const uint64_t rays = p.precalc.execute();
+        whileLoop("trace", maxCells / steps + 2, [&] {
+            if (const std::optional<uint64_t> active = p.activeMask.updateAndCount()) {
+                if (*active > 0) trace.dispatch();
+                return *active;
+            }
+            return trace.execute();  // no mask pass to count with (early exit)
+        });
+        return rays;
+    }
+    const uint64_t rays = p.precalc.execute();
+    const int limit = 2 * maxCells + 2;
     const bool balance = options_.waitThreshold > 0.0f;
     p.intersect.setMask(&p.waitMask, !balance);
     whileLoop("trace", limit, [&] {
@@ -76,7 +110,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     p.setCamera(camera);
     p.raygen.dispatch();
     for (int b = 0; b <= maxBounces; ++b) {
-        const uint64_t rays = traceLoop(p);
+        const uint64_t rays = traceLoop(p, false);
         (b == 0 ? out.stats.primaryRays : out.stats.secondaryRays) += rays;
         if (b == 0) {
             // The primary AOVs, before shadow rays reuse the ray streams.
@@ -96,7 +130,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         if (b == 0) out.normal = toVectors<glm::vec3>(p.surfaceNormal.download(), 4);
         for (const PointLight& l : lights) {
             p.shadowgen.setUniform("lightPosition", l.position).dispatch();
-            out.stats.shadowRays += traceLoop(p);
+            out.stats.shadowRays += traceLoop(p, true);
             p.light.setUniform("lightPosition", l.position)
                 .setUniform("lightColor", l.color)
                 .setUniform("lightIntensity", l.intensity)
@@ -108,11 +142,57 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (size_t i = 0; i < pixels; ++i)
         if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
     out.color = toVectors<glm::vec3>(p.color.download(), 4);
-    for (GPUKernel* k : {&p.raygen, &p.precalc, &p.traverse, &p.intersect, &p.surface, &p.shadowgen, &p.light, &p.bounce})
-        k->flushStats();
+    flushStats();
     out.stats.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
+    GpuPipeline& p = pipeline(camera.width, camera.height);
+    p.setCamera(camera);
+    p.raygen.dispatch();
+    const uint64_t rays = traceLoop(p, false);
+    glFinish();
+    return rays;
+}
+
+void GpuTracer::setRays(const RayStream& rays) {
+    GpuPipeline& p = pipeline(rays.width, rays.height);
+    const size_t n = size_t(rays.width) * size_t(rays.height);
+    std::vector<float> origin(4 * n), direction(4 * n);
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3 o = rays.origin[i], d = rays.direction[i];
+        const float tLimit = rays.tLimit[i];
+        float w = GPURT_NO_RAY;
+        if (tLimit >= 0.0f) {  // the grid entry, as gridEntry() in trace/scene.glsl
+            const glm::vec2 box = raymath::intersectBox(o, d, grid_.min, grid_.max);
+            const float tEnter = std::max(box.x, 0.0f);
+            w = tEnter > std::min(box.y, tLimit) ? GPURT_MISSED_BOX : tEnter;
+        }
+        const float ray[8] = {o.x, o.y, o.z, tLimit, d.x, d.y, d.z, w};
+        std::copy(ray, ray + 4, origin.begin() + std::ptrdiff_t(4 * i));
+        std::copy(ray + 4, ray + 8, direction.begin() + std::ptrdiff_t(4 * i));
+    }
+    p.rayOrigin.upload(origin);
+    p.rayDir.upload(direction);
+}
+
+uint64_t GpuTracer::traceRays(bool anyHit) {
+    if (!pipeline_) throw UsageError("GpuTracer::traceRays before setRays");
+    const uint64_t rays = traceLoop(*pipeline_, anyHit);
+    glFinish();
+    return rays;
+}
+
+void GpuTracer::flushStats() {
+    if (pipeline_)
+        for (GPUKernel* k : pipeline_->allKernels()) k->flushStats();
+}
+
+std::vector<glm::vec4> GpuTracer::hits() {
+    if (!pipeline_) throw UsageError("GpuTracer::hits before a trace");
+    return toVectors<glm::vec4>(pipeline_->hit.download(), 4);
 }
 
 }  // namespace gpurt

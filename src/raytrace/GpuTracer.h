@@ -12,18 +12,34 @@
 #include "stream/GPUMask.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace gpurt {
 
 struct GpuPipeline;
 
+// How the trace loop is split into kernels (docs/PERFORMANCE.md measures both).
+enum class TraceKernel {
+    Fused,  // trace.frag: traversal and intersection in one kernel (the default)
+    Split,  // traverse.frag then intersect.frag, the Purcell/Christen pair
+};
+
+const char* traceKernelName(TraceKernel kernel);
+bool parseTraceKernel(const std::string& text, TraceKernel& kernel);
+
 struct GpuTracerOptions {
     MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
-    int traverseSteps = 16;          // cells per traverser pass (1 = the seed)
-    // Load balancing (Christen 2005, 5.6): the intersector runs only once at least this fraction
-    // of the live rays wait (or none is active any more). 0: after every traverser pass.
+    // Grid cells per pass; 0: the kernel's default (split: 16 per traverser pass, fused: the
+    // whole traversal in one pass). 1 with Split is the seed.
+    int traverseSteps = 0;
+    // Load balancing (Christen 2005, 5.6), Split only: the intersector runs only once at least
+    // this fraction of the live rays wait (or none is active any more). 0: after every traverser
+    // pass.
     float waitThreshold = 0.0f;
+    TraceKernel kernel = TraceKernel::Fused;
 };
+
 
 class GpuTracer {
   public:
@@ -36,9 +52,20 @@ class GpuTracer {
 
     const SceneTextures& textures() const { return textures_; }
 
+    // Tracing only (gpurt bench). tracePrimary generates the camera's rays (raygen) and traces
+    // them; setRays uploads rays and traceRays traces them (closest hit, or any hit for shadow
+    // rays). Both return the rays traced once the GL has finished. hits() reads the result:
+    // (t, u, v, triangle | -1) per element.
+    uint64_t tracePrimary(const CameraBasis& camera);
+    void setRays(const RayStream& rays);
+    uint64_t traceRays(bool anyHit);
+    std::vector<glm::vec4> hits();
+    // Reads the counts and timings of the passes so far into KernelStats.
+    void flushStats();
+
   private:
     GpuPipeline& pipeline(int width, int height);
-    uint64_t traceLoop(GpuPipeline& p);
+    uint64_t traceLoop(GpuPipeline& p, bool anyHit);
 
     const Scene& scene_;
     const UniformGrid& grid_;

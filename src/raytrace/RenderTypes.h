@@ -36,4 +36,11 @@ struct RenderOutput {
     RenderStats stats;
 };
 
+// Rays to trace as a stream (gpurt bench), for every backend: one element per ray, laid out width x height.
+struct RayStream {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> origin, direction;  // direction normalised
+    std::vector<float> tLimit;                 // < 0: no ray in this element
+};
+
 }  // namespace gpurt

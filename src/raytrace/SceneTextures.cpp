@@ -30,7 +30,8 @@ GPUFloatArray makeVoxelIndex(const UniformGrid& grid) {
     checkFits("voxel index", GPURT_INDEX_WIDTH, rows);
     std::vector<uint32_t> texels(size_t(GPURT_INDEX_WIDTH) * size_t(rows) * 2, 0u);
     for (size_t c = 0; c < cells; ++c) {
-        texels[c * 2] = grid.cellStart[c];
+        // An empty cell carries its skip distance instead of a list start (count 0 tells).
+        texels[c * 2] = grid.cellStart[c + 1] != grid.cellStart[c] ? grid.cellStart[c] : uint32_t(grid.skipDistance(c));
         texels[c * 2 + 1] = grid.cellStart[c + 1] - grid.cellStart[c];
     }
     GPUFloatArray index(GPURT_INDEX_WIDTH, rows, GPUFormat::RG32UI, "voxelIndex");
@@ -38,12 +39,29 @@ GPUFloatArray makeVoxelIndex(const UniformGrid& grid) {
     return index;
 }
 
-GPUFloatArray makeCellList(const UniformGrid& grid) {
-    const int rows = rowsFor(grid.cellTriangles.size(), GPURT_LIST_WIDTH);
-    checkFits("grid element list", GPURT_LIST_WIDTH, rows);
-    std::vector<uint32_t> texels(size_t(GPURT_LIST_WIDTH) * size_t(rows), 0u);
-    std::copy(grid.cellTriangles.begin(), grid.cellTriangles.end(), texels.begin());
-    GPUFloatArray list(GPURT_LIST_WIDTH, rows, GPUFormat::R32UI, "cellList");
+// Three RGBA32F texels for triangle t: (v0, w), (e1, 0), (e2, 0), with the same float edges
+// as the CPU backend (e = v - v0, rounded once).
+void writeTriangle(const Triangle& tri, float w, float* out) {
+    const vec3 e1 = tri.v1 - tri.v0;
+    const vec3 e2 = tri.v2 - tri.v0;
+    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, 0.0f), vec4(e2, 0.0f)};
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 4; ++c) out[k * 4 + c] = texel[k][c];
+}
+
+// The cells' triangle lists with each triangle's vertices in place of its id (w = the id): the
+// intersector reads three texels per test instead of an id and then three.
+GPUFloatArray makeCellTriangles(const Scene& scene, const UniformGrid& grid) {
+    const size_t refs = grid.cellTriangles.size();
+    const int rows = rowsFor(refs, GPURT_REFS_PER_ROW);
+    const int width = 3 * GPURT_REFS_PER_ROW;
+    checkFits("cell triangle", width, rows);
+    std::vector<float> texels(size_t(width) * size_t(rows) * 4, 0.0f);
+    for (size_t k = 0; k < refs; ++k) {
+        const uint32_t id = grid.cellTriangles[k];
+        writeTriangle(scene.triangles[id], float(id), &texels[k * 12]);
+    }
+    GPUFloatArray list(width, rows, GPUFormat::RGBA32F, "cellTriangles");
     list.upload(texels);
     return list;
 }
@@ -58,16 +76,8 @@ GPUFloatArray makeTriangles(const Scene& scene) {
     const int width = 3 * GPURT_TRIANGLES_PER_ROW;
     checkFits("triangle", width, rows);
     std::vector<float> texels(size_t(width) * size_t(rows) * 4, 0.0f);
-    for (size_t t = 0; t < n; ++t) {
-        const Triangle& tri = scene.triangles[t];
-        // The same float edges as the CPU backend: e = v - v0, rounded once.
-        const vec3 e1 = tri.v1 - tri.v0;
-        const vec3 e2 = tri.v2 - tri.v0;
-        const vec4 texel[3] = {vec4(tri.v0, float(scene.materialIds[t])), vec4(e1, 0.0f), vec4(e2, 0.0f)};
-        float* row = &texels[((t / GPURT_TRIANGLES_PER_ROW) * size_t(width) + 3 * (t % GPURT_TRIANGLES_PER_ROW)) * 4];
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 4; ++c) row[k * 4 + c] = texel[k][c];
-    }
+    for (size_t t = 0; t < n; ++t)
+        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), &texels[t * 12]);
     GPUFloatArray triangles(width, rows, GPUFormat::RGBA32F, "triangles");
     triangles.upload(texels);
     return triangles;
@@ -95,13 +105,13 @@ GPUFloatArray makeMaterials(const Scene& scene) {
 SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
     : grid_(grid),
       voxelIndex_(makeVoxelIndex(grid)),
-      cellList_(makeCellList(grid)),
       triangles_(makeTriangles(scene)),
+      cellTriangles_(makeCellTriangles(scene, grid)),
       materials_(makeMaterials(scene)) {}
 
 void SceneTextures::bind(GPUKernel& kernel) const {
     kernel.addInput(voxelIndex_, "voxelIndex")
-        .addInput(cellList_, "cellList")
+        .addInput(cellTriangles_, "cellTriangles")
         .addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .setUniform("gridMin", grid_.min)
@@ -115,7 +125,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
-    return size(voxelIndex_) + size(cellList_) + size(triangles_) + size(materials_);
+    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_);
 }
 
 }  // namespace gpurt

@@ -16,21 +16,21 @@ class SceneTextures {
     // Throws EnvironmentError when the scene does not fit the GL limits or the exact-index limits.
     SceneTextures(const Scene& scene, const UniformGrid& grid);
 
-    // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellList, triangles,
+    // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellTriangles, triangles,
     // materials) and sets the grid uniforms.
     void bind(GPUKernel& kernel) const;
 
     const GPUFloatArray& voxelIndex() const { return voxelIndex_; }
-    const GPUFloatArray& cellList() const { return cellList_; }
     const GPUFloatArray& triangles() const { return triangles_; }
+    const GPUFloatArray& cellTriangles() const { return cellTriangles_; }
     const GPUFloatArray& materials() const { return materials_; }
     size_t bytes() const;
 
   private:
     const UniformGrid& grid_;
     GPUFloatArray voxelIndex_;
-    GPUFloatArray cellList_;
     GPUFloatArray triangles_;
+    GPUFloatArray cellTriangles_;
     GPUFloatArray materials_;
 };
 

@@ -209,7 +209,39 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     std::vector<uint32_t> cursor(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (const auto& list : references)
         for (const auto& [cell, id] : list) grid.cellTriangles[cursor[cell]++] = id;
+    computeSkip(grid);
     return grid;
+}
+
+void computeSkip(UniformGrid& grid) {
+    const glm::ivec3 r = grid.resolution;
+    std::vector<uint8_t>& skip = grid.skip;
+    skip.assign(grid.cells(), 255);
+    for (size_t c = 0; c < grid.cells(); ++c)
+        if (grid.cellStart[c + 1] != grid.cellStart[c]) skip[c] = 0;
+    // Forward pass: the 13 neighbours before a cell in raster order; backward: the 13 after.
+    auto pass = [&](int sign) {
+        const int z0 = sign > 0 ? 0 : r.z - 1, y0 = sign > 0 ? 0 : r.y - 1, x0 = sign > 0 ? 0 : r.x - 1;
+        for (int z = z0; z >= 0 && z < r.z; z += sign)
+            for (int y = y0; y >= 0 && y < r.y; y += sign)
+                for (int x = x0; x >= 0 && x < r.x; x += sign) {
+                    uint8_t& d = skip[size_t(grid.cellIndex({x, y, z}))];
+                    if (d == 0) continue;
+                    int best = d;
+                    for (int dz = -1; dz <= 0; ++dz)
+                        for (int dy = -1; dy <= 1; ++dy)
+                            for (int dx = -1; dx <= 1; ++dx) {
+                                if (dz == 0 && (dy > 0 || (dy == 0 && dx >= 0))) continue;
+                                const glm::ivec3 v(x + sign * dx, y + sign * dy, z + sign * dz);
+                                if (v.x < 0 || v.y < 0 || v.z < 0 || v.x >= r.x || v.y >= r.y || v.z >= r.z)
+                                    continue;
+                                best = std::min(best, skip[size_t(grid.cellIndex(v))] + 1);
+                            }
+                    d = uint8_t(std::min(best, 255));
+                }
+    };
+    pass(1);
+    pass(-1);
 }
 
 }  // namespace gpurt

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -26,6 +27,14 @@ struct UniformGrid {
     std::vector<uint32_t> cellStart;                 // size nx*ny*nz + 1 (prefix sums)
     // Triangle ids of cell c: [cellStart[c], cellStart[c+1]), ascending.
     std::vector<uint32_t> cellTriangles;
+    // Empty-space skipping (proximity clouds, Cohen & Sheffer 1994): per cell, 0 where the cell
+    // has triangles, else the chessboard distance in cells to the nearest cell that has (at most
+    // 255), so every cell nearer than that is empty. Derived from cellStart (computeSkip).
+    std::vector<uint8_t> skip;
+
+    // The skip distance of an empty cell: every cell nearer than it (chessboard) is empty. 1 (no
+    // skipping) when skip was not computed.
+    int skipDistance(size_t cell) const { return skip.empty() ? 1 : std::max<int>(1, skip[cell]); }
 
     int cellIndex(glm::ivec3 v) const { return v.x + resolution.x * (v.y + resolution.y * v.z); }
     size_t cells() const;
@@ -35,6 +44,10 @@ struct UniformGrid {
     // Slack when accepting a hit beyond the current cell's exit: 1e-4 * the smallest cell size.
     float hitTolerance() const;
 };
+
+// Fills grid.skip from grid.cellStart: an exact chessboard distance transform (two raster passes
+// over the 26-neighbourhood), independent of thread count.
+void computeSkip(UniformGrid& grid);
 
 // Most cells an automatic or explicit resolution may have (cellStart alone is 4 bytes a cell).
 inline constexpr size_t kMaxGridCells = size_t(1) << 26;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "raytrace/RayMath.h"
+#include "raytrace/UniformGrid.h"
 
 namespace gpurt {
 namespace {
@@ -199,6 +200,81 @@ TEST(DdaTest, RayMissingTheBox) {
         walk(g, g.min - 1.0f, glm::vec3(1, 0, 0), tEnter).entered);  // parallel, beside the box
     EXPECT_FALSE(
         walk(g, g.max() + 1.0f, normalized({1, 1, 1}), tEnter).entered);  // box behind the origin
+}
+
+}  // namespace
+}  // namespace gpurt
+
+namespace gpurt {
+namespace {
+
+// Empty-space skipping (ddaAdvance with the chessboard distances of computeSkip): on grids with a
+// few random non-empty cells, a skipping walk must visit exactly the non-empty cells that the
+// plain walk (ddaStep) visits, in the same order, in no more steps.
+TEST(DdaTest, SkippingVisitsEveryNonEmptyCellOfThePlainWalk) {
+    const TestGrid g;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int trial = 0; trial < 20; ++trial) {
+        UniformGrid grid;
+        grid.resolution = g.res;
+        grid.min = g.min;
+        grid.max = g.max();
+        grid.cellSize = g.cellSize;
+        std::vector<uint32_t> counts(grid.cells(), 0);
+        for (int k = 0; k < 1 + trial % 6; ++k) counts[size_t(rng() % grid.cells())] = 1;
+        grid.cellStart.assign(grid.cells() + 1, 0);
+        for (size_t c = 0; c < grid.cells(); ++c) grid.cellStart[c + 1] = grid.cellStart[c] + counts[c];
+        computeSkip(grid);
+        const glm::vec3 lo = g.min - 1.0f, hi = g.max() + 1.0f;
+        for (int k = 0; k < 500; ++k) {
+            const glm::vec3 o = lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
+            const glm::vec3 through = g.min + (g.max() - g.min) * glm::vec3(u(rng), u(rng), u(rng));
+            const glm::vec3 d = normalized(through - o);
+            float tEnter = 0.0f;
+            const DdaWalk plain = walk(g, o, d, tEnter);
+            if (!plain.entered) continue;
+            std::vector<glm::ivec3> plainFull;
+            for (glm::ivec3 c : plain.cells)
+                if (counts[size_t(grid.cellIndex(c))]) plainFull.push_back(c);
+            glm::ivec3 voxel;
+            glm::vec3 tMax;
+            raymath::ddaSetup(o, d, tEnter, g.min, g.cellSize, g.res, voxel, tMax);
+            std::vector<glm::ivec3> skipFull;
+            size_t steps = 0;
+            for (; steps < 1000; ++steps) {
+                const size_t c = size_t(grid.cellIndex(voxel));
+                if (counts[c]) skipFull.push_back(voxel);
+                const int k = counts[c] ? 1 : grid.skipDistance(c);
+                if (!raymath::ddaAdvance(o, d, g.min, g.cellSize, g.res, k, voxel, tMax)) break;
+            }
+            ASSERT_EQ(skipFull, plainFull) << "trial " << trial << " ray " << k;
+            EXPECT_LE(steps + 1, plain.cells.size()) << "trial " << trial << " ray " << k;
+        }
+    }
+}
+
+// ddaAdvance with distance 1 is exactly one ddaStep.
+TEST(DdaTest, AdvanceByOneIsDdaStep) {
+    const TestGrid g;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int k = 0; k < 2000; ++k) {
+        const glm::vec3 o = g.min + (g.max() - g.min) * glm::vec3(u(rng), u(rng), u(rng));
+        const glm::vec3 d = normalized(glm::vec3(u(rng), u(rng), u(rng)) - 0.5f);
+        glm::ivec3 a, b;
+        glm::vec3 ta, tb;
+        raymath::ddaSetup(o, d, 0.0f, g.min, g.cellSize, g.res, a, ta);
+        b = a, tb = ta;
+        for (int s = 0; s < 30; ++s) {
+            const bool okA = raymath::ddaStep(o, d, g.min, g.cellSize, g.res, a, ta);
+            const bool okB = raymath::ddaAdvance(o, d, g.min, g.cellSize, g.res, 1, b, tb);
+            ASSERT_EQ(okA, okB);
+            if (!okA) break;
+            ASSERT_EQ(a, b);
+            ASSERT_EQ(ta, tb);
+        }
+    }
 }
 
 }  // namespace

@@ -251,3 +251,37 @@ TEST(UniformGridTest, RejectsBadResolution) {
 
 }  // namespace
 }  // namespace gpurt
+
+namespace gpurt {
+namespace {
+
+// computeSkip against a brute force: each empty cell's chessboard distance to the nearest
+// non-empty cell (255 when there is none), 0 for non-empty cells.
+TEST(UniformGridTest, SkipIsTheChessboardDistanceToTheNearestNonEmptyCell) {
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 12; ++trial) {
+        UniformGrid grid;
+        grid.resolution = glm::ivec3(3 + int(rng() % 9), 2 + int(rng() % 7), 1 + int(rng() % 8));
+        std::vector<uint32_t> counts(grid.cells(), 0);
+        for (int k = 0; k < trial % 5; ++k) counts[size_t(rng() % grid.cells())] = 2;
+        grid.cellStart.assign(grid.cells() + 1, 0);
+        for (size_t c = 0; c < grid.cells(); ++c) grid.cellStart[c + 1] = grid.cellStart[c] + counts[c];
+        computeSkip(grid);
+        const glm::ivec3 r = grid.resolution;
+        for (int z = 0; z < r.z; ++z)
+            for (int y = 0; y < r.y; ++y)
+                for (int x = 0; x < r.x; ++x) {
+                    int best = 255;
+                    for (int zz = 0; zz < r.z; ++zz)
+                        for (int yy = 0; yy < r.y; ++yy)
+                            for (int xx = 0; xx < r.x; ++xx)
+                                if (counts[size_t(grid.cellIndex({xx, yy, zz}))])
+                                    best = std::min(best, std::max({std::abs(x - xx), std::abs(y - yy), std::abs(z - zz)}));
+                    ASSERT_EQ(int(grid.skip[size_t(grid.cellIndex({x, y, z}))]), best)
+                        << "trial " << trial << " cell " << x << "," << y << "," << z;
+                }
+    }
+}
+
+}  // namespace
+}  // namespace gpurt

@@ -1,0 +1,26 @@
+// The ray sets of gpurt bench, the same for every backend: primary rays (one per pixel, the
+// contract camera) and shadow rays (one per primary hit, towards one point light, packed so that
+// the live rays are contiguous).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/Camera.h"
+#include "raytrace/RenderTypes.h"
+#include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
+
+namespace gpurt {
+
+// One ray per pixel of `camera`, row 0 = the top row, tLimit = GPURT_FAR.
+RayStream primaryRays(const CameraBasis& camera);
+
+// For each primary hit (hits[i].w >= 0, in pixel order), the renderer's shadow ray towards
+// `light`: from the hit point offset along the normal that faces the primary ray, limited to the
+// light's distance. Laid out `width` rays a row; unused elements of the last row carry no ray.
+RayStream shadowRays(const Scene& scene, const UniformGrid& grid, const RayStream& primary,
+                     const std::vector<glm::vec4>& hits, glm::vec3 light);
+
+}  // namespace gpurt

@@ -1,0 +1,315 @@
+// `gpurt bench SCENE --rays primary|shadow`: the tracing speed of the stream kernels (gl), the
+// same algorithm in C++ (cpu) and Intel Embree (embree), on the same rays in the same run.
+// Only the tracing is timed: the scene is loaded, the grid built, the kernels compiled and one
+// warm-up run done first; the figure is the median of --runs runs.
+#include "Commands.h"
+#include "CommonOptions.h"
+
+#include "raytrace/BenchRays.h"
+#include "raytrace/CpuTracer.h"
+#include "raytrace/GpuTracer.h"
+#include "raytrace/Parallel.h"
+#include "raytrace/SceneLoader.h"
+#include "raytrace/UniformGrid.h"
+#include "stream/KernelStats.h"
+#ifdef GPURT_HAVE_EMBREE
+#include "raytrace/EmbreeTracer.h"
+#endif
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+
+namespace gpurt {
+
+namespace {
+
+struct BenchOptions {
+    std::string scene;
+    std::string rays = "primary";
+    std::vector<std::string> backends;
+    bool json = false;
+    int runs = 5;
+    int threads = 0;
+    std::string kernel = "fused";
+    int traverseSteps = 0;
+    std::string mask;
+    float lambda = 2.0f;
+    CameraOptions camera;
+    ContextOptions context;
+};
+
+struct BenchResult {
+    std::string backend;
+    std::string renderer;
+    int threads = 0;
+    uint64_t rays = 0;
+    double ms = 0.0;  // median
+    std::vector<double> runMs;
+    nlohmann::json passes = nlohmann::json::object();
+    std::vector<glm::vec4> hits;
+    double agreement = -1.0;  // fraction of rays whose result matches the reference backend's
+};
+
+double elapsedMs(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// One warm-up call, then `runs` timed calls; sets rays, runMs and the median ms.
+void measure(BenchResult& r, int runs, const std::function<uint64_t()>& traceOnce) {
+    r.rays = traceOnce();
+    r.runMs.clear();
+    for (int i = 0; i < runs; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        traceOnce();
+        r.runMs.push_back(elapsedMs(start));
+    }
+    std::vector<double> sorted = r.runMs;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t m = sorted.size() / 2;
+    r.ms = sorted.size() % 2 ? sorted[m] : 0.5 * (sorted[m - 1] + sorted[m]);
+}
+
+double mraysPerSecond(const BenchResult& r) { return r.ms > 0.0 ? double(r.rays) / (r.ms * 1e3) : 0.0; }
+
+std::string glRenderer() {
+    for (const auto& [name, value] : glInfo())
+        if (name == "renderer") return value;
+    return "unknown";
+}
+
+// llvmpipe's rasterizer threads (LP_NUM_THREADS, else one per core); 0 for a hardware GPU.
+int glThreads() {
+    if (!isSoftwareRenderer()) return 0;
+    if (const char* env = std::getenv("LP_NUM_THREADS")) return std::max(0, std::atoi(env));
+    return resolveThreads(0);
+}
+
+struct BenchInput {
+    const Scene& scene;
+    const UniformGrid& grid;
+    const CameraBasis& camera;
+    bool shadow;
+    const RayStream& rays;
+};
+
+BenchResult benchGl(const BenchOptions& o, const BenchInput& in) {
+    BenchResult r;
+    r.backend = "gl";
+    GLContext context = o.context.makeContext();
+    r.renderer = glRenderer();
+    r.threads = glThreads();
+    GpuTracerOptions options;
+    parseTraceKernel(o.kernel, options.kernel);
+    options.traverseSteps = o.traverseSteps;
+    if (!o.mask.empty()) parseMaskMode(o.mask, options.mask);
+    GpuTracer tracer(in.scene, in.grid, options);
+    std::function<uint64_t()> traceOnce = [&] { return tracer.tracePrimary(in.camera); };
+    if (in.shadow) {
+        tracer.setRays(in.rays);
+        traceOnce = [&] { return tracer.traceRays(true); };
+    }
+    KernelStats::global().setTiming(false);
+    measure(r, o.runs, traceOnce);
+    r.hits = tracer.hits();
+    // One more run with per-pass GPU timers, for the pass table (timers cost a little).
+    tracer.flushStats();
+    KernelStats::global().reset();
+    KernelStats::global().setTiming(true);
+    traceOnce();
+    tracer.flushStats();
+    KernelStats::global().setTiming(false);
+    for (const auto& [name, p] : KernelStats::global().passes())
+        if (p.calls > 0) r.passes[name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
+    r.renderer += std::string(", ") + traceKernelName(options.kernel) + " kernel";
+    return r;
+}
+
+BenchResult benchCpu(const BenchOptions& o, const BenchInput& in) {
+    BenchResult r;
+    r.backend = "cpu";
+    r.threads = resolveThreads(o.threads);
+    r.renderer = "gpurt C++ grid tracer";
+    const CpuTracer tracer(in.scene, in.grid);
+    measure(r, o.runs, [&] { return tracer.traceStream(in.rays, in.shadow, r.threads, r.hits); });
+    return r;
+}
+
+#ifdef GPURT_HAVE_EMBREE
+// Embree's best of single rays and 8-ray packets (its fastest way for coherent rays).
+BenchResult benchEmbree(const BenchOptions& o, const BenchInput& in) {
+    const EmbreeTracer tracer(in.scene, resolveThreads(o.threads));
+    BenchResult best;
+    for (EmbreeMode mode : {EmbreeMode::Single, EmbreeMode::Packet8}) {
+        BenchResult r;
+        r.backend = "embree";
+        r.threads = tracer.threads();
+        const char* call = mode == EmbreeMode::Single ? (in.shadow ? "rtcOccluded1" : "rtcIntersect1")
+                                                      : (in.shadow ? "rtcOccluded8" : "rtcIntersect8");
+        r.renderer = "Embree " + EmbreeTracer::version() + ", " + call + ", high-quality BVH";
+        measure(r, o.runs, [&] { return tracer.trace(in.rays, in.shadow, mode, r.hits); });
+        if (best.rays == 0 || r.ms < best.ms) best = std::move(r);
+    }
+    return best;
+}
+#endif
+
+std::vector<std::string> availableBackends() {
+#ifdef GPURT_HAVE_EMBREE
+    return {"embree", "cpu", "gl"};
+#else
+    return {"cpu", "gl"};
+#endif
+}
+
+// The fraction of rays whose outcome agrees: the same triangle for closest hits, the same
+// blocked / unblocked answer for shadow rays.
+double agreement(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b, const RayStream& rays, bool shadow) {
+    uint64_t same = 0, total = 0;
+    for (size_t i = 0; i < rays.tLimit.size() && i < a.size() && i < b.size(); ++i) {
+        if (rays.tLimit[i] < 0.0f) continue;
+        ++total;
+        same += shadow ? (a[i].w >= 0.0f) == (b[i].w >= 0.0f) : a[i].w == b[i].w;
+    }
+    return total ? double(same) / double(total) : 1.0;
+}
+
+nlohmann::json resultJson(const BenchResult& r, const BenchResult* embree) {
+    nlohmann::json j;
+    j["backend"] = r.backend;
+    j["mrays_per_s"] = mraysPerSecond(r);
+    j["rays"] = r.rays;
+    j["ms"] = r.ms;
+    j["runs_ms"] = r.runMs;
+    j["passes"] = r.passes;
+    j["threads"] = r.threads;
+    j["renderer"] = r.renderer;
+    if (embree) j["ratio_to_embree"] = mraysPerSecond(*embree) > 0 ? mraysPerSecond(r) / mraysPerSecond(*embree) : 0.0;
+    if (r.agreement >= 0.0) j["agreement"] = r.agreement;
+    return j;
+}
+
+int runBench(const BenchOptions& o) {
+    MaskMode mask;
+    if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
+        throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
+    std::vector<std::string> backends = o.backends.empty() ? availableBackends() : o.backends;
+    const std::vector<std::string> available = availableBackends();
+    for (const std::string& b : backends)
+        if (std::find(available.begin(), available.end(), b) == available.end())
+            throw InputError("--backend: '" + b + "' is not available in this build (embree needs GPURT_WITH_EMBREE)");
+
+    const LoadedScene loaded = loadScene(o.scene);
+    const Scene& scene = loaded.scene;
+    const glm::ivec2 size = o.camera.imageSize(loaded.size);
+    const CameraBasis camera = o.camera.camera(scene, size);
+    const bool shadow = o.rays == "shadow";
+
+    auto start = std::chrono::steady_clock::now();
+    GridOptions gridOptions;
+    gridOptions.lambda = o.lambda;
+    const UniformGrid grid = buildGrid(scene, gridOptions);
+    const double gridMs = elapsedMs(start);
+
+    RayStream rays = primaryRays(camera);
+    if (shadow) {
+        // Shadow rays from the primary hits (found by the C++ tracer, untimed) to the scene's
+        // first light, or the headlight at the eye.
+        std::vector<glm::vec4> hits;
+        CpuTracer(scene, grid).traceStream(rays, false, o.threads, hits);
+        rays = shadowRays(scene, grid, rays, hits, lightsOrHeadlight(scene, camera.eye).front().position);
+    }
+    const BenchInput input{scene, grid, camera, shadow, rays};
+
+    std::vector<BenchResult> results;
+    for (const std::string& b : backends) {
+        if (b == "gl") results.push_back(benchGl(o, input));
+        if (b == "cpu") results.push_back(benchCpu(o, input));
+#ifdef GPURT_HAVE_EMBREE
+        if (b == "embree") results.push_back(benchEmbree(o, input));
+#endif
+    }
+    const BenchResult* embree = nullptr;
+    for (const BenchResult& r : results)
+        if (r.backend == "embree") embree = &r;
+    const BenchResult& reference = embree ? *embree : results.front();
+    if (results.size() > 1)
+        for (BenchResult& r : results)
+            if (&r != &reference) r.agreement = agreement(r.hits, reference.hits, rays, shadow);
+
+    const uint64_t rayCount = uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));
+    if (o.json) {
+        nlohmann::json j;
+        if (results.size() == 1) j = resultJson(results.front(), embree);
+        j["scene"] = o.scene;
+        j["triangles"] = scene.triangles.size();
+        j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
+        j["grid_ms"] = gridMs;
+        j["width"] = camera.width;
+        j["height"] = camera.height;
+        j["ray_kind"] = o.rays;
+        j["runs"] = o.runs;
+        if (results.size() > 1) {
+            j["backends"] = nlohmann::json::array();
+            for (const BenchResult& r : results) j["backends"].push_back(resultJson(r, embree));
+        }
+        std::printf("%s\n", j.dump().c_str());
+        return 0;
+    }
+    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (built in %.0f ms)\n", o.scene.c_str(),
+                scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z, gridMs);
+    std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
+                (unsigned long long)rayCount, camera.width, camera.height, o.runs);
+    std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",
+                "renderer");
+    for (const BenchResult& r : results) {
+        char ratio[32] = "-", agree[32] = "-";
+        if (embree) std::snprintf(ratio, sizeof ratio, "%.3f", mraysPerSecond(r) / std::max(1e-12, mraysPerSecond(*embree)));
+        if (r.agreement >= 0.0) std::snprintf(agree, sizeof agree, "%.4f%%", 100.0 * r.agreement);
+        std::printf("%-8s %7d %10.2f %10.2f %9s %9s  %s\n", r.backend.c_str(), r.threads, r.ms, mraysPerSecond(r),
+                    ratio, agree, r.renderer.c_str());
+    }
+    for (const BenchResult& r : results) {
+        if (r.passes.empty()) continue;
+        std::printf("%s passes (one extra run with GPU timers)\n", r.backend.c_str());
+        std::printf("  %-14s %8s %14s %10s\n", "pass", "calls", "fragments", "ms");
+        for (const auto& [name, p] : r.passes.items())
+            std::printf("  %-14s %8llu %14llu %10.2f\n", name.c_str(), (unsigned long long)p["calls"].get<uint64_t>(),
+                        (unsigned long long)p["fragments"].get<uint64_t>(), p["ms"].get<double>());
+    }
+    return 0;
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, std::function<int()>& run) {
+    auto o = std::make_shared<BenchOptions>();
+    auto* cmd = app.add_subcommand("bench", "Time tracing alone: the stream kernels beside the C++ tracer and Embree");
+    cmd->add_option("scene", o->scene, "Scene file")->required();
+    cmd->add_option("--rays", o->rays, "primary (one per pixel) or shadow (one per primary hit, to one light)")
+        ->check(CLI::IsMember({"primary", "shadow"}));
+    cmd->add_option("--backend", o->backends, "gl, cpu or embree (repeatable; default: all available)")
+        ->check(CLI::IsMember({"gl", "cpu", "embree"}));
+    cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
+    cmd->add_option("--runs", o->runs, "Timed runs after the warm-up (the median is reported)")->check(CLI::Range(1, 1000));
+    cmd->add_option("--threads", o->threads, "Threads of the cpu and embree backends (0: one per core)")
+        ->check(CLI::Range(0, 1024));
+    cmd->add_option("--kernel", o->kernel, "gl trace kernels: fused (default) or split")
+        ->check(CLI::IsMember({"fused", "split"}));
+    cmd->add_option("--traverse-steps", o->traverseSteps,
+                    "gl: grid cells per trace pass (0 = default: whole traversal when fused, 16 when split)")
+        ->check(CLI::Range(0, 1 << 20));
+    cmd->add_option("--mask", o->mask, "gl masking mode: earlyz|stencil|exit (default: fastest)");
+    cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
+        ->check(CLI::Range(0.01f, 64.0f));
+    o->camera.add(*cmd);
+    addContextOptions(*cmd, o->context);
+    cmd->callback([&run, o] { run = [o] { return runBench(*o); }; });
+}
+
+}  // namespace gpurt
