@@ -39,7 +39,7 @@ struct BenchOptions {
     std::string kernel = "fused";
     int traverseSteps = 0;
     std::string mask;
-    float lambda = 2.0f;
+    float lambda = GridOptions{}.lambda;
     CameraOptions camera;
     ContextOptions context;
 };

@@ -32,7 +32,7 @@ struct RenderOptions {
     std::string kernel = "fused";
     int traverseSteps = 0;
     float waitThreshold = 0.0f;
-    float lambda = 2.0f;
+    float lambda = GridOptions{}.lambda;
     int bounces = -1;
     CameraOptions camera;
     ContextOptions context;

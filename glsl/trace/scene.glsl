@@ -18,8 +18,8 @@ uniform int maxCellSteps;     // more cells than a ray can cross: RAY_OVERFLOW
 
 // (start, count) of the triangle list of cell v.
 uvec2 cellRange(ivec3 v) {
-    int c = v.x + gridRes.x * (v.y + gridRes.y * v.z);
-    return texelFetch(voxelIndex, ivec2(c % GPURT_INDEX_WIDTH, c / GPURT_INDEX_WIDTH), 0).xy;
+    uint c = uint(v.x + gridRes.x * (v.y + gridRes.y * v.z));
+    return texelFetch(voxelIndex, ivec2(c % uint(GPURT_INDEX_WIDTH), c / uint(GPURT_INDEX_WIDTH)), 0).xy;
 }
 
 // Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.

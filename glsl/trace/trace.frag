@@ -19,9 +19,15 @@ uniform sampler2D ddaState;  // in place: (tMax, state)
 uniform isampler2D voxel;    // in place: (cell, cells visited)
 #endif
 
+#ifdef FROM_START
+// No ray state out: after this pass every ray is done (nothing reads ddaState again).
+layout(location = 0) out ivec4 voxelOut;
+layout(location = 1) out vec4 hitOut;  // (t, u, v, triangle | -1)
+#else
 layout(location = 0) out vec4 ddaOut;
 layout(location = 1) out ivec4 voxelOut;
 layout(location = 2) out vec4 hitOut;  // (t, u, v, triangle | -1)
+#endif
 
 void main() {
     vec4 origin = readStream(rayOrigin);
@@ -34,7 +40,6 @@ void main() {
     // and needs no pass of its own.
     if (dir.w == GPURT_NO_RAY) discard;
     if (dir.w == GPURT_MISSED_BOX) {
-        ddaOut = vec4(GPURT_FAR, GPURT_FAR, GPURT_FAR, float(RAY_INACTIVE));
         voxelOut = ivec4(0);
         hitOut = vec4(GPURT_FAR, 0.0f, 0.0f, -1.0f);
         return;
@@ -88,7 +93,9 @@ void main() {
             break;
         }
     }
+#ifndef FROM_START
     ddaOut = vec4(tMax, float(state));
+#endif
     voxelOut = ivec4(cell, steps);
     hitOut = vec4(bestId >= 0 ? bestT : GPURT_FAR, bestU, bestV, float(bestId));
 }

@@ -83,7 +83,7 @@ struct GpuPipeline {
                 k->addInOut(dda, "ddaState").addInOut(voxel, "voxel").addOutput(hit);
                 k->setMask(&activeMask, false);  // the trace loop updates the mask and counts with it
             } else {
-                k->addOutput(dda).addOutput(voxel).addOutput(hit);  // from the start: no mask
+                k->addOutput(voxel).addOutput(hit);  // from the start: no mask, no ray state out
             }
         }
     }

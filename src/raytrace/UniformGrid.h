@@ -16,7 +16,7 @@
 namespace gpurt {
 
 struct GridOptions {
-    float lambda = 2.0f;                   // cells along the longest axis ~ lambda * N^(1/3)
+    float lambda = 3.0f;                   // cells along the longest axis ~ lambda * N^(1/3)
     std::optional<glm::ivec3> resolution;  // overrides the automatic resolution
     int threads = 0;                       // 0: all cores
 };
