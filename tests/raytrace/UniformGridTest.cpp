@@ -207,7 +207,7 @@ TEST(UniformGridTest, BoxIsPaddedBoundsAndResolutionFollowsTheBoxShape) {
         EXPECT_NEAR(grid.max[a] - b.max[a], 1e-4f * largest, 1e-6f * largest);
     }
     // lambda * N^(1/3) cells along the longest axis (x for bunny_lo); the others in proportion.
-    const double alongLongest = 2.0 * std::cbrt(double(scene.triangles.size()));
+    const double alongLongest = double(GridOptions{}.lambda) * std::cbrt(double(scene.triangles.size()));
     const glm::dvec3 boxExtent = glm::dvec3(grid.max) - glm::dvec3(grid.min);
     const double longest = std::max({boxExtent.x, boxExtent.y, boxExtent.z});
     for (int a = 0; a < 3; ++a)
