@@ -40,6 +40,7 @@ struct BenchOptions {
     int traverseSteps = 0;
     std::string mask;
     float lambda = GridOptions{}.lambda;
+    bool skip = true;
     CameraOptions camera;
     ContextOptions context;
 };
@@ -213,6 +214,7 @@ int runBench(const BenchOptions& o) {
     auto start = std::chrono::steady_clock::now();
     GridOptions gridOptions;
     gridOptions.lambda = o.lambda;
+    gridOptions.skip = o.skip;
     const UniformGrid grid = buildGrid(scene, gridOptions);
     const double gridMs = elapsedMs(start);
 
@@ -307,6 +309,8 @@ void addBenchCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--mask", o->mask, "gl masking mode: earlyz|stencil|exit (default: fastest)");
     cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
         ->check(CLI::Range(0.01f, 64.0f));
+    cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
     cmd->callback([&run, o] { run = [o] { return runBench(*o); }; });

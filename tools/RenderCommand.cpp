@@ -33,6 +33,7 @@ struct RenderOptions {
     int traverseSteps = 0;
     float waitThreshold = 0.0f;
     float lambda = GridOptions{}.lambda;
+    bool skip = true;
     int bounces = -1;
     CameraOptions camera;
     ContextOptions context;
@@ -103,6 +104,7 @@ int runRender(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     GridOptions gridOptions;
     gridOptions.lambda = o.lambda;
+    gridOptions.skip = o.skip;
     const UniformGrid grid = buildGrid(scene, gridOptions);
     RenderOutput out;
     if (o.backend == "cpu") {
@@ -166,6 +168,8 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
         ->check(CLI::Range(0.01f, 64.0f));
+    cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
     cmd->callback([&run, o, stats] {

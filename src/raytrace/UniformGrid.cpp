@@ -209,7 +209,7 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     std::vector<uint32_t> cursor(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (const auto& list : references)
         for (const auto& [cell, id] : list) grid.cellTriangles[cursor[cell]++] = id;
-    computeSkip(grid);
+    if (options.skip) computeSkip(grid);
     return grid;
 }
 

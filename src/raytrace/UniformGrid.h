@@ -19,6 +19,7 @@ struct GridOptions {
     float lambda = 3.0f;                   // cells along the longest axis ~ lambda * N^(1/3)
     std::optional<glm::ivec3> resolution;  // overrides the automatic resolution
     int threads = 0;                       // 0: all cores
+    bool skip = true;                      // empty-space skipping distances (computeSkip)
 };
 
 struct UniformGrid {
