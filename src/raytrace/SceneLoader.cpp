@@ -9,6 +9,7 @@
 #include "raytrace/InputError.h"
 #include "raytrace/JsonScene.h"
 #include "raytrace/ObjLoader.h"
+#include "raytrace/PackedScene.h"
 
 namespace gpurt {
 namespace {
@@ -56,16 +57,15 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
 LoadedScene loadScene(const std::filesystem::path& path) {
     switch (detectFormat(path)) {
         case SceneFormat::Packed:
-            // Hook for the packed-scene reader (`gpurt pack` output, issue 4).
-            throw InputError(path.string() + ": packed scenes are not supported yet");
+            return readPackedScene(path);
         case SceneFormat::Json: {
             JsonSceneFile file = loadJsonSceneFile(path);
-            return LoadedScene{std::move(file.scene), file.size};
+            return LoadedScene{std::move(file.scene), file.size, std::nullopt};
         }
         case SceneFormat::Obj:
             break;
     }
-    return LoadedScene{loadObj(path), std::nullopt};
+    return LoadedScene{loadObj(path), std::nullopt, std::nullopt};
 }
 
 }  // namespace gpurt
