@@ -10,5 +10,6 @@ namespace gpurt {
 // Adds a subcommand to `app`; `run` is set to the function to call when it was chosen.
 void addInfoCommand(CLI::App& app, std::function<int()>& run);
 void addRenderCommand(CLI::App& app, std::function<int()>& run);
+void addPackCommand(CLI::App& app, std::function<int()>& run);
 
 }  // namespace gpurt

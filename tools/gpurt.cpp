@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     std::function<int()> run;
     gpurt::addInfoCommand(app, run);
     gpurt::addRenderCommand(app, run);
+    gpurt::addPackCommand(app, run);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
