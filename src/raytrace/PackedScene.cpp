@@ -297,17 +297,21 @@ class SectionDecoder {
                           name_ + ": section " + s.tag);
     }
 
-    // A leading u64 count of records of `recordBytes` each (plus `fixedBytes` per record stored
-    // elsewhere in the section), checked against the section's size before anything is sized
-    // by it.
-    uint64_t count(ByteReader& in, const Section& s, uint64_t recordBytes, bool exact) const {
+    // A section's leading u64 count of records of `recordBytes` each (at least, for records of
+    // varying size), checked against the section's size before anything is sized by it. A
+    // count above `limit` (the GL backend's) is refused first, naming `what` is counted.
+    uint64_t count(ByteReader& in, const Section& s, uint64_t recordBytes, bool exact,
+                   uint64_t limit, const char* what) const {
         if (s.size < 8)
             fail("section " + s.tag + ": " + std::to_string(s.size) +
                  " bytes, too short for its count");
         const uint64_t n = in.u64();
+        if (n > limit)
+            fail(std::to_string(n) + " " + what + "; at most " + std::to_string(limit) +
+                 " fit the GL backend (ids travel as float32, exact below 2^24)");
         const uint64_t room = (s.size - 8) / recordBytes;
         if (n > room || (exact && 8 + n * recordBytes != s.size))
-            fail("section " + s.tag + ": " + std::to_string(n) + " records of " +
+            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " of " +
                  std::to_string(recordBytes) + " bytes do not fit its " + std::to_string(s.size) +
                  " bytes");
         return n;
@@ -315,11 +319,7 @@ class SectionDecoder {
 
     void triangles(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
-        const uint64_t n = count(in, s, kTriangleBytes, true);
-        // Refused here as well as in validateScene: no allocation beyond the GL limit.
-        if (n > kMaxTextureTriangles)
-            fail(std::to_string(n) + " triangles; at most " + std::to_string(kMaxTextureTriangles) +
-                 " fit the GL backend (triangle ids travel as float32, exact below 2^24)");
+        const uint64_t n = count(in, s, kTriangleBytes, true, kMaxTextureTriangles, "triangles");
         scene.triangles.resize(size_t(n));
         for (Triangle& t : scene.triangles) {
             t.v0 = in.vec3();
@@ -332,10 +332,8 @@ class SectionDecoder {
 
     void materials(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
-        const uint64_t n = count(in, s, kMaterialMinBytes, false);
-        if (n > kMaxTextureMaterials)
-            fail(std::to_string(n) + " materials; at most " + std::to_string(kMaxTextureMaterials) +
-                 " fit the GL backend (material ids travel as float32, exact below 2^24)");
+        const uint64_t n =
+            count(in, s, kMaterialMinBytes, false, kMaxTextureMaterials, "materials");
         scene.materials.resize(size_t(n));
         for (uint64_t m = 0; m < n; ++m) {
             Material& mat = scene.materials[size_t(m)];
@@ -358,7 +356,7 @@ class SectionDecoder {
 
     void lights(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
-        const uint64_t n = count(in, s, kLightBytes, true);
+        const uint64_t n = count(in, s, kLightBytes, true, UINT64_MAX, "lights");
         scene.lights.resize(size_t(n));
         for (PointLight& light : scene.lights) {
             light.position = in.vec3();
@@ -567,8 +565,10 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
 
     // Magic and version first: a later version may lay out (and checksum) the rest differently.
     if (size > 0 && std::memcmp(bytes.data(), kPackedSceneMagic, std::min(size, magicSize)) != 0)
-        fail("not a packed gpurt scene (wrong magic; expected " + std::string(kPackedSceneMagic) +
-             ")");
+        fail("not a packed gpurt scene (wrong magic '" +
+             printable(std::string_view(reinterpret_cast<const char*>(bytes.data()),
+                                        std::min(size, magicSize))) +
+             "', expected " + std::string(kPackedSceneMagic) + ")");
     if (size < 12)
         fail("truncated: " + std::to_string(size) + " bytes, less than the " +
              std::to_string(kPackedHeaderBytes) + "-byte header");

@@ -34,7 +34,9 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     in.read(head, static_cast<std::streamsize>(magicSize));
     if (in.bad()) throw InputError(name + ": cannot read");
     const size_t got = static_cast<size_t>(in.gcount());
-    if (got == magicSize && std::memcmp(head, kPackedSceneMagic, magicSize) == 0)
+    // The magic without its last character (the format generation) is enough: the packed
+    // reader then names a magic it does not know, which says more than an OBJ parse error.
+    if (got >= magicSize - 1 && std::memcmp(head, kPackedSceneMagic, magicSize - 1) == 0)
         return SceneFormat::Packed;
 
     // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).

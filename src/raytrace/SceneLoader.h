@@ -24,11 +24,11 @@ struct LoadedScene {
 };
 
 // Reads a scene file: the packed magic at byte 0 -> packed scene (readPackedScene, with its
-// grid); a first non-whitespace byte '{'
-// (after an optional UTF-8 byte order mark) -> JSON scene (loadJsonSceneFile); anything else ->
-// OBJ (loadObj).
-// Throws InputError "FILE: no such file", "FILE: is a directory ...", "FILE: cannot read ..." or
-// the chosen loader's message (readPackedScene, loadJsonSceneFile, loadObj).
+// grid; "GPRTSCN" followed by another character too, which the reader refuses); a first
+// non-whitespace byte '{' (after an optional UTF-8 byte order mark) -> JSON scene
+// (loadJsonSceneFile); anything else -> OBJ (loadObj). Throws InputError "FILE: no such file",
+// "FILE: is a directory ...", "FILE: cannot read ..." or the chosen loader's message
+// (readPackedScene, loadJsonSceneFile, loadObj).
 LoadedScene loadScene(const std::filesystem::path& path);
 
 }  // namespace gpurt
