@@ -350,8 +350,10 @@ TEST_F(Cli, PackRefusesBadOptionsAndWritesNothing) {
     expectRefusedWithout(pack + " --dump " + kTeapot, {"--dump"}, out);
     expectRefusedWithout("pack " + path("missing.obj") + " -o " + path("out.gpscene"),
                          {"missing.obj"}, out);
-    expectRefusedWithout("pack " + kTeapot + " -o " + path("no/such/dir/out.gpscene"),
-                         {"out.gpscene"}, dir / "no/such/dir/out.gpscene");
+    // An output folder that does not exist: refused before --dump writes anything.
+    expectRefusedWithout(
+        "pack " + kTeapot + " -o " + path("no/such/dir/out.gpscene") + " --dump " + path("dump"),
+        {"out.gpscene", "no folder"}, dir / "dump");
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
 }
 

@@ -130,6 +130,11 @@ int runPack(const PackOptions& o) {
     gridOptions.threads = o.threads;
     if (gridOptions.resolution && o.lambdaGiven)
         throw InputError("--lambda: only for --grid auto (the grid is given as " + o.grid + ")");
+    // The output's folder must exist before --dump writes anything.
+    const std::filesystem::path outputFolder = std::filesystem::absolute(o.output).parent_path();
+    if (!std::filesystem::is_directory(outputFolder))
+        throw InputError(o.output + ": cannot create file (no folder " + outputFolder.string() +
+                         ")");
     if (!o.dump.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(o.dump, ec);
