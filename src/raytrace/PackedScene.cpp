@@ -589,8 +589,8 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     const uint32_t stored = load32(bytes.data() + 12);
     const uint32_t computed = crc32Of(bytes.subspan(16));
     if (stored != computed)
-        fail("checksum mismatch (CRC-32 " + hex32(computed) + ", the header says " + hex32(stored) +
-             "): the file is damaged");
+        fail("checksum mismatch (the contents have CRC-32 " + hex32(computed) +
+             ", the header says " + hex32(stored) + "): the file is damaged");
 
     // The section table.
     const uint32_t sectionCount = load32(bytes.data() + 24);
