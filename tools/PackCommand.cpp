@@ -33,6 +33,9 @@ struct PackOptions {
     int threads = 0;
 };
 
+// The largest side of an occupancy picture.
+constexpr int kMaxOccupancySide = 8192;
+
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
@@ -88,8 +91,8 @@ void dumpTexture(const std::filesystem::path& dir, const TextureTexels& t) {
 
 // occupancy_AXIS.png: the longest cell list along AXIS for each cell of the other two, black
 // for none, grey up to white for the grid's longest list; small grids are enlarged so the larger
-// side has at least 256 pixels. Horizontal and vertical axes: z -> (x, y), x -> (z, y),
-// y -> (x, z); the vertical axis grows upwards.
+// side has at least 256 pixels, and huge ones reduced to at most kMaxOccupancySide. Horizontal and
+// vertical axes: z -> (x, y), x -> (z, y), y -> (x, z); the vertical axis grows upwards.
 void dumpOccupancy(const std::filesystem::path& dir, const UniformGrid& grid, uint32_t longest) {
     const char* names[3] = {"x", "y", "z"};
     const int horizontal[3] = {2, 0, 0}, vertical[3] = {1, 2, 1};
@@ -107,18 +110,26 @@ void dumpOccupancy(const std::filesystem::path& dir, const UniformGrid& grid, ui
                         projection[size_t(rows - 1 - cell[v]) * size_t(w) + size_t(cell[h])];
                     p = std::max(p, length);
                 }
+        // Enlarged by `scale` (small grids), or each pixel the maximum of `shrink` x `shrink`
+        // cells (grids wider than a PNG should be; libpng refuses more than 10^6 pixels a row).
         const int scale = std::max(1, 256 / std::max(w, rows));
-        std::vector<glm::vec3> image(size_t(w) * size_t(scale) * size_t(rows) * size_t(scale));
-        for (int y = 0; y < rows * scale; ++y)
-            for (int x = 0; x < w * scale; ++x) {
-                const uint32_t length =
-                    projection[size_t(y / scale) * size_t(w) + size_t(x / scale)];
+        const int shrink = (std::max(w, rows) + kMaxOccupancySide - 1) / kMaxOccupancySide;
+        const int imageW = (w + shrink - 1) / shrink * scale;
+        const int imageH = (rows + shrink - 1) / shrink * scale;
+        std::vector<glm::vec3> image(size_t(imageW) * size_t(imageH));
+        for (int y = 0; y < rows; ++y)
+            for (int x = 0; x < w; ++x) {
+                const uint32_t length = projection[size_t(y) * size_t(w) + size_t(x)];
                 const float grey =
                     length == 0 ? 0.0f : 0.02f + 0.98f * float(length) / float(longest);
-                image[size_t(y) * size_t(w * scale) + size_t(x)] = glm::vec3(grey);
+                for (int dy = 0; dy < scale; ++dy)
+                    for (int dx = 0; dx < scale; ++dx) {
+                        glm::vec3& pixel = image[size_t(y / shrink * scale + dy) * size_t(imageW) +
+                                                 size_t(x / shrink * scale + dx)];
+                        pixel = glm::max(pixel, glm::vec3(grey));
+                    }
             }
-        writePng(dir / (std::string("occupancy_") + names[axis] + ".png"), w * scale, rows * scale,
-                 image);
+        writePng(dir / (std::string("occupancy_") + names[axis] + ".png"), imageW, imageH, image);
     }
 }
 
