@@ -1,16 +1,19 @@
 // The gpurt program as users and scripts run it (CONTRACT.md): exit codes, one-line errors that
 // name the file or option, no output on failure, real PNG and PFM files, statistics as JSON.
 #include <gtest/gtest.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
-#include <algorithm>
 
 namespace {
 
@@ -151,6 +154,269 @@ TEST_F(Cli, RepeatedRendersAreBitIdentical) {
         EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), std::istreambuf_iterator<char>(),
                                std::istreambuf_iterator<char>(b))) << x;
     }
+}
+
+// --- gpurt pack and packed scenes ----------------------------------------------------------------
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void spit(const fs::path& p, const std::string& bytes) {
+    std::ofstream(p, std::ios::binary) << bytes;
+}
+
+// Exit 1, one line on stderr containing each of `mentions`, and no `output` file.
+void expectRefusedWithout(const std::string& args, const std::vector<std::string>& mentions,
+                          const fs::path& output) {
+    const Result r = gpurt(args);
+    EXPECT_EQ(r.code, 1) << args << "\n" << r.err;
+    for (const std::string& m : mentions)
+        EXPECT_NE(r.err.find(m), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(output)) << args;
+}
+
+// The documented header: u32 version at 8, u32 CRC-32 of bytes 16.. at 12; the section table from
+// 32: 24-byte entries (tag, reserved, u64 offset, u64 size), the count at 24.
+uint32_t get32(const std::string& b, size_t at) {
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(b.at(at + size_t(k)));
+    return v;
+}
+void put32(std::string& b, size_t at, uint32_t v) {
+    for (int k = 0; k < 4; ++k) b.at(at + size_t(k)) = static_cast<char>(v >> (8 * k));
+}
+void reseal(std::string& b) {
+    put32(b, 12,
+          uint32_t(crc32(0L, reinterpret_cast<const Bytef*>(b.data()) + 16, uInt(b.size() - 16))));
+}
+size_t sectionOffset(const std::string& b, const std::string& tag) {
+    for (uint32_t k = 0; k < get32(b, 24); ++k)
+        if (b.substr(32 + 24 * size_t(k), 4) == tag) return get32(b, 32 + 24 * size_t(k) + 8);
+    ADD_FAILURE() << "no section " << tag;
+    return 0;
+}
+
+// A PFM as the contract writes it: header, then float32 little-endian scanlines bottom first.
+struct Pfm {
+    std::string kind;
+    int width = 0, height = 0;
+    std::vector<float> bottomFirst;
+};
+Pfm readPfm(const fs::path& p) {
+    const std::string bytes = slurp(p);
+    std::istringstream in(bytes);
+    Pfm pfm;
+    std::string scale;
+    in >> pfm.kind >> pfm.width >> pfm.height >> scale;
+    in.get();
+    const size_t count = size_t(pfm.width) * size_t(pfm.height) * (pfm.kind == "PF" ? 3 : 1);
+    pfm.bottomFirst.resize(count);
+    in.read(reinterpret_cast<char*>(pfm.bottomFirst.data()), std::streamsize(count * 4));
+    EXPECT_TRUE(in) << p;
+    return pfm;
+}
+
+TEST_F(Cli, PackPrintsStatisticsAndIsTheSameForAnyThreadCount) {
+    const Result one = gpurt("pack " + kTeapot + " -o " + path("one.gpscene") + " --threads 1");
+    ASSERT_EQ(one.code, 0) << one.err;
+    for (const char* key :
+         {"triangles    992\n", "grid         ", "non-empty", "per triangle", "longest list",
+          "voxelIndex", "cellTriangles", "triangles  ", "materials  ", "build time"})
+        EXPECT_NE(one.out.find(key), std::string::npos) << key << " not in:\n" << one.out;
+    ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("three.gpscene") + " --threads 3").code, 0);
+    ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("all.gpscene")).code, 0);
+    const std::string bytes = slurp(dir / "one.gpscene");
+    EXPECT_EQ(bytes.substr(0, 8), "GPRTSCN1");
+    EXPECT_EQ(bytes, slurp(dir / "three.gpscene"));
+    EXPECT_EQ(bytes, slurp(dir / "all.gpscene"));
+    // The statistics name the file's real size; nothing but the three files was left behind.
+    EXPECT_NE(one.out.find(", " + std::to_string(bytes.size()) + " bytes"), std::string::npos)
+        << one.out;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
+}
+
+// The OBJ, a JSON scene of it, and both packed: the same PNG and AOVs, byte for byte, per backend.
+TEST_F(Cli, PackedJsonAndObjRoutesRenderIdentically) {
+    write("teapot.json", "{\"meshes\": [{\"file\": \"" + fs::absolute(kTeapot).string() + "\"}]}");
+    ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("obj.gpscene")).code, 0);
+    ASSERT_EQ(gpurt("pack " + path("teapot.json") + " -o " + path("json.gpscene")).code, 0);
+    const std::vector<std::string> routes = {kTeapot, path("teapot.json"), path("obj.gpscene"),
+                                             path("json.gpscene")};
+    const std::vector<std::string> outputs = {".png", "-depth.pfm", "-prim.pfm", "-normal.pfm",
+                                              "-steps.pfm"};
+    for (const char* backend : {"gl", "cpu"}) {
+        for (size_t k = 0; k < routes.size(); ++k) {
+            const std::string stem = path(std::string(backend) + std::to_string(k));
+            const Result r = gpurt(
+                "render " + routes[k] + " --size 48x40 --eye 20,15,40 --target 0,0,0 --backend " +
+                backend + " -o " + stem + ".png --aov depth=" + stem +
+                "-depth.pfm --aov prim=" + stem + "-prim.pfm --aov normal=" + stem +
+                "-normal.pfm --aov steps=" + stem + "-steps.pfm");
+            ASSERT_EQ(r.code, 0) << routes[k] << " " << backend << "\n" << r.err;
+            if (k == 0) continue;
+            for (const std::string& o : outputs) {
+                const std::string first = slurp(path(std::string(backend) + "0" + o));
+                EXPECT_FALSE(first.empty());
+                EXPECT_TRUE(first == slurp(stem + o)) << backend << ": " << routes[k] << " " << o;
+            }
+        }
+    }
+}
+
+// A JSON scene with a camera, lights, mirrors, a background and render settings keeps them all.
+TEST_F(Cli, PackedDemoSceneRendersAsItsJson) {
+    ASSERT_EQ(gpurt("pack scenes/boxes.json -o " + path("boxes.gpscene")).code, 0);
+    for (const char* backend : {"gl", "cpu"}) {
+        const std::string common = std::string(" --backend ") + backend + " --size 64x48 ";
+        ASSERT_EQ(gpurt("render scenes/boxes.json" + common + "-o " + path("a.png") +
+                        " --aov normal=" + path("a.pfm"))
+                      .code,
+                  0);
+        ASSERT_EQ(gpurt("render " + path("boxes.gpscene") + common + "-o " + path("b.png") +
+                        " --aov normal=" + path("b.pfm"))
+                      .code,
+                  0);
+        EXPECT_TRUE(slurp(dir / "a.png") == slurp(dir / "b.png")) << backend;
+        EXPECT_TRUE(slurp(dir / "a.pfm") == slurp(dir / "b.pfm")) << backend;
+    }
+    // The scene's own image size travels in the packed file.
+    const nlohmann::json source = nlohmann::json::parse(slurp("scenes/boxes.json"));
+    const Result r = gpurt("render " + path("boxes.gpscene") + " --backend cpu -o " +
+                           path("c.png") + " --stats=json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto stats = nlohmann::json::parse(r.out);
+    EXPECT_EQ(stats["width"], source["render"]["size"][0]);
+    EXPECT_EQ(stats["height"], source["render"]["size"][1]);
+    EXPECT_EQ(stats["grid_source"], "packed");
+}
+
+TEST_F(Cli, RenderLambdaRebuildsAPackedScenesGrid) {
+    ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("t.gpscene")).code, 0);
+    const std::string render = "render " + path("t.gpscene") + " --backend cpu --size 16x16 -o " +
+                               path("o.png") + " --stats=json";
+    const auto packed = nlohmann::json::parse(gpurt(render).out);
+    const auto rebuilt = nlohmann::json::parse(gpurt(render + " --lambda 4").out);
+    const auto obj =
+        nlohmann::json::parse(gpurt("render " + kTeapot + " --backend cpu --size 16x16 -o " +
+                                    path("o.png") + " --stats=json --lambda 4")
+                                  .out);
+    EXPECT_EQ(packed["grid_source"], "packed");
+    EXPECT_EQ(rebuilt["grid_source"], "built");
+    EXPECT_EQ(rebuilt["grid"], obj["grid"]);
+    EXPECT_NE(rebuilt["grid"], packed["grid"]);
+}
+
+TEST_F(Cli, DamagedPackedFilesAreRefusedWithExit1) {
+    ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("good.gpscene")).code, 0);
+    const std::string good = slurp(dir / "good.gpscene");
+    auto expectBoth = [&](const std::string& name, const std::string& bytes,
+                          const std::string& problem) {
+        spit(dir / name, bytes);
+        expectRefusedWithout("render " + path(name) + " -o " + path("out.png"),
+                             {path(name) + ": ", problem}, dir / "out.png");
+        expectRefusedWithout("pack " + path(name) + " -o " + path("out.gpscene"),
+                             {path(name) + ": ", problem}, dir / "out.gpscene");
+    };
+    for (size_t size :
+         {size_t(8), size_t(20), size_t(32), size_t(1000), good.size() / 2, good.size() - 1})
+        expectBoth("cut" + std::to_string(size) + ".gpscene", good.substr(0, size), "truncated");
+    std::string flipped = good;
+    flipped[good.size() / 2] ^= 0x01;
+    expectBoth("flipped.gpscene", flipped, "checksum mismatch");
+    std::string magic = good;
+    magic[7] = '2';
+    expectBoth("magic.gpscene", magic, "wrong magic 'GPRTSCN2'");
+    std::string version = good;
+    put32(version, 8, 9);
+    reseal(version);
+    expectBoth("version.gpscene", version,
+               "unknown packed format version 9 (this gpurt reads version 1)");
+    std::string lying = good;
+    put32(lying, sectionOffset(lying, "TRIS"), 993);  // one more triangle than the section holds
+    reseal(lying);
+    expectBoth("lying.gpscene", lying, "do not fit");
+}
+
+TEST_F(Cli, PackRefusesBadOptionsAndWritesNothing) {
+    const std::string pack = "pack " + kTeapot + " -o " + path("out.gpscene");
+    const fs::path out = dir / "out.gpscene";
+    expectRefusedWithout(pack + " --grid 0,4,4", {"--grid"}, out);
+    expectRefusedWithout(pack + " --grid 4,4", {"--grid"}, out);
+    expectRefusedWithout(pack + " --grid big", {"--grid"}, out);
+    expectRefusedWithout(pack + " --grid 10000,10000,10000", {"--grid"}, out);
+    expectRefusedWithout(pack + " --grid 4,4,4 --lambda 3", {"--lambda"}, out);
+    expectRefusedWithout(pack + " --lambda 0", {"--lambda"}, out);
+    expectRefusedWithout(pack + " --dump " + kTeapot, {"--dump"}, out);
+    expectRefusedWithout("pack " + path("missing.obj") + " -o " + path("out.gpscene"),
+                         {"missing.obj"}, out);
+    // An output folder that does not exist: refused before --dump writes anything.
+    expectRefusedWithout(
+        "pack " + kTeapot + " -o " + path("no/such/dir/out.gpscene") + " --dump " + path("dump"),
+        {"out.gpscene", "no folder"}, dir / "dump");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+}
+
+TEST_F(Cli, PackDumpWritesTheTexturesAndTheOccupancy) {
+    const Result r = gpurt("pack " + kTeapot + " -o " + path("t.gpscene") +
+                           " --grid 8,6,5 --dump " + path("dump"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex("references +([0-9]+)"))) << r.out;
+    const size_t references = std::stoul(m[1]);
+    // Voxel index: one (start, count) texel per cell, 4096 a row; starts are the counts' prefix
+    // sums.
+    const Pfm index = readPfm(dir / "dump/voxelIndex.pfm");
+    EXPECT_EQ(index.kind, "PF");
+    EXPECT_EQ(index.width, 4096);
+    EXPECT_EQ(index.height, 1);
+    // (An empty cell holds its skip distance, >= 1, where a list start would be.)
+    double start = 0;
+    for (size_t c = 0; c < 8 * 6 * 5; ++c) {
+        if (index.bottomFirst[3 * c + 1] > 0) ASSERT_EQ(index.bottomFirst[3 * c], start) << "cell " << c;
+        else ASSERT_GE(index.bottomFirst[3 * c], 1.0) << "cell " << c;
+        start += index.bottomFirst[3 * c + 1];
+    }
+    EXPECT_EQ(start, double(references));
+    // Cell triangles: 3 texels an entry, 4096 entries a row, w of the first = the triangle id.
+    const Pfm list = readPfm(dir / "dump/cellTriangles.pfm");
+    const Pfm listW = readPfm(dir / "dump/cellTriangles_w.pfm");
+    EXPECT_EQ(list.kind, "PF");
+    EXPECT_EQ(list.width, 3 * 4096);
+    EXPECT_EQ(list.height, int((references + 4095) / 4096));
+    EXPECT_EQ(listW.width, 3 * 4096);
+    // Triangles: 3 texels each, 1024 a row; texel 0 is (v0 of the first face, material id 0).
+    const Pfm triangles = readPfm(dir / "dump/triangles.pfm");
+    const Pfm triangleW = readPfm(dir / "dump/triangles_w.pfm");
+    EXPECT_EQ(triangles.width, 3072);
+    EXPECT_EQ(triangles.height, 1);  // 992 triangles
+    EXPECT_EQ(triangleW.width, 3072);
+    std::ifstream obj(kTeapot);
+    std::vector<std::vector<float>> vertices;
+    int firstVertex = 0;
+    for (std::string line; std::getline(obj, line) && firstVertex == 0;) {
+        std::istringstream in(line);
+        std::string tag;
+        in >> tag;
+        if (tag == "v") {
+            vertices.emplace_back(3);
+            in >> vertices.back()[0] >> vertices.back()[1] >> vertices.back()[2];
+        }
+        if (tag == "f") in >> firstVertex;
+    }
+    ASSERT_GT(firstVertex, 0);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(triangles.bottomFirst[size_t(c)], vertices[size_t(firstVertex - 1)][size_t(c)]);
+    EXPECT_EQ(triangleW.bottomFirst[0], 0.0f);
+    const Pfm materials = readPfm(dir / "dump/materials.pfm");
+    EXPECT_EQ(materials.width, 3);  // the teapot has only the default material
+    EXPECT_EQ(materials.height, 1);
+    for (const char* axis : {"x", "y", "z"})
+        EXPECT_EQ(slurp(dir / "dump" / (std::string("occupancy_") + axis + ".png")).substr(0, 8),
+                  "\x89PNG\r\n\x1a\n")
+            << axis;
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/GpuPipeline.h"
+#include "raytrace/PackedScene.h"
 #include "raytrace/RayMath.h"
+#include "raytrace/SceneTextureLayout.h"
 #include "raytrace/SceneTextures.h"
 #include "raytrace/UniformGrid.h"
 
@@ -235,6 +237,36 @@ TEST_F(TraceKernels, IntersectorFindsTheClosestMollerTrumboreHit) {
     }
     EXPECT_GT(hitsExpected, rays.size() / 8);
     EXPECT_GE(double(agree), 0.999 * double(rays.size())) << agree << " of " << rays.size();
+}
+
+// The textures SceneTextures uploads are the CPU layout that `gpurt pack --dump` writes, texel for
+// texel, also for a scene read back from a packed file (whose grid is not rebuilt).
+TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
+    LoadedScene source;
+    source.scene = randomTriangles(1500, 9);
+    source.scene.materials.push_back(
+        Material{{0.1f, 0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}, 7.0f, {0.25f, 0.5f, 0.75f}, "m"});
+    for (size_t t = 0; t < source.scene.materialIds.size(); t += 2) source.scene.materialIds[t] = 1;
+    const UniformGrid grid = buildGrid(source.scene, {});
+    const LoadedScene packed =
+        decodePackedScene(encodePackedScene(source, grid, "random"), "random.gpscene");
+    const SceneTextures textures(packed.scene, *packed.grid);
+    const std::vector<TextureTexels> cpu = sceneTextureTexels(source.scene, grid);
+    const GPUFloatArray* gpu[4] = {&textures.voxelIndex(), &textures.cellTriangles(),
+                                   &textures.triangles(), &textures.materials()};
+    size_t bytes = 0;
+    for (size_t k = 0; k < 4; ++k) {
+        EXPECT_EQ(gpu[k]->name(), cpu[k].name);
+        EXPECT_EQ(gpu[k]->width(), cpu[k].width) << cpu[k].name;
+        EXPECT_EQ(gpu[k]->height(), cpu[k].rows) << cpu[k].name;
+        EXPECT_EQ(gpu[k]->channels(), cpu[k].channels) << cpu[k].name;
+        if (cpu[k].isFloat)
+            EXPECT_EQ(gpu[k]->download(), cpu[k].floats) << cpu[k].name;
+        else
+            EXPECT_EQ(gpu[k]->downloadUint(), cpu[k].uints) << cpu[k].name;
+        bytes += cpu[k].bytes();
+    }
+    EXPECT_EQ(textures.bytes(), bytes);
 }
 
 }  // namespace

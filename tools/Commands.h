@@ -11,5 +11,6 @@ namespace gpurt {
 void addInfoCommand(CLI::App& app, std::function<int()>& run);
 void addRenderCommand(CLI::App& app, std::function<int()>& run);
 void addBenchCommand(CLI::App& app, std::function<int()>& run);
+void addPackCommand(CLI::App& app, std::function<int()>& run);
 
 }  // namespace gpurt

@@ -1,5 +1,6 @@
 // `gpurt render SCENE -o OUT.png`: renders a scene with the GL stream kernels (default) or the
-// CPU backend, writes the PNG and the requested AOVs (PFM), and prints statistics.
+// CPU backend, writes the PNG and the requested AOVs (PFM), and prints statistics. A packed scene
+// is rendered with the grid it carries.
 #include "Commands.h"
 #include "CommonOptions.h"
 #include "raytrace/SceneLoader.h"
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace gpurt {
 
@@ -33,14 +35,16 @@ struct RenderOptions {
     int traverseSteps = 0;
     float waitThreshold = 0.0f;
     float lambda = GridOptions{}.lambda;
+    bool lambdaGiven = false;
     bool skip = true;
     int bounces = -1;
     CameraOptions camera;
     ContextOptions context;
 };
 
-void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid, const RenderOutput& out,
-                double totalMs) {
+// `gridSource`: "built" or "packed" (the packed scene's own grid).
+void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid,
+                const char* gridSource, const RenderOutput& out, double totalMs) {
     const RenderStats& s = out.stats;
     const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
     const double mrays = totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0;
@@ -50,6 +54,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
         j["height"] = out.height;
         j["triangles"] = scene.triangles.size();
         j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
+        j["grid_source"] = gridSource;
         j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
         j["passes"] = nlohmann::json::object();
         for (const auto& [name, p] : KernelStats::global().passes())
@@ -63,7 +68,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
     }
     std::printf("image      %dx%d\n", out.width, out.height);
     std::printf("triangles  %zu\n", scene.triangles.size());
-    std::printf("grid       %dx%dx%d\n", grid.resolution.x, grid.resolution.y, grid.resolution.z);
+    std::printf("grid       %dx%dx%d (%s)\n", grid.resolution.x, grid.resolution.y,
+                grid.resolution.z, gridSource);
     std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
     if (s.overflowRays) std::printf("overflow   %llu rays hit the step limit\n", (unsigned long long)s.overflowRays);
@@ -102,10 +108,20 @@ int runRender(const RenderOptions& o) {
     settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
 
     const auto start = std::chrono::steady_clock::now();
-    GridOptions gridOptions;
-    gridOptions.lambda = o.lambda;
-    gridOptions.skip = o.skip;
-    const UniformGrid grid = buildGrid(scene, gridOptions);
+    // A packed scene brings its grid; an explicit --lambda asks for a different one, built from
+    // the packed triangles like any other scene's (so every route gives the same image for the
+    // same options).
+    std::optional<UniformGrid> built;
+    if (!loaded.grid || o.lambdaGiven) {
+        GridOptions gridOptions;
+        gridOptions.lambda = o.lambda;
+        gridOptions.skip = o.skip;
+        built = buildGrid(scene, gridOptions);
+    } else if (!o.skip) {
+        built = *loaded.grid;
+        built->skip.clear();
+    }
+    const UniformGrid& grid = built ? *built : *loaded.grid;
     RenderOutput out;
     if (o.backend == "cpu") {
         out = CpuTracer(scene, grid).render(camera, settings);
@@ -135,7 +151,7 @@ int runRender(const RenderOptions& o) {
             writePfm(file, out.width, out.height, 3, flat);
         }
     }
-    if (o.statsGiven) printStats(o, scene, grid, out, totalMs);
+    if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs);
     return 0;
 }
 
@@ -166,14 +182,17 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--wait-threshold", o->waitThreshold,
                     "Run the intersector once this fraction of live rays wait (0: every iteration)")
         ->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
-        ->check(CLI::Range(0.01f, 64.0f));
+    auto* lambda = cmd->add_option("--lambda", o->lambda,
+                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
+                                   "(a packed scene's own grid is used unless this is given)")
+                       ->check(CLI::Range(0.01f, 64.0f));
     cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
         ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
-    cmd->callback([&run, o, stats] {
+    cmd->callback([&run, o, stats, lambda] {
         o->statsGiven = stats->count() > 0;
+        o->lambdaGiven = lambda->count() > 0;
         run = [o] { return runRender(*o); };
     });
 }

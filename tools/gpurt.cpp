@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     gpurt::addInfoCommand(app, run);
     gpurt::addRenderCommand(app, run);
     gpurt::addBenchCommand(app, run);
+    gpurt::addPackCommand(app, run);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages gpurt builds and tests with (only those missing): toolchain,
 # glad (GL loader generator), EGL + Mesa llvmpipe + OSMesa, GLFW, GLM, glslang, GoogleTest,
-# tinyobjloader, nlohmann-json, libpng and Embree (benchmark baseline, test cross-checks).
+# tinyobjloader, nlohmann-json, libpng, zlib (CRC-32 of packed scenes) and Embree (benchmark
+# baseline, test cross-checks).
 set -euo pipefail
 
 packages=(
@@ -9,7 +10,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
   libglfw3-dev libglm-dev glslang-tools
   libgtest-dev libgmock-dev
-  libtinyobjloader-dev nlohmann-json3-dev libpng-dev libcli11-dev
+  libtinyobjloader-dev nlohmann-json3-dev libpng-dev zlib1g-dev libcli11-dev
   libembree-dev
 )
 

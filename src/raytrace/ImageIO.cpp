@@ -14,54 +14,15 @@
 #include <sstream>
 #include <string>
 
-#include <fcntl.h>
 #include <png.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include "raytrace/AtomicFile.h"
 #include "raytrace/InputError.h"
 
 namespace gpurt {
 namespace {
 
 std::string errnoText() { return std::strerror(errno); }
-
-// Runs `write` on a fresh temporary file next to `path`, then renames it to `path`. On any
-// failure the temporary file is removed and InputError("<path>: ...") is thrown.
-void writeAtomically(const std::filesystem::path& path, const std::function<void(FILE*)>& write) {
-    const std::string target = path.string();
-    std::string temp = target + ".tmp-XXXXXX";
-    const int fd = mkstemp(temp.data());
-    if (fd < 0) throw InputError(target + ": cannot create file (" + errnoText() + ")");
-    // mkstemp creates the file 0600; an output image should be readable like any other file.
-    fchmod(fd, 0644);
-    FILE* file = fdopen(fd, "wb");
-    if (!file) {
-        const std::string why = errnoText();
-        close(fd);
-        unlink(temp.c_str());
-        throw InputError(target + ": cannot write file (" + why + ")");
-    }
-    try {
-        write(file);
-        if (std::fflush(file) != 0 || std::ferror(file))
-            throw InputError(target + ": cannot write file (" + errnoText() + ")");
-    } catch (...) {
-        std::fclose(file);
-        unlink(temp.c_str());
-        throw;
-    }
-    if (std::fclose(file) != 0) {
-        const std::string why = errnoText();
-        unlink(temp.c_str());
-        throw InputError(target + ": cannot write file (" + why + ")");
-    }
-    if (std::rename(temp.c_str(), target.c_str()) != 0) {
-        const std::string why = errnoText();
-        unlink(temp.c_str());
-        throw InputError(target + ": cannot write file (" + why + ")");
-    }
-}
 
 // libpng reports errors through longjmp; keep the message for the exception.
 struct PngErrorState {
@@ -137,7 +98,7 @@ void writePng(const std::filesystem::path& path, int width, int height,
     std::vector<unsigned char*> rows(static_cast<size_t>(height));
     for (int j = 0; j < height; ++j)
         rows[size_t(j)] = pixels.data() + size_t(j) * size_t(width) * 3;
-    writeAtomically(path, [&](FILE* file) {
+    writeFileAtomically(path, [&](FILE* file) {
         PngErrorState state;
         if (!writePngRows(file, width, height, rows.data(), state))
             throw InputError(path.string() + ": cannot write PNG (" + state.message + ")");
@@ -152,7 +113,7 @@ void writePfm(const std::filesystem::path& path, int width, int height, int chan
     checkSize(path, width, height, topFirst.size(), size_t(channels));
     const size_t rowFloats = size_t(width) * size_t(channels);
     std::vector<float> row(rowFloats);
-    writeAtomically(path, [&](FILE* file) {
+    writeFileAtomically(path, [&](FILE* file) {
         std::fprintf(file, "%s\n%d %d\n-1.0\n", channels == 1 ? "Pf" : "PF", width, height);
         // The file's first scanline is the image's bottom row.
         for (int j = height - 1; j >= 0; --j) {

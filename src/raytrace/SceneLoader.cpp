@@ -9,6 +9,7 @@
 #include "raytrace/InputError.h"
 #include "raytrace/JsonScene.h"
 #include "raytrace/ObjLoader.h"
+#include "raytrace/PackedScene.h"
 
 namespace gpurt {
 namespace {
@@ -33,7 +34,9 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     in.read(head, static_cast<std::streamsize>(magicSize));
     if (in.bad()) throw InputError(name + ": cannot read");
     const size_t got = static_cast<size_t>(in.gcount());
-    if (got == magicSize && std::memcmp(head, kPackedSceneMagic, magicSize) == 0)
+    // The magic without its last character (the format generation) is enough: the packed
+    // reader then names a magic it does not know, which says more than an OBJ parse error.
+    if (got >= magicSize - 1 && std::memcmp(head, kPackedSceneMagic, magicSize - 1) == 0)
         return SceneFormat::Packed;
 
     // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).
@@ -56,16 +59,15 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
 LoadedScene loadScene(const std::filesystem::path& path) {
     switch (detectFormat(path)) {
         case SceneFormat::Packed:
-            // Hook for the packed-scene reader (`gpurt pack` output, issue 4).
-            throw InputError(path.string() + ": packed scenes are not supported yet");
+            return readPackedScene(path);
         case SceneFormat::Json: {
             JsonSceneFile file = loadJsonSceneFile(path);
-            return LoadedScene{std::move(file.scene), file.size};
+            return LoadedScene{std::move(file.scene), file.size, std::nullopt};
         }
         case SceneFormat::Obj:
             break;
     }
-    return LoadedScene{loadObj(path), std::nullopt};
+    return LoadedScene{loadObj(path), std::nullopt, std::nullopt};
 }
 
 }  // namespace gpurt

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
 
 namespace gpurt {
 
@@ -17,14 +18,17 @@ inline constexpr char kPackedSceneMagic[] = "GPRTSCN1";  // 8 bytes, no terminat
 struct LoadedScene {
     Scene scene;
     std::optional<glm::ivec2> size;  // the image size the scene file asks for, if any
+    // A packed scene's prebuilt grid (readPackedScene); none for OBJ and JSON scenes, whose grid
+    // the renderer builds.
+    std::optional<UniformGrid> grid;
 };
 
-// Reads a scene file: the packed magic at byte 0 -> packed scene; a first non-whitespace byte '{'
-// (after an optional UTF-8 byte order mark) -> JSON scene (loadJsonSceneFile); anything else ->
-// OBJ (loadObj).
-// Throws InputError "FILE: no such file", "FILE: is a directory ...", "FILE: cannot read ..." or
-// the chosen loader's message. Packed scenes are not read yet ("FILE: packed scenes are not
-// supported yet").
+// Reads a scene file: the packed magic at byte 0 -> packed scene (readPackedScene, with its
+// grid; "GPRTSCN" followed by another character too, which the reader refuses); a first
+// non-whitespace byte '{' (after an optional UTF-8 byte order mark) -> JSON scene
+// (loadJsonSceneFile); anything else -> OBJ (loadObj). Throws InputError "FILE: no such file",
+// "FILE: is a directory ...", "FILE: cannot read ..." or the chosen loader's message
+// (readPackedScene, loadJsonSceneFile, loadObj).
 LoadedScene loadScene(const std::filesystem::path& path);
 
 }  // namespace gpurt

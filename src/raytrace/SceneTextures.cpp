@@ -1,5 +1,6 @@
 #include "raytrace/SceneTextures.h"
 
+#include "raytrace/SceneTextureLayout.h"
 #include "stream/StreamErrors.h"
 
 #include <glm/glm.hpp>
@@ -12,92 +13,49 @@ namespace {
 using namespace glm;
 #include "../../glsl/common/scene_layout.h"
 
-// Rows needed to hold `count` items at `perRow` a row (at least one row).
-int rowsFor(size_t count, size_t perRow) { return int(std::max<size_t>(1, (count + perRow - 1) / perRow)); }
-
-void checkFits(const char* what, int width, int rows) {
+void checkFits(const char* what, size_t width, size_t rows) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    if (width > maxSize || rows > maxSize)
-        throw EnvironmentError(std::string("scene too large for this GL: the ") + what + " texture needs " +
-                               std::to_string(width) + "x" + std::to_string(rows) +
-                               " texels, GL_MAX_TEXTURE_SIZE is " + std::to_string(maxSize));
+    if (width > size_t(maxSize) || rows > size_t(maxSize))
+        throw EnvironmentError(std::string("scene too large for this GL: the ") + what +
+                               " texture needs " + std::to_string(width) + "x" +
+                               std::to_string(rows) + " texels, GL_MAX_TEXTURE_SIZE is " +
+                               std::to_string(maxSize));
 }
 
+GPUFloatArray upload(const TextureTexels& texels, GPUFormat format) {
+    GPUFloatArray array(texels.width, texels.rows, format, texels.name);
+    if (texels.isFloat)
+        array.upload(texels.floats);
+    else
+        array.upload(texels.uints);
+    return array;
+}
+
+// Each texture's size is checked against the GL before its texels are laid out.
 GPUFloatArray makeVoxelIndex(const UniformGrid& grid) {
-    const size_t cells = grid.cells();
-    const int rows = rowsFor(cells, GPURT_INDEX_WIDTH);
-    checkFits("voxel index", GPURT_INDEX_WIDTH, rows);
-    std::vector<uint32_t> texels(size_t(GPURT_INDEX_WIDTH) * size_t(rows) * 2, 0u);
-    for (size_t c = 0; c < cells; ++c) {
-        // An empty cell carries its skip distance instead of a list start (count 0 tells).
-        texels[c * 2] = grid.cellStart[c + 1] != grid.cellStart[c] ? grid.cellStart[c] : uint32_t(grid.skipDistance(c));
-        texels[c * 2 + 1] = grid.cellStart[c + 1] - grid.cellStart[c];
-    }
-    GPUFloatArray index(GPURT_INDEX_WIDTH, rows, GPUFormat::RG32UI, "voxelIndex");
-    index.upload(texels);
-    return index;
+    checkFits("voxel index", GPURT_INDEX_WIDTH, textureRowsFor(grid.cells(), GPURT_INDEX_WIDTH));
+    return upload(voxelIndexTexels(grid), GPUFormat::RG32UI);
 }
 
-// Three RGBA32F texels for triangle t: (v0, w), (e1, 0), (e2, 0), with the same float edges
-// as the CPU backend (e = v - v0, rounded once).
-void writeTriangle(const Triangle& tri, float w, float* out) {
-    const vec3 e1 = tri.v1 - tri.v0;
-    const vec3 e2 = tri.v2 - tri.v0;
-    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, 0.0f), vec4(e2, 0.0f)};
-    for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 4; ++c) out[k * 4 + c] = texel[k][c];
-}
-
-// The cells' triangle lists with each triangle's vertices in place of its id (w = the id): the
-// intersector reads three texels per test instead of an id and then three.
 GPUFloatArray makeCellTriangles(const Scene& scene, const UniformGrid& grid) {
-    const size_t refs = grid.cellTriangles.size();
-    const int rows = rowsFor(refs, GPURT_REFS_PER_ROW);
-    const int width = 3 * GPURT_REFS_PER_ROW;
-    checkFits("cell triangle", width, rows);
-    std::vector<float> texels(size_t(width) * size_t(rows) * 4, 0.0f);
-    for (size_t k = 0; k < refs; ++k) {
-        const uint32_t id = grid.cellTriangles[k];
-        writeTriangle(scene.triangles[id], float(id), &texels[k * 12]);
-    }
-    GPUFloatArray list(width, rows, GPUFormat::RGBA32F, "cellTriangles");
-    list.upload(texels);
-    return list;
+    checkFits("cell triangle", 3 * GPURT_REFS_PER_ROW, textureRowsFor(grid.cellTriangles.size(), GPURT_REFS_PER_ROW));
+    return upload(cellTriangleTexels(scene, grid), GPUFormat::RGBA32F);
 }
 
 GPUFloatArray makeTriangles(const Scene& scene) {
     const size_t n = scene.triangles.size();
-    if (n >= (size_t(1) << 24))
+    if (n > kMaxTextureTriangles)
         throw EnvironmentError("scene has " + std::to_string(n) +
                                " triangles; the GL backend carries triangle ids as float32, exact "
                                "only below 16777216 (2^24)");
-    const int rows = rowsFor(n, GPURT_TRIANGLES_PER_ROW);
-    const int width = 3 * GPURT_TRIANGLES_PER_ROW;
-    checkFits("triangle", width, rows);
-    std::vector<float> texels(size_t(width) * size_t(rows) * 4, 0.0f);
-    for (size_t t = 0; t < n; ++t)
-        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), &texels[t * 12]);
-    GPUFloatArray triangles(width, rows, GPUFormat::RGBA32F, "triangles");
-    triangles.upload(texels);
-    return triangles;
+    checkFits("triangle", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(n, GPURT_TRIANGLES_PER_ROW));
+    return upload(triangleTexels(scene), GPUFormat::RGBA32F);
 }
 
 GPUFloatArray makeMaterials(const Scene& scene) {
-    const size_t n = std::max<size_t>(1, scene.materials.size());
-    const int width = int(n) * GPURT_MATERIAL_TEXELS;
-    checkFits("material", width, 1);
-    std::vector<float> texels(size_t(width) * 4, 0.0f);
-    for (size_t m = 0; m < scene.materials.size(); ++m) {
-        const Material& mat = scene.materials[m];
-        const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess), vec4(mat.specular, 0.0f),
-                                                  vec4(mat.reflectivity, 0.0f)};
-        for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
-            for (int c = 0; c < 4; ++c) texels[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] = texel[k][c];
-    }
-    GPUFloatArray materials(width, 1, GPUFormat::RGBA32F, "materials");
-    materials.upload(texels);
-    return materials;
+    checkFits("material", std::max<size_t>(1, scene.materials.size()) * GPURT_MATERIAL_TEXELS, 1);
+    return upload(materialTexels(scene), GPUFormat::RGBA32F);
 }
 
 }  // namespace

@@ -402,9 +402,12 @@ TEST_F(JsonSceneTest, LoadSceneRecognisesTheFormatByContent) {
                 << e.what();
         }
     };
+    // The magic decides, whatever the name: these go to the packed reader (PackedSceneTest).
     expectLoadError(write("scene.gpscene", std::string("GPRTSCN1") + std::string(32, '\0')),
-                    "packed scenes are not supported yet");
-    expectLoadError(write("packed.obj", "GPRTSCN1"), "packed scenes are not supported yet");
+                    "unknown packed format version 0");
+    expectLoadError(write("packed.obj", "GPRTSCN1"), "truncated");
+    expectLoadError(write("later.json", "GPRTSCN2"),
+                    "not a packed gpurt scene (wrong magic 'GPRTSCN2'");
     expectLoadError(dir_ / "missing.json", "no such file");
     expectLoadError(dir_, "is a directory");
 }

@@ -1,0 +1,674 @@
+// Packed scene encoding and decoding. The writer lays the sections out in a fixed order with
+// zero padding, so the bytes depend only on the scene and the grid. The reader checks in the
+// order that lets each check trust the previous ones: magic, version, header size, file size,
+// CRC-32 (zlib), section table, each section's size against its counts (before allocating), and
+// last the contents (validateScene, which the writer runs too so that it never writes a file
+// the reader would refuse).
+#include "raytrace/PackedScene.h"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+
+#include <zlib.h>
+
+#include "raytrace/AtomicFile.h"
+#include "raytrace/InputError.h"
+#include "raytrace/SceneTextureLayout.h"
+
+namespace gpurt {
+namespace {
+
+// Section tags: four ASCII characters, stored as they read.
+constexpr char kTriangles[] = "TRIS";
+constexpr char kMaterials[] = "MATS";
+constexpr char kLights[] = "LGTS";
+constexpr char kCamera[] = "CAMR";
+constexpr char kBackground[] = "BKGD";
+constexpr char kRender[] = "RNDR";
+constexpr char kGrid[] = "GRID";
+constexpr char kCellStart[] = "CELL";
+constexpr char kCellList[] = "LIST";
+// In the order the writer stores them; all but the camera are required.
+constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,  kBackground,
+                                         kRender,    kGrid,      kCellStart, kCellList};
+
+constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
+constexpr size_t kMaterialMinBytes = 10 * 4 + 4;  // ten floats and the name's length
+constexpr size_t kLightBytes = 7 * 4;
+constexpr size_t kCameraBytes = 10 * 4;
+constexpr size_t kBackgroundBytes = 3 * 4;
+constexpr size_t kRenderBytes = 4 * 4;
+constexpr size_t kGridBytes = 3 * 4 + 9 * 4;
+// More sections than a version-1 file can hold is a damaged table, not a big scene.
+constexpr uint32_t kMaxSections = 64;
+// What a JSON scene may say (docs/SCENE_FORMAT.md): render.size and render.max_bounces.
+constexpr uint32_t kMaxImageSide = 16384;
+constexpr uint32_t kMaxBounces = 64;
+
+std::string hex32(uint32_t value) {
+    char text[16];
+    std::snprintf(text, sizeof text, "0x%08x", value);
+    return text;
+}
+
+// A tag or other file bytes as one line of ASCII.
+std::string printable(std::string_view text) {
+    std::string out;
+    for (unsigned char c : text) {
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", c);
+            out += hex;
+        }
+    }
+    return out;
+}
+
+std::string formatFloat(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", double(value));
+    return text;
+}
+
+uint32_t crc32Of(std::span<const unsigned char> bytes) {
+    return static_cast<uint32_t>(
+        crc32_z(crc32_z(0L, Z_NULL, 0), bytes.data(), static_cast<z_size_t>(bytes.size())));
+}
+
+// Little-endian output, whatever the host's byte order.
+class ByteWriter {
+  public:
+    void u32(uint32_t v) {
+        for (int k = 0; k < 4; ++k) bytes_.push_back(static_cast<unsigned char>(v >> (8 * k)));
+    }
+    void u64(uint64_t v) {
+        for (int k = 0; k < 8; ++k) bytes_.push_back(static_cast<unsigned char>(v >> (8 * k)));
+    }
+    void f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
+    void vec3(glm::vec3 v) {
+        f32(v.x);
+        f32(v.y);
+        f32(v.z);
+    }
+    void raw(const void* data, size_t size) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        bytes_.insert(bytes_.end(), p, p + size);
+    }
+    void padTo(size_t alignment) {
+        while (bytes_.size() % alignment != 0) bytes_.push_back(0);
+    }
+    void patch32(size_t at, uint32_t v) {
+        for (int k = 0; k < 4; ++k)
+            bytes_[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
+    }
+    void patch64(size_t at, uint64_t v) {
+        for (int k = 0; k < 8; ++k)
+            bytes_[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
+    }
+    size_t size() const { return bytes_.size(); }
+    std::vector<unsigned char>& bytes() { return bytes_; }
+
+  private:
+    std::vector<unsigned char> bytes_;
+};
+
+uint32_t load32(const unsigned char* p) {
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+uint64_t load64(const unsigned char* p) {
+    return uint64_t(load32(p)) | uint64_t(load32(p + 4)) << 32;
+}
+
+// Little-endian input from one section. Reads past its end throw; the decoder checks sizes
+// first, so that is a second line of defence, not the way errors are found.
+class ByteReader {
+  public:
+    ByteReader(std::span<const unsigned char> bytes, std::string where)
+        : bytes_(bytes), where_(std::move(where)) {}
+
+    uint32_t u32() { return load32(take(4)); }
+    uint64_t u64() { return load64(take(8)); }
+    float f32() { return std::bit_cast<float>(u32()); }
+    glm::vec3 vec3() {
+        glm::vec3 v;
+        v.x = f32();
+        v.y = f32();
+        v.z = f32();
+        return v;
+    }
+    const unsigned char* take(size_t n) {
+        if (n > remaining()) throw InputError(where_ + ": section ends early");
+        const unsigned char* p = bytes_.data() + at_;
+        at_ += n;
+        return p;
+    }
+    size_t remaining() const { return bytes_.size() - at_; }
+
+  private:
+    std::span<const unsigned char> bytes_;
+    size_t at_ = 0;
+    std::string where_;
+};
+
+bool isFinite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
+// the writer (name = the source scene) and the reader (name = the packed file).
+void validateScene(const std::string& name, const LoadedScene& loaded, const UniformGrid& grid) {
+    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
+    const Scene& scene = loaded.scene;
+    const size_t n = scene.triangles.size();
+
+    if (n > kMaxTextureTriangles)
+        fail(std::to_string(n) + " triangles; at most " + std::to_string(kMaxTextureTriangles) +
+             " fit the GL backend (triangle ids travel as float32, exact below 2^24)");
+    if (scene.materials.empty()) fail("no materials (a scene has at least the default material)");
+    if (scene.materials.size() > kMaxTextureMaterials)
+        fail(std::to_string(scene.materials.size()) + " materials; at most " +
+             std::to_string(kMaxTextureMaterials) +
+             " fit the GL backend (material ids travel as float32, exact below 2^24)");
+    if (scene.materialIds.size() != n)
+        fail(std::to_string(scene.materialIds.size()) + " material ids for " + std::to_string(n) +
+             " triangles");
+    for (size_t t = 0; t < n; ++t) {
+        const Triangle& tri = scene.triangles[t];
+        if (!isFinite(tri.v0) || !isFinite(tri.v1) || !isFinite(tri.v2))
+            fail("triangle " + std::to_string(t) + ": vertex coordinates are not finite");
+        if (scene.materialIds[t] >= scene.materials.size())
+            fail("triangle " + std::to_string(t) + ": material id " +
+                 std::to_string(scene.materialIds[t]) + " out of range (" +
+                 std::to_string(scene.materials.size()) + " materials)");
+    }
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
+        if (!isFinite(mat.diffuse) || !isFinite(mat.specular) || !std::isfinite(mat.shininess) ||
+            !isFinite(mat.reflectivity))
+            fail("material " + std::to_string(m) + ": values are not finite");
+    }
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const PointLight& light = scene.lights[l];
+        if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
+            fail("light " + std::to_string(l) + ": values are not finite");
+    }
+    if (scene.camera) {
+        // The checks of a JSON scene's camera: the contract's basis must exist.
+        const CameraSpec& c = *scene.camera;
+        if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up))
+            fail("camera: values are not finite");
+        if (!(c.fovy > 0.0f && c.fovy < 180.0f))
+            fail("camera: fovy " + formatFloat(c.fovy) + " is outside (0, 180)");
+        const glm::vec3 forward = c.target - c.eye;
+        const float forwardLength2 = glm::dot(forward, forward);
+        if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
+            fail("camera: target - eye must be a non-zero vector of finite length");
+        const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), c.up);
+        const float rightLength2 = glm::dot(right, right);
+        if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
+            fail("camera: up must be non-zero and not parallel to target - eye");
+    }
+    if (!isFinite(scene.background)) fail("background colour is not finite");
+    if (scene.maxBounces < 0 || uint32_t(scene.maxBounces) > kMaxBounces)
+        fail("max bounces " + std::to_string(scene.maxBounces) + " outside 0.." +
+             std::to_string(kMaxBounces));
+    if (loaded.size) {
+        const glm::ivec2 s = *loaded.size;
+        if (s.x < 1 || s.y < 1 || uint32_t(s.x) > kMaxImageSide || uint32_t(s.y) > kMaxImageSide)
+            fail("image size " + std::to_string(s.x) + "x" + std::to_string(s.y) + " outside 1.." +
+                 std::to_string(kMaxImageSide) + " per side");
+    }
+
+    // The grid: the shape buildGrid gives and the traversal relies on.
+    const glm::ivec3 r = grid.resolution;
+    if (r.x < 1 || r.y < 1 || r.z < 1)
+        fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
+             std::to_string(r.z) + " is not at least 1 on every axis");
+    uint64_t cells = 1;
+    for (int a = 0; a < 3; ++a) {
+        // Each factor is checked before the product grows, so the product cannot overflow.
+        if (uint64_t(r[a]) > kMaxGridCells || cells * uint64_t(r[a]) > kMaxGridCells)
+            fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
+                 std::to_string(r.z) + " has more than " + std::to_string(kMaxGridCells) +
+                 " cells");
+        cells *= uint64_t(r[a]);
+    }
+    if (!isFinite(grid.min) || !isFinite(grid.max) || !isFinite(grid.cellSize))
+        fail("grid: bounds or cell size are not finite");
+    for (int a = 0; a < 3; ++a)
+        if (!(grid.min[a] < grid.max[a]))
+            fail("grid: bounds are empty on axis " + std::to_string(a));
+    const glm::vec3 cellSize = (grid.max - grid.min) / glm::vec3(r);
+    if (cellSize != grid.cellSize) fail("grid: cell size is not (max - min) / resolution");
+    const Bounds bounds = scene.bounds();
+    if (!bounds.empty())
+        for (int a = 0; a < 3; ++a)
+            if (!(grid.min[a] <= bounds.min[a] && bounds.max[a] <= grid.max[a]))
+                fail("grid: bounds do not contain the scene's triangles");
+    if (grid.cellStart.size() != cells + 1)
+        fail("grid: " + std::to_string(grid.cellStart.size()) + " cell starts for " +
+             std::to_string(cells) + " cells (expected cells + 1)");
+    if (grid.cellStart[0] != 0) fail("grid: the first cell does not start at 0");
+    for (size_t c = 0; c < cells; ++c) {
+        const uint32_t begin = grid.cellStart[c], end = grid.cellStart[c + 1];
+        if (end < begin) fail("grid: cell starts decrease at cell " + std::to_string(c + 1));
+        if (end > grid.cellTriangles.size())
+            fail("grid: cell " + std::to_string(c) + " ends at " + std::to_string(end) +
+                 ", past the " + std::to_string(grid.cellTriangles.size()) + " list entries");
+        for (uint32_t k = begin; k < end; ++k) {
+            const uint32_t id = grid.cellTriangles[k];
+            if (id >= n)
+                fail("grid: cell " + std::to_string(c) + " lists triangle " + std::to_string(id) +
+                     " of " + std::to_string(n));
+            if (k > begin && !(grid.cellTriangles[k - 1] < id))
+                fail("grid: the list of cell " + std::to_string(c) + " is not strictly ascending");
+        }
+    }
+    if (grid.cellStart[cells] != grid.cellTriangles.size())
+        fail("grid: the last cell ends at " + std::to_string(grid.cellStart[cells]) +
+             ", not at the " + std::to_string(grid.cellTriangles.size()) + " list entries");
+}
+
+struct Section {
+    std::string tag;
+    uint64_t offset = 0, size = 0;
+};
+
+// Decodes the sections of a file whose header, size and checksum were checked.
+class SectionDecoder {
+  public:
+    SectionDecoder(std::span<const unsigned char> file, const std::string& name)
+        : file_(file), name_(name) {}
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": " + what); }
+
+    ByteReader reader(const Section& s) const {
+        return ByteReader(file_.subspan(size_t(s.offset), size_t(s.size)),
+                          name_ + ": section " + s.tag);
+    }
+
+    // A section's leading u64 count of records of `recordBytes` each (at least, for records of
+    // varying size), checked against the section's size before anything is sized by it. A
+    // count above `limit` (the GL backend's) is refused first, naming `what` is counted.
+    uint64_t count(ByteReader& in, const Section& s, uint64_t recordBytes, bool exact,
+                   uint64_t limit, const char* what) const {
+        if (s.size < 8)
+            fail("section " + s.tag + ": " + std::to_string(s.size) +
+                 " bytes, too short for its count");
+        const uint64_t n = in.u64();
+        if (n > limit)
+            fail(std::to_string(n) + " " + what + "; at most " + std::to_string(limit) +
+                 " fit the GL backend (ids travel as float32, exact below 2^24)");
+        const uint64_t room = (s.size - 8) / recordBytes;
+        if (n > room || (exact && 8 + n * recordBytes != s.size))
+            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " of " +
+                 std::to_string(recordBytes) + " bytes do not fit its " + std::to_string(s.size) +
+                 " bytes");
+        return n;
+    }
+
+    void triangles(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = count(in, s, kTriangleBytes, true, kMaxTextureTriangles, "triangles");
+        scene.triangles.resize(size_t(n));
+        for (Triangle& t : scene.triangles) {
+            t.v0 = in.vec3();
+            t.v1 = in.vec3();
+            t.v2 = in.vec3();
+        }
+        scene.materialIds.resize(size_t(n));
+        for (uint32_t& id : scene.materialIds) id = in.u32();
+    }
+
+    void materials(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n =
+            count(in, s, kMaterialMinBytes, false, kMaxTextureMaterials, "materials");
+        scene.materials.resize(size_t(n));
+        for (uint64_t m = 0; m < n; ++m) {
+            Material& mat = scene.materials[size_t(m)];
+            mat.diffuse = in.vec3();
+            mat.specular = in.vec3();
+            mat.shininess = in.f32();
+            mat.reflectivity = in.vec3();
+            const uint32_t length = in.u32();
+            const size_t padded = (size_t(length) + 3) / 4 * 4;
+            if (length > in.remaining() || padded > in.remaining())
+                fail("section " + s.tag + ": the name of material " + std::to_string(m) + " (" +
+                     std::to_string(length) + " bytes) runs past the section's end");
+            const unsigned char* text = in.take(padded);
+            mat.name.assign(reinterpret_cast<const char*>(text), length);
+        }
+        if (in.remaining() != 0)
+            fail("section " + s.tag + ": " + std::to_string(in.remaining()) +
+                 " bytes after the last material");
+    }
+
+    void lights(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = count(in, s, kLightBytes, true, UINT64_MAX, "lights");
+        scene.lights.resize(size_t(n));
+        for (PointLight& light : scene.lights) {
+            light.position = in.vec3();
+            light.color = in.vec3();
+            light.intensity = in.f32();
+        }
+    }
+
+    void fixedSize(const Section& s, uint64_t bytes) const {
+        if (s.size != bytes)
+            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
+                 std::to_string(bytes));
+    }
+
+    void camera(const Section& s, Scene& scene) const {
+        fixedSize(s, kCameraBytes);
+        ByteReader in = reader(s);
+        CameraSpec c;
+        c.eye = in.vec3();
+        c.target = in.vec3();
+        c.up = in.vec3();
+        c.fovy = in.f32();
+        scene.camera = c;
+    }
+
+    void background(const Section& s, Scene& scene) const {
+        fixedSize(s, kBackgroundBytes);
+        ByteReader in = reader(s);
+        scene.background = in.vec3();
+    }
+
+    void render(const Section& s, LoadedScene& loaded) const {
+        fixedSize(s, kRenderBytes);
+        ByteReader in = reader(s);
+        const uint32_t bounces = in.u32();
+        const uint32_t hasSize = in.u32();
+        const uint32_t width = in.u32(), height = in.u32();
+        if (bounces > kMaxBounces)
+            fail("max bounces " + std::to_string(bounces) + " outside 0.." +
+                 std::to_string(kMaxBounces));
+        loaded.scene.maxBounces = int(bounces);
+        if (hasSize > 1)
+            fail("section " + s.tag + ": image size flag " + std::to_string(hasSize) +
+                 " is not 0 or 1");
+        if (hasSize) {
+            if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+                fail("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " outside 1.." + std::to_string(kMaxImageSide) + " per side");
+            loaded.size = glm::ivec2(int(width), int(height));
+        } else if (width != 0 || height != 0) {
+            fail("section " + s.tag + ": an image size without the flag that says it is set");
+        }
+    }
+
+    void grid(const Section& s, UniformGrid& grid) const {
+        fixedSize(s, kGridBytes);
+        ByteReader in = reader(s);
+        for (int a = 0; a < 3; ++a) grid.resolution[a] = static_cast<int32_t>(in.u32());
+        grid.min = in.vec3();
+        grid.max = in.vec3();
+        grid.cellSize = in.vec3();
+    }
+
+    // cellStart: one u32 per cell plus one. The resolution was checked against kMaxGridCells.
+    void cellStart(const Section& s, UniformGrid& grid) const {
+        const glm::ivec3 r = grid.resolution;
+        uint64_t cells = 1;
+        for (int a = 0; a < 3; ++a) {
+            if (r[a] < 1 || uint64_t(r[a]) > kMaxGridCells ||
+                cells * uint64_t(r[a]) > kMaxGridCells)
+                fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
+                     std::to_string(r.z) + " is not 1.." + std::to_string(kMaxGridCells) +
+                     " cells");
+            cells *= uint64_t(r[a]);
+        }
+        if (s.size != (cells + 1) * 4)
+            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
+                 std::to_string((cells + 1) * 4) + " for the " + std::to_string(cells) +
+                 " cells of the grid");
+        ByteReader in = reader(s);
+        grid.cellStart.resize(size_t(cells) + 1);
+        for (uint32_t& v : grid.cellStart) v = in.u32();
+    }
+
+    void cellList(const Section& s, UniformGrid& grid) const {
+        if (s.size % 4 != 0)
+            fail("section " + s.tag + ": " + std::to_string(s.size) +
+                 " bytes, not a whole number of ids");
+        ByteReader in = reader(s);
+        grid.cellTriangles.resize(size_t(s.size / 4));
+        for (uint32_t& v : grid.cellTriangles) v = in.u32();
+    }
+
+  private:
+    std::span<const unsigned char> file_;
+    std::string name_;
+};
+
+}  // namespace
+
+std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const UniformGrid& grid,
+                                             const std::string& name) {
+    validateScene(name, loaded, grid);
+    const Scene& scene = loaded.scene;
+
+    ByteWriter out;
+    out.raw(kPackedSceneMagic, sizeof kPackedSceneMagic - 1);
+    out.u32(kPackedSceneVersion);
+    out.u32(0);  // CRC-32, patched last
+    out.u64(0);  // file size, patched last
+    std::vector<const char*> tags;
+    for (const char* tag : kSectionOrder)
+        if (tag != kCamera || scene.camera) tags.push_back(tag);
+    out.u32(static_cast<uint32_t>(tags.size()));
+    out.u32(0);
+    const size_t table = out.size();
+    for (size_t k = 0; k < tags.size(); ++k) {
+        out.raw(tags[k], 4);
+        out.u32(0);
+        out.u64(0);  // offset, patched below
+        out.u64(0);  // size, patched below
+    }
+
+    for (size_t k = 0; k < tags.size(); ++k) {
+        const std::string_view tag = tags[k];
+        out.padTo(8);
+        const size_t start = out.size();
+        if (tag == kTriangles) {
+            out.u64(scene.triangles.size());
+            for (const Triangle& t : scene.triangles) {
+                out.vec3(t.v0);
+                out.vec3(t.v1);
+                out.vec3(t.v2);
+            }
+            for (uint32_t id : scene.materialIds) out.u32(id);
+        } else if (tag == kMaterials) {
+            out.u64(scene.materials.size());
+            for (const Material& m : scene.materials) {
+                out.vec3(m.diffuse);
+                out.vec3(m.specular);
+                out.f32(m.shininess);
+                out.vec3(m.reflectivity);
+                if (m.name.size() > UINT32_MAX)
+                    throw InputError(name + ": a material name is too long");
+                out.u32(static_cast<uint32_t>(m.name.size()));
+                out.raw(m.name.data(), m.name.size());
+                out.padTo(4);
+            }
+        } else if (tag == kLights) {
+            out.u64(scene.lights.size());
+            for (const PointLight& l : scene.lights) {
+                out.vec3(l.position);
+                out.vec3(l.color);
+                out.f32(l.intensity);
+            }
+        } else if (tag == kCamera) {
+            out.vec3(scene.camera->eye);
+            out.vec3(scene.camera->target);
+            out.vec3(scene.camera->up);
+            out.f32(scene.camera->fovy);
+        } else if (tag == kBackground) {
+            out.vec3(scene.background);
+        } else if (tag == kRender) {
+            out.u32(static_cast<uint32_t>(scene.maxBounces));
+            out.u32(loaded.size ? 1 : 0);
+            out.u32(loaded.size ? static_cast<uint32_t>(loaded.size->x) : 0);
+            out.u32(loaded.size ? static_cast<uint32_t>(loaded.size->y) : 0);
+        } else if (tag == kGrid) {
+            for (int a = 0; a < 3; ++a) out.u32(static_cast<uint32_t>(grid.resolution[a]));
+            out.vec3(grid.min);
+            out.vec3(grid.max);
+            out.vec3(grid.cellSize);
+        } else if (tag == kCellStart) {
+            for (uint32_t v : grid.cellStart) out.u32(v);
+        } else if (tag == kCellList) {
+            for (uint32_t v : grid.cellTriangles) out.u32(v);
+        }
+        const size_t entry = table + k * kPackedSectionEntryBytes;
+        out.patch64(entry + 8, start);
+        out.patch64(entry + 16, out.size() - start);
+    }
+    out.padTo(8);
+
+    std::vector<unsigned char>& bytes = out.bytes();
+    out.patch64(16, bytes.size());
+    out.patch32(12, crc32Of(std::span(bytes).subspan(16)));
+    return std::move(bytes);
+}
+
+void writePackedScene(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+    writeFileAtomically(path, [&](std::FILE* file) {
+        if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())
+            throw InputError(path.string() + ": cannot write file (" + std::strerror(errno) + ")");
+    });
+}
+
+void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene,
+                      const UniformGrid& grid, const std::string& name) {
+    writePackedScene(path, encodePackedScene(scene, grid, name));
+}
+
+LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::string& name) {
+    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
+    const size_t size = bytes.size();
+    const size_t magicSize = sizeof kPackedSceneMagic - 1;
+
+    // Magic and version first: a later version may lay out (and checksum) the rest differently.
+    if (size > 0 && std::memcmp(bytes.data(), kPackedSceneMagic, std::min(size, magicSize)) != 0)
+        fail("not a packed gpurt scene (wrong magic '" +
+             printable(std::string_view(reinterpret_cast<const char*>(bytes.data()),
+                                        std::min(size, magicSize))) +
+             "', expected " + std::string(kPackedSceneMagic) + ")");
+    if (size < 12)
+        fail("truncated: " + std::to_string(size) + " bytes, less than the " +
+             std::to_string(kPackedHeaderBytes) + "-byte header");
+    const uint32_t version = load32(bytes.data() + 8);
+    if (version != kPackedSceneVersion)
+        fail("unknown packed format version " + std::to_string(version) +
+             " (this gpurt reads version " + std::to_string(kPackedSceneVersion) + ")");
+    if (size < kPackedHeaderBytes)
+        fail("truncated: " + std::to_string(size) + " bytes, less than the " +
+             std::to_string(kPackedHeaderBytes) + "-byte header");
+    const uint64_t declared = load64(bytes.data() + 16);
+    if (declared > size)
+        fail("truncated: " + std::to_string(size) + " of the " + std::to_string(declared) +
+             " bytes the header gives");
+    if (declared < size)
+        fail(std::to_string(size) + " bytes, but the header gives " + std::to_string(declared) +
+             " (trailing data or a damaged header)");
+    const uint32_t stored = load32(bytes.data() + 12);
+    const uint32_t computed = crc32Of(bytes.subspan(16));
+    if (stored != computed)
+        fail("checksum mismatch (the contents have CRC-32 " + hex32(computed) +
+             ", the header says " + hex32(stored) + "): the file is damaged");
+
+    // The section table.
+    const uint32_t sectionCount = load32(bytes.data() + 24);
+    if (load32(bytes.data() + 28) != 0) fail("reserved header field is not 0");
+    if (sectionCount > kMaxSections ||
+        kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes > size)
+        fail("section table of " + std::to_string(sectionCount) + " entries does not fit the " +
+             std::to_string(size) + "-byte file");
+    std::optional<Section> sections[std::size(kSectionOrder)];
+    auto slotOf = [&](std::string_view tag) -> std::optional<Section>* {
+        for (size_t k = 0; k < std::size(kSectionOrder); ++k)
+            if (tag == kSectionOrder[k]) return &sections[k];
+        return nullptr;
+    };
+    uint64_t end = kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes;
+    for (uint32_t k = 0; k < sectionCount; ++k) {
+        const unsigned char* entry =
+            bytes.data() + kPackedHeaderBytes + size_t(k) * kPackedSectionEntryBytes;
+        Section s;
+        s.tag.assign(reinterpret_cast<const char*>(entry), 4);
+        s.offset = load64(entry + 8);
+        s.size = load64(entry + 16);
+        std::optional<Section>* slot = slotOf(s.tag);
+        if (!slot) fail("unknown section '" + printable(s.tag) + "'");
+        if (load32(entry + 4) != 0) fail("section " + s.tag + ": reserved field is not 0");
+        if (*slot) fail("section " + s.tag + " appears twice");
+        // Sections follow the table in table order, 8-byte aligned, without overlapping.
+        if (s.offset % 8 != 0 || s.offset < end || s.offset > size || s.size > size - s.offset)
+            fail("section " + s.tag + " (offset " + std::to_string(s.offset) + ", " +
+                 std::to_string(s.size) + " bytes) does not fit the " + std::to_string(size) +
+                 "-byte file");
+        end = s.offset + s.size;
+        *slot = s;
+    }
+    for (size_t k = 0; k < std::size(kSectionOrder); ++k)
+        if (!sections[k] && kSectionOrder[k] != kCamera)
+            fail(std::string("section ") + kSectionOrder[k] + " is missing");
+
+    // The sections, each sized by its counts before anything is allocated.
+    const SectionDecoder decoder(bytes, name);
+    LoadedScene loaded;
+    UniformGrid grid;
+    decoder.triangles(**slotOf(kTriangles), loaded.scene);
+    decoder.materials(**slotOf(kMaterials), loaded.scene);
+    decoder.lights(**slotOf(kLights), loaded.scene);
+    if (*slotOf(kCamera)) decoder.camera(**slotOf(kCamera), loaded.scene);
+    decoder.background(**slotOf(kBackground), loaded.scene);
+    decoder.render(**slotOf(kRender), loaded);
+    decoder.grid(**slotOf(kGrid), grid);
+    decoder.cellStart(**slotOf(kCellStart), grid);
+    decoder.cellList(**slotOf(kCellList), grid);
+
+    validateScene(name, loaded, grid);
+    // The skip distances are derived from cellStart (computeSkip) rather than stored.
+    computeSkip(grid);
+    loaded.grid = std::move(grid);
+    return loaded;
+}
+
+LoadedScene readPackedScene(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
+    if (std::filesystem::is_directory(status))
+        throw InputError(name + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
+    // The real file size sizes the buffer, never a field of the file.
+    in.seekg(0, std::ios::end);
+    const std::streamoff length = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (length < 0 || !in) throw InputError(name + ": cannot read");
+    std::vector<unsigned char> bytes(static_cast<size_t>(length));
+    in.read(reinterpret_cast<char*>(bytes.data()), length);
+    if (in.gcount() != length)
+        throw InputError(name + ": cannot read (the file changed while read)");
+    return decodePackedScene(bytes, name);
+}
+
+}  // namespace gpurt

@@ -1,0 +1,110 @@
+#include "raytrace/SceneTextureLayout.h"
+
+#include <algorithm>
+
+#include <glm/glm.hpp>
+
+namespace gpurt {
+
+namespace {
+using namespace glm;
+#include "../../glsl/common/scene_layout.h"
+
+TextureTexels emptyTexture(const char* name, size_t width, size_t rows, int channels,
+                           bool isFloat) {
+    TextureTexels t;
+    t.name = name;
+    t.width = int(width);
+    t.rows = int(rows);
+    t.channels = channels;
+    t.isFloat = isFloat;
+    const size_t values = t.texels() * size_t(channels);
+    if (isFloat)
+        t.floats.assign(values, 0.0f);
+    else
+        t.uints.assign(values, 0u);
+    return t;
+}
+
+}  // namespace
+
+const char* TextureTexels::formatName() const {
+    if (isFloat) return channels == 4 ? "RGBA32F" : channels == 2 ? "RG32F" : "R32F";
+    return channels == 4 ? "RGBA32UI" : channels == 2 ? "RG32UI" : "R32UI";
+}
+
+size_t textureRowsFor(size_t count, size_t perRow) {
+    return std::max<size_t>(1, (count + perRow - 1) / perRow);
+}
+
+TextureTexels voxelIndexTexels(const UniformGrid& grid) {
+    const size_t cells = grid.cells();
+    TextureTexels index = emptyTexture("voxelIndex", GPURT_INDEX_WIDTH,
+                                       textureRowsFor(cells, GPURT_INDEX_WIDTH), 2, false);
+    for (size_t c = 0; c < cells; ++c) {
+        // An empty cell carries its skip distance instead of a list start (count 0 tells).
+        index.uints[c * 2] = grid.cellStart[c + 1] != grid.cellStart[c] ? grid.cellStart[c]
+                                                                         : uint32_t(grid.skipDistance(c));
+        index.uints[c * 2 + 1] = grid.cellStart[c + 1] - grid.cellStart[c];
+    }
+    return index;
+}
+
+namespace {
+// Three texels for triangle t at `out`: (v0, w), (e1, 0), (e2, 0), with the same float edges as
+// the CPU backend (e = v - v0, rounded once).
+void writeTriangle(const Triangle& tri, float w, float* out) {
+    const vec3 e1 = tri.v1 - tri.v0;
+    const vec3 e2 = tri.v2 - tri.v0;
+    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, 0.0f), vec4(e2, 0.0f)};
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 4; ++c) out[k * 4 + c] = texel[k][c];
+}
+}  // namespace
+
+TextureTexels cellTriangleTexels(const Scene& scene, const UniformGrid& grid) {
+    const size_t refs = grid.cellTriangles.size();
+    TextureTexels list = emptyTexture("cellTriangles", 3 * GPURT_REFS_PER_ROW,
+                                      textureRowsFor(refs, GPURT_REFS_PER_ROW), 4, true);
+    for (size_t k = 0; k < refs; ++k) {
+        const uint32_t id = grid.cellTriangles[k];
+        writeTriangle(scene.triangles[id], float(id), &list.floats[k * 12]);
+    }
+    return list;
+}
+
+TextureTexels triangleTexels(const Scene& scene) {
+    const size_t n = scene.triangles.size();
+    TextureTexels triangles = emptyTexture("triangles", 3 * GPURT_TRIANGLES_PER_ROW,
+                                           textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
+    for (size_t t = 0; t < n; ++t)  // rows hold whole triangles: texel 3t is row-major too
+        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), &triangles.floats[t * 12]);
+    return triangles;
+}
+
+TextureTexels materialTexels(const Scene& scene) {
+    const size_t n = std::max<size_t>(1, scene.materials.size());
+    TextureTexels materials = emptyTexture("materials", n * GPURT_MATERIAL_TEXELS, 1, 4, true);
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
+        const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
+                                                   vec4(mat.specular, 0.0f),
+                                                   vec4(mat.reflectivity, 0.0f)};
+        for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
+            for (int c = 0; c < 4; ++c)
+                materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =
+                    texel[k][c];
+    }
+    return materials;
+}
+
+std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid) {
+    std::vector<TextureTexels> all;
+    all.push_back(voxelIndexTexels(grid));
+    all.push_back(cellTriangleTexels(scene, grid));
+    all.push_back(triangleTexels(scene));
+    all.push_back(materialTexels(scene));
+    return all;
+}
+
+}  // namespace gpurt

@@ -1,0 +1,53 @@
+// The CPU side of the scene textures: the texels of the voxel index, the grid element lists, the
+// triangles and the materials, laid out as glsl/common/scene_layout.h says. SceneTextures uploads
+// them; `gpurt pack` reports their sizes and dumps them (--dump) without a GL context.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
+
+namespace gpurt {
+
+// Triangle and material ids travel as float32 in the GL backend (the hit stream, the triangle
+// texture's w), exact only below 2^24: scenes must have fewer of each.
+inline constexpr size_t kMaxTextureTriangles = (size_t(1) << 24) - 1;
+inline constexpr size_t kMaxTextureMaterials = (size_t(1) << 24) - 1;
+
+// One texture's texels, row 0 first (the order of a GL upload), `channels` 32-bit values each:
+// unsigned integers (R32UI, RG32UI) in `uints`, or floats (RGBA32F) in `floats`.
+struct TextureTexels {
+    std::string name;  // the sampler's name in the kernels: voxelIndex, cellTriangles, ...
+    int width = 0, rows = 0, channels = 0;
+    bool isFloat = false;
+    std::vector<uint32_t> uints;
+    std::vector<float> floats;
+
+    size_t texels() const { return size_t(width) * size_t(rows); }
+    size_t bytes() const { return texels() * size_t(channels) * 4; }
+    // "RG32UI", "R32UI" or "RGBA32F".
+    const char* formatName() const;
+};
+
+// Rows needed to hold `count` items at `perRow` a row (at least one row).
+size_t textureRowsFor(size_t count, size_t perRow);
+
+// RG32UI, one texel per cell: (start of the cell's list, its length), or (skip distance, 0) for an
+// empty cell.
+TextureTexels voxelIndexTexels(const UniformGrid& grid);
+// RGBA32F, the cells' lists in order with each triangle in place of its id, three texels an
+// entry: (v0, triangle id), (v1 - v0, 0), (v2 - v0, 0); GPURT_REFS_PER_ROW entries a row.
+TextureTexels cellTriangleTexels(const Scene& scene, const UniformGrid& grid);
+// RGBA32F, three texels a triangle: (v0, material id), (v1 - v0, 0), (v2 - v0, 0).
+TextureTexels triangleTexels(const Scene& scene);
+// RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0) per material.
+TextureTexels materialTexels(const Scene& scene);
+
+// The four, in the order SceneTextures binds them.
+std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
+
+}  // namespace gpurt

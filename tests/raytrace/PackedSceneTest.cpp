@@ -1,0 +1,590 @@
+// Packed scene files (PackedScene.h, docs/PACKED_FORMAT.md): the round trip keeps every field,
+// every grid array and every texel bit for bit; the bytes are the same for any thread count; the
+// CPU backend renders a packed scene exactly as its source; and every kind of damage is refused
+// with one line naming the file, never a crash. Damaged files are made by reading and patching
+// the documented layout here (with zlib's CRC-32 to reseal them), independently of the writer.
+#include "raytrace/PackedScene.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "raytrace/Camera.h"
+#include "raytrace/CpuTracer.h"
+#include "raytrace/InputError.h"
+#include "raytrace/ObjLoader.h"
+#include "raytrace/SceneLoader.h"
+#include "raytrace/SceneTextureLayout.h"
+
+namespace gpurt {
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<unsigned char>;
+
+// --- The documented layout, read and patched independently of PackedScene.cpp ---------------
+
+uint32_t get32(const Bytes& b, size_t at) {
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | b.at(at + size_t(k));
+    return v;
+}
+uint64_t get64(const Bytes& b, size_t at) {
+    return get32(b, at) | uint64_t(get32(b, at + 4)) << 32;
+}
+void put32(Bytes& b, size_t at, uint32_t v) {
+    for (int k = 0; k < 4; ++k) b.at(at + size_t(k)) = static_cast<unsigned char>(v >> (8 * k));
+}
+void put64(Bytes& b, size_t at, uint64_t v) {
+    put32(b, at, static_cast<uint32_t>(v));
+    put32(b, at + 4, static_cast<uint32_t>(v >> 32));
+}
+
+// The CRC-32 field (offset 12) over bytes 16..end, recomputed after a patch.
+void reseal(Bytes& b) {
+    put32(b, 12, static_cast<uint32_t>(crc32(0L, b.data() + 16, static_cast<uInt>(b.size() - 16))));
+}
+
+struct Entry {
+    size_t at;  // of the table entry
+    uint64_t offset, size;
+};
+
+// The section table entry with this tag (header: 32 bytes; entries of 24 bytes from offset 32:
+// tag, reserved, u64 offset, u64 size).
+Entry section(const Bytes& b, const char* tag) {
+    const uint32_t count = get32(b, 24);
+    for (uint32_t k = 0; k < count; ++k) {
+        const size_t at = 32 + 24 * size_t(k);
+        if (std::memcmp(b.data() + at, tag, 4) == 0)
+            return {at, get64(b, at + 8), get64(b, at + 16)};
+    }
+    ADD_FAILURE() << "no section " << tag;
+    return {0, 0, 0};
+}
+
+// --- Scenes ------------------------------------------------------------------------------------
+
+LoadedScene objScene(const char* model) {
+    return LoadedScene{loadObj(std::string("../shared/models/") + model), std::nullopt,
+                       std::nullopt};
+}
+
+// Every field set, with values a careless writer would get wrong: -0, a denormal, the largest
+// float, material names of every length modulo 4 (padding) and with non-ASCII bytes.
+LoadedScene unusualScene() {
+    LoadedScene loaded = objScene("cornell_box.obj");
+    Scene& s = loaded.scene;
+    for (int k = 0; k < 5; ++k) {
+        Material m;
+        m.name = std::string(size_t(k), 'a') + (k == 3 ? "\xff\x01" : "");
+        m.diffuse = glm::vec3(-0.0f, std::numeric_limits<float>::denorm_min(), 0.25f * float(k));
+        m.specular = glm::vec3(std::numeric_limits<float>::max(), 0.5f, 1.0f);
+        m.shininess = 200.0f + float(k);
+        m.reflectivity = glm::vec3(0.1f * float(k));
+        s.materials.push_back(m);
+    }
+    for (size_t t = 0; t < s.materialIds.size(); ++t)
+        s.materialIds[t] = uint32_t(t % s.materials.size());
+    s.lights.push_back({{1.5f, -2.0f, 3.0f}, {0.9f, 0.8f, 0.7f}, 123.0f});
+    s.lights.push_back({{-0.0f, 0.0f, 1e30f}, {0.0f, 0.0f, 0.0f}, 0.0f});
+    s.camera =
+        CameraSpec{{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 39.3077f};
+    s.background = glm::vec3(0.125f, -0.0f, 3.5f);
+    s.maxBounces = 7;
+    loaded.size = glm::ivec2(321, 123);
+    return loaded;
+}
+
+template <class T>
+bool sameBits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
+    const Scene &x = a.scene, &y = b.scene;
+    ASSERT_EQ(x.triangles.size(), y.triangles.size());
+    for (size_t t = 0; t < x.triangles.size(); ++t) {
+        ASSERT_TRUE(sameBits(x.triangles[t].v0, y.triangles[t].v0)) << "triangle " << t;
+        ASSERT_TRUE(sameBits(x.triangles[t].v1, y.triangles[t].v1)) << "triangle " << t;
+        ASSERT_TRUE(sameBits(x.triangles[t].v2, y.triangles[t].v2)) << "triangle " << t;
+    }
+    EXPECT_EQ(x.materialIds, y.materialIds);
+    ASSERT_EQ(x.materials.size(), y.materials.size());
+    for (size_t m = 0; m < x.materials.size(); ++m) {
+        EXPECT_TRUE(sameBits(x.materials[m].diffuse, y.materials[m].diffuse)) << m;
+        EXPECT_TRUE(sameBits(x.materials[m].specular, y.materials[m].specular)) << m;
+        EXPECT_TRUE(sameBits(x.materials[m].shininess, y.materials[m].shininess)) << m;
+        EXPECT_TRUE(sameBits(x.materials[m].reflectivity, y.materials[m].reflectivity)) << m;
+        EXPECT_EQ(x.materials[m].name, y.materials[m].name) << m;
+    }
+    ASSERT_EQ(x.lights.size(), y.lights.size());
+    for (size_t l = 0; l < x.lights.size(); ++l) {
+        EXPECT_TRUE(sameBits(x.lights[l].position, y.lights[l].position)) << l;
+        EXPECT_TRUE(sameBits(x.lights[l].color, y.lights[l].color)) << l;
+        EXPECT_TRUE(sameBits(x.lights[l].intensity, y.lights[l].intensity)) << l;
+    }
+    ASSERT_EQ(x.camera.has_value(), y.camera.has_value());
+    if (x.camera) {
+        EXPECT_TRUE(sameBits(x.camera->eye, y.camera->eye));
+        EXPECT_TRUE(sameBits(x.camera->target, y.camera->target));
+        EXPECT_TRUE(sameBits(x.camera->up, y.camera->up));
+        EXPECT_TRUE(sameBits(x.camera->fovy, y.camera->fovy));
+    }
+    EXPECT_TRUE(sameBits(x.background, y.background));
+    EXPECT_EQ(x.maxBounces, y.maxBounces);
+    EXPECT_EQ(a.size, b.size);
+}
+
+void expectSameGrid(const UniformGrid& a, const UniformGrid& b) {
+    EXPECT_EQ(a.resolution, b.resolution);
+    EXPECT_TRUE(sameBits(a.min, b.min));
+    EXPECT_TRUE(sameBits(a.max, b.max));
+    EXPECT_TRUE(sameBits(a.cellSize, b.cellSize));
+    EXPECT_EQ(a.cellStart, b.cellStart);
+    EXPECT_EQ(a.cellTriangles, b.cellTriangles);
+}
+
+void expectSameTextures(const LoadedScene& a, const UniformGrid& gridA, const LoadedScene& b,
+                        const UniformGrid& gridB) {
+    const std::vector<TextureTexels> x = sceneTextureTexels(a.scene, gridA);
+    const std::vector<TextureTexels> y = sceneTextureTexels(b.scene, gridB);
+    ASSERT_EQ(x.size(), y.size());
+    for (size_t k = 0; k < x.size(); ++k) {
+        EXPECT_EQ(x[k].name, y[k].name);
+        EXPECT_EQ(x[k].width, y[k].width) << x[k].name;
+        EXPECT_EQ(x[k].rows, y[k].rows) << x[k].name;
+        EXPECT_EQ(x[k].channels, y[k].channels) << x[k].name;
+        EXPECT_EQ(x[k].uints, y[k].uints) << x[k].name;
+        ASSERT_EQ(x[k].floats.size(), y[k].floats.size()) << x[k].name;
+        if (!x[k].floats.empty()) {
+            EXPECT_EQ(std::memcmp(x[k].floats.data(), y[k].floats.data(), x[k].floats.size() * 4),
+                      0)
+                << x[k].name;
+        }
+    }
+}
+
+void expectRoundTrip(const LoadedScene& source) {
+    const UniformGrid grid = buildGrid(source.scene, {});
+    const Bytes bytes = encodePackedScene(source, grid, "source");
+    const LoadedScene packed = decodePackedScene(bytes, "packed.gpscene");
+    ASSERT_TRUE(packed.grid);
+    expectSameScene(source, packed);
+    expectSameGrid(grid, *packed.grid);
+    expectSameTextures(source, grid, packed, *packed.grid);
+    // And again: packing what was read gives the same bytes.
+    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), bytes);
+}
+
+// The message of the InputError that decoding `bytes` throws ("" and a failure if none).
+std::string refusal(const Bytes& bytes) {
+    try {
+        decodePackedScene(bytes, "damaged.gpscene");
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind("damaged.gpscene: ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        return message;
+    }
+    ADD_FAILURE() << "accepted";
+    return "";
+}
+
+#define EXPECT_REFUSED(bytes, part)                       \
+    do {                                                  \
+        const std::string message_ = refusal(bytes);      \
+        EXPECT_NE(message_.find(part), std::string::npos) \
+            << "'" << (part) << "' not in: " << message_; \
+    } while (0)
+
+class PackedSceneTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("gpurt-packed-" + std::to_string(::getpid()) + "-" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        source_ = unusualScene();
+        grid_ = buildGrid(source_.scene, {});
+        bytes_ = encodePackedScene(source_, grid_, "source");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path dir_;
+    LoadedScene source_;
+    UniformGrid grid_;
+    Bytes bytes_;
+};
+
+// --- Round trip and determinism ------------------------------------------------------------
+
+TEST_F(PackedSceneTest, RoundTripKeepsEveryFieldAndTexel) {
+    expectRoundTrip(source_);
+    for (const char* model : {"teapot.obj", "cornell_box.obj", "bunny_lo.obj"}) {
+        SCOPED_TRACE(model);
+        expectRoundTrip(objScene(model));
+    }
+    SCOPED_TRACE("scenes/highlow.json");
+    expectRoundTrip(loadScene("scenes/highlow.json"));
+}
+
+TEST_F(PackedSceneTest, RoundTripOfAnEmptyScene) {
+    LoadedScene empty;
+    empty.scene.materials.push_back(Material{});
+    expectRoundTrip(empty);
+}
+
+TEST_F(PackedSceneTest, HeaderFollowsTheDocumentedLayout) {
+    EXPECT_EQ(std::string(bytes_.begin(), bytes_.begin() + 8), "GPRTSCN1");
+    EXPECT_EQ(get32(bytes_, 8), 1u);
+    EXPECT_EQ(get64(bytes_, 16), bytes_.size());
+    EXPECT_EQ(get32(bytes_, 12), uint32_t(crc32(0L, bytes_.data() + 16, uInt(bytes_.size() - 16))));
+    // Triangles: u64 count, 9 floats a triangle, then one u32 material id a triangle.
+    const Entry tris = section(bytes_, "TRIS");
+    const size_t n = source_.scene.triangles.size();
+    EXPECT_EQ(tris.offset % 8, 0u);
+    EXPECT_EQ(tris.size, 8 + 40 * n);
+    EXPECT_EQ(get64(bytes_, tris.offset), n);
+    EXPECT_EQ(std::bit_cast<float>(get32(bytes_, tris.offset + 8 + 4)),
+              source_.scene.triangles[0].v0.y);
+    EXPECT_EQ(get32(bytes_, tris.offset + 8 + 36 * n + 4 * 5), source_.scene.materialIds[5]);
+    // The grid arrays, as UniformGrid holds them.
+    const Entry cells = section(bytes_, "CELL"), list = section(bytes_, "LIST");
+    EXPECT_EQ(cells.size, 4 * (grid_.cells() + 1));
+    EXPECT_EQ(list.size, 4 * grid_.cellTriangles.size());
+    EXPECT_EQ(get32(bytes_, cells.offset + 4 * grid_.cells()), grid_.cellTriangles.size());
+    const Entry g = section(bytes_, "GRID");
+    EXPECT_EQ(int(get32(bytes_, g.offset + 4)), grid_.resolution.y);
+    EXPECT_EQ(std::bit_cast<float>(get32(bytes_, g.offset + 12 + 12)), grid_.max.x);
+}
+
+TEST_F(PackedSceneTest, FilesAreRecognisedByTheirMagicAndCarryTheirGrid) {
+    // Named like an OBJ; the magic decides.
+    const fs::path path = dir_ / "looks-like.obj";
+    writePackedScene(path, source_, grid_, "source");
+    const LoadedScene loaded = loadScene(path);
+    ASSERT_TRUE(loaded.grid);
+    expectSameScene(source_, loaded);
+    expectSameGrid(grid_, *loaded.grid);
+    // Written atomically: nothing but the file in the folder.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+    std::ifstream in(path, std::ios::binary);
+    EXPECT_EQ(Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), bytes_);
+}
+
+TEST_F(PackedSceneTest, SameBytesForAnyThreadCount) {
+    const LoadedScene bunny = objScene("bunny_lo.obj");
+    GridOptions options;
+    options.threads = 1;
+    const Bytes one = encodePackedScene(bunny, buildGrid(bunny.scene, options), "bunny_lo");
+    for (int threads : {2, 3, 8, 0}) {
+        options.threads = threads;
+        EXPECT_EQ(encodePackedScene(bunny, buildGrid(bunny.scene, options), "bunny_lo"), one)
+            << threads << " threads";
+    }
+}
+
+TEST_F(PackedSceneTest, CpuBackendRendersThePackedSceneExactlyAsItsSource) {
+    const LoadedScene teapot = objScene("teapot.obj");
+    const UniformGrid grid = buildGrid(teapot.scene, {});
+    const LoadedScene packed =
+        decodePackedScene(encodePackedScene(teapot, grid, "teapot"), "teapot.gpscene");
+    const CameraBasis camera = makeCamera({{20, 15, 40}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 40, 30);
+    RenderSettings settings;
+    settings.width = 40;
+    settings.height = 30;
+    const RenderOutput a = CpuTracer(teapot.scene, grid).render(camera, settings);
+    const RenderOutput b = CpuTracer(packed.scene, *packed.grid).render(camera, settings);
+    auto bytesOf = [](const auto& v) { return v.size() * sizeof(v[0]); };
+    ASSERT_EQ(a.color.size(), b.color.size());
+    EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), bytesOf(a.color)), 0);
+    EXPECT_EQ(std::memcmp(a.depth.data(), b.depth.data(), bytesOf(a.depth)), 0);
+    EXPECT_EQ(std::memcmp(a.prim.data(), b.prim.data(), bytesOf(a.prim)), 0);
+    EXPECT_EQ(std::memcmp(a.normal.data(), b.normal.data(), bytesOf(a.normal)), 0);
+    EXPECT_EQ(std::memcmp(a.steps.data(), b.steps.data(), bytesOf(a.steps)), 0);
+}
+
+// --- The writer refuses what the reader would --------------------------------------------------
+
+TEST_F(PackedSceneTest, WriterRefusesScenesItCannotPack) {
+    LoadedScene bad = source_;
+    bad.scene.materialIds[3] = uint32_t(bad.scene.materials.size());
+    EXPECT_THROW(encodePackedScene(bad, grid_, "source"), InputError);
+    UniformGrid otherGrid = buildGrid(objScene("teapot.obj").scene, {});
+    try {
+        encodePackedScene(source_, otherGrid, "source.obj");
+        ADD_FAILURE() << "a grid of another scene was packed";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("source.obj: ", 0), 0u) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "x.gpscene"));
+    EXPECT_THROW(writePackedScene(dir_ / "x.gpscene", bad, grid_, "source"), InputError);
+    EXPECT_FALSE(fs::exists(dir_ / "x.gpscene"));
+}
+
+// --- Damage ------------------------------------------------------------------------------------
+
+TEST_F(PackedSceneTest, RefusesAWrongMagic) {
+    Bytes b = bytes_;
+    b[3] = 'X';
+    EXPECT_REFUSED(b, "wrong magic");
+    EXPECT_REFUSED((Bytes{'h', 'e', 'l', 'l', 'o'}), "wrong magic");
+}
+
+TEST_F(PackedSceneTest, RefusesATruncatedFile) {
+    for (size_t size :
+         {size_t(0), size_t(5), size_t(8), size_t(11), size_t(12), size_t(31), size_t(32),
+          size_t(100), bytes_.size() / 2, bytes_.size() - 8, bytes_.size() - 1}) {
+        SCOPED_TRACE(size);
+        EXPECT_REFUSED(Bytes(bytes_.begin(), bytes_.begin() + std::ptrdiff_t(size)), "truncated");
+    }
+}
+
+TEST_F(PackedSceneTest, RefusesAFlippedByteByItsChecksum) {
+    for (size_t at :
+         {size_t(12), size_t(16), size_t(24), size_t(40), section(bytes_, "TRIS").offset + 20,
+          section(bytes_, "LIST").offset, bytes_.size() - 1}) {
+        SCOPED_TRACE(at);
+        Bytes b = bytes_;
+        b[at] ^= 0x10;
+        // A flip in the file size field reads as a file of another length.
+        EXPECT_REFUSED(b, at >= 16 && at < 24 ? "bytes" : "checksum mismatch");
+    }
+}
+
+TEST_F(PackedSceneTest, RefusesAnUnknownVersionAndSaysWhichItKnows) {
+    Bytes b = bytes_;
+    put32(b, 8, 2);
+    reseal(b);
+    EXPECT_REFUSED(b, "unknown packed format version 2 (this gpurt reads version 1)");
+    put32(b, 8, 0xffffffffu);
+    EXPECT_REFUSED(b, "version 4294967295");
+}
+
+TEST_F(PackedSceneTest, RefusesAFileSizeThatDisagreesWithTheHeader) {
+    Bytes longer = bytes_;
+    longer.resize(bytes_.size() + 8, 0);
+    reseal(longer);
+    EXPECT_REFUSED(longer, "trailing data");
+    Bytes lying = bytes_;
+    put64(lying, 16, uint64_t(1) << 40);
+    reseal(lying);
+    EXPECT_REFUSED(lying, "truncated");
+}
+
+// Patches with a correct checksum: only the reader's own checks stand between them and a crash.
+TEST_F(PackedSceneTest, RefusesSizesThatLie) {
+    const Entry tris = section(bytes_, "TRIS");
+    auto patched = [&](auto patch) {
+        Bytes b = bytes_;
+        patch(b);
+        reseal(b);
+        return b;
+    };
+    const uint64_t n = source_.scene.triangles.size();
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, n + 1); }), "do not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, n - 1); }), "do not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, uint64_t(1) << 62); }),
+                   "triangles");
+    // Beyond the GL backend's exact-id limit, refused before the section size is even looked at.
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, uint64_t(1) << 24); }),
+                   "16777216 triangles; at most 16777215");
+    // Section sizes and offsets past the end, overflowing, misaligned or overlapping.
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.at + 16, ~uint64_t(0)); }),
+                   "does not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.at + 16, b.size()); }), "does not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.at + 8, ~uint64_t(7)); }), "does not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.at + 8, tris.offset + 4); }),
+                   "does not fit");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, section(b, "MATS").at + 8, tris.offset); }),
+                   "does not fit");
+    // The section table.
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, 0xffffffffu); }), "section table");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, get32(b, 24) - 1); }), "is missing");
+    EXPECT_REFUSED(patched([&](Bytes& b) { std::memcpy(b.data() + tris.at, "TRIX", 4); }),
+                   "unknown section 'TRIX'");
+    EXPECT_REFUSED(
+        patched([&](Bytes& b) { std::memcpy(b.data() + section(b, "MATS").at, "TRIS", 4); }),
+        "appears twice");
+    // Counts of materials and lights, and a material name running past its section.
+    const Entry mats = section(bytes_, "MATS");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, mats.offset, uint64_t(1) << 40); }),
+                   "materials");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, mats.offset + 8 + 40, 0x7fffffffu); }),
+                   "runs past");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, section(b, "LGTS").offset, 1000); }),
+                   "do not fit");
+}
+
+TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
+    auto patched = [&](auto patch) {
+        Bytes b = bytes_;
+        patch(b);
+        reseal(b);
+        return b;
+    };
+    const Entry g = section(bytes_, "GRID"), cells = section(bytes_, "CELL"),
+                list = section(bytes_, "LIST");
+    const glm::ivec3 r = grid_.resolution;
+    // Resolution: the product must match the cell starts and stay within kMaxGridCells.
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, g.offset, uint32_t(r.x + 1)); }),
+                   "cells of the grid");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, g.offset, 0); }), "resolution");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, g.offset, 0x80000000u); }), "resolution");
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       put32(b, g.offset, 1 << 13);
+                       put32(b, g.offset + 4, 1 << 13);
+                       put32(b, g.offset + 8, 1 << 13);
+                   }),
+                   "cells");
+    // Bounds and cell size: finite, ordered, consistent, containing the triangles.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_REFUSED(
+        patched([&](Bytes& b) { put32(b, g.offset + 12, std::bit_cast<uint32_t>(nan)); }),
+        "not finite");
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       put32(b, g.offset + 36, std::bit_cast<uint32_t>(grid_.cellSize.x * 1.5f));
+                   }),
+                   "cell size");
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       // Both the box and the cell size moved: consistent, but the scene sticks
+                       // out.
+                       const float maxX = grid_.min.x + 0.5f * (grid_.max.x - grid_.min.x);
+                       put32(b, g.offset + 24, std::bit_cast<uint32_t>(maxX));
+                       put32(b, g.offset + 36,
+                             std::bit_cast<uint32_t>((maxX - grid_.min.x) / float(r.x)));
+                   }),
+                   "do not contain");
+    // Cell starts: from 0, never decreasing, ending at the list's size.
+    const size_t cellCount = grid_.cells();
+    size_t nonEmpty = 0;
+    while (grid_.cellStart[nonEmpty + 1] == grid_.cellStart[nonEmpty]) ++nonEmpty;
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, cells.offset, 1); }), "first cell");
+    // Cell nonEmpty + 1 starts after 0, so a 0 after it is a decrease.
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, cells.offset + 4 * (nonEmpty + 2), 0); }),
+                   "decrease");
+    ASSERT_LT(grid_.cellStart[cellCount - 1], grid_.cellTriangles.size())
+        << "the last cell is empty";
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       put32(b, cells.offset + 4 * cellCount,
+                             uint32_t(grid_.cellTriangles.size() - 1));
+                   }),
+                   "last cell ends");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, cells.offset + 4 * cellCount, 0xffffffffu); }),
+                   "past the");
+    // Triangle ids: in range and ascending within a cell.
+    EXPECT_REFUSED(
+        patched([&](Bytes& b) { put32(b, list.offset, uint32_t(source_.scene.triangles.size())); }),
+        "lists triangle");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, list.offset + list.size - 4, 0xffffffffu); }),
+                   "lists triangle");
+    const uint32_t begin = grid_.cellStart[nonEmpty];
+    ASSERT_GE(grid_.cellStart[nonEmpty + 1] - begin, 2u);
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       put32(b, list.offset + 4 * begin, grid_.cellTriangles[begin + 1]);
+                       put32(b, list.offset + 4 * (begin + 1), grid_.cellTriangles[begin]);
+                   }),
+                   "not strictly ascending");
+}
+
+TEST_F(PackedSceneTest, RefusesBadValues) {
+    auto patched = [&](auto patch) {
+        Bytes b = bytes_;
+        patch(b);
+        reseal(b);
+        return b;
+    };
+    const Entry tris = section(bytes_, "TRIS");
+    const size_t n = source_.scene.triangles.size();
+    const uint32_t inf = std::bit_cast<uint32_t>(std::numeric_limits<float>::infinity());
+    const uint32_t nan = std::bit_cast<uint32_t>(std::numeric_limits<float>::quiet_NaN());
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, tris.offset + 8 + 36 * 2 + 4, nan); }),
+                   "triangle 2: vertex coordinates are not finite");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, tris.offset + 8 + 36 * n + 4 * 9, 99); }),
+                   "triangle 9: material id 99 out of range");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, section(b, "MATS").offset + 8 + 24, inf); }),
+                   "material 0");
+    EXPECT_REFUSED(
+        patched([&](Bytes& b) { put32(b, section(b, "LGTS").offset + 8 + 28 + 24, nan); }),
+        "light 1");
+    const Entry cam = section(bytes_, "CAMR");
+    EXPECT_REFUSED(
+        patched([&](Bytes& b) { put32(b, cam.offset + 36, std::bit_cast<uint32_t>(180.0f)); }),
+        "fovy");
+    EXPECT_REFUSED(patched([&](Bytes& b) {
+                       for (int k = 0; k < 3; ++k)
+                           put32(b, cam.offset + 12 + 4 * size_t(k),
+                                 get32(b, cam.offset + 4 * size_t(k)));
+                   }),
+                   "target - eye");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, section(b, "BKGD").offset, inf); }),
+                   "background");
+    const Entry render = section(bytes_, "RNDR");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset, 65); }), "max bounces 65");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 8, 0); }), "image size 0x123");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 12, 16385); }), "image size");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 4, 2); }), "flag");
+}
+
+// Every truncation and, at every offset, flipped bits both as they are (the checksum catches
+// them) and resealed (the section and content checks must): each outcome is a clean InputError
+// or a scene that loads and renders.
+TEST_F(PackedSceneTest, FuzzedFilesNeverCrash) {
+    LoadedScene small = objScene("cornell_box.obj");
+    small.scene.lights.push_back({{1, 2, 3}, {1, 1, 1}, 5.0f});
+    small.scene.camera = CameraSpec{{278, 273, -800}, {278, 273, 0}, {0, 1, 0}, 39.3f};
+    small.size = glm::ivec2(16, 16);
+    GridOptions options;
+    options.resolution = glm::ivec3(3, 2, 3);
+    const Bytes bytes = encodePackedScene(small, buildGrid(small.scene, options), "cornell");
+    size_t refused = 0, loaded = 0;
+    auto attempt = [&](const Bytes& b) {
+        try {
+            const LoadedScene scene = decodePackedScene(b, "fuzz.gpscene");
+            ++loaded;
+            const CameraBasis camera = makeCamera(*scene.scene.camera, 4, 4);
+            RenderSettings settings;
+            settings.width = settings.height = 4;
+            settings.threads = 1;
+            CpuTracer(scene.scene, *scene.grid).render(camera, settings);
+        } catch (const InputError& e) {
+            ++refused;
+            const std::string message = e.what();
+            ASSERT_EQ(message.rfind("fuzz.gpscene: ", 0), 0u) << message;
+            ASSERT_EQ(message.find('\n'), std::string::npos) << message;
+        }
+    };
+    for (size_t size = 0; size < bytes.size(); ++size)
+        attempt(Bytes(bytes.begin(), bytes.begin() + std::ptrdiff_t(size)));
+    EXPECT_EQ(refused, bytes.size());
+    std::mt19937 rng(4);
+    for (size_t at = 0; at < bytes.size(); ++at) {
+        for (const unsigned mask : {0x01u, 0x80u, 0xffu, unsigned(rng() % 255 + 1)}) {
+            Bytes b = bytes;
+            b[at] ^= static_cast<unsigned char>(mask);
+            const size_t before = refused;
+            attempt(b);
+            EXPECT_EQ(refused, before + 1) << "unsealed flip at " << at;
+            reseal(b);
+            attempt(b);
+        }
+    }
+    // Most resealed flips hit floats and names, which may load; the rest are refused.
+    EXPECT_GT(loaded, 0u);
+    EXPECT_GT(refused, bytes.size() * 4);
+}
+
+}  // namespace
+}  // namespace gpurt

@@ -1,0 +1,128 @@
+// The CPU layout of the scene textures (SceneTextureLayout.h) against glsl/common/scene_layout.h,
+// with the texel addresses worked out here from the header's description: cell c at (c % width,
+// c / width) of the voxel index, list entry k at (k % width, k / width), triangle t's texels at
+// row t / TRIANGLES_PER_ROW, columns 3 * (t % TRIANGLES_PER_ROW) + 0..2; every other texel 0.
+#include "raytrace/SceneTextureLayout.h"
+
+#include <algorithm>
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace gpurt {
+namespace {
+
+using namespace glm;
+#include "../../glsl/common/scene_layout.h"
+
+// More triangles than one texture row holds, and more cells and list entries than one row.
+Scene scatteredTriangles(int n) {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> pos(-5.0f, 5.0f), offset(-0.3f, 0.3f);
+    Scene scene;
+    for (int m = 0; m < 3; ++m) {
+        Material material;
+        material.diffuse = vec3(0.1f * float(m), 0.2f, 0.3f);
+        material.specular = vec3(0.4f, 0.5f * float(m), 0.6f);
+        material.shininess = 10.0f + float(m);
+        material.reflectivity = vec3(0.05f * float(m));
+        scene.materials.push_back(material);
+    }
+    for (int t = 0; t < n; ++t) {
+        const vec3 c(pos(rng), pos(rng), pos(rng));
+        scene.triangles.push_back({c, c + vec3(offset(rng), offset(rng), offset(rng)),
+                                   c + vec3(offset(rng), offset(rng), offset(rng))});
+        scene.materialIds.push_back(uint32_t(t % 3));
+    }
+    return scene;
+}
+
+TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
+    const Scene scene = scatteredTriangles(2500);
+    GridOptions options;
+    options.resolution = ivec3(40, 30, 20);  // 24000 cells: several index rows
+    const UniformGrid grid = buildGrid(scene, options);
+    ASSERT_GT(grid.cellTriangles.size(), size_t(GPURT_REFS_PER_ROW));
+
+    const TextureTexels index = voxelIndexTexels(grid);
+    EXPECT_EQ(index.name, "voxelIndex");
+    EXPECT_EQ(std::string(index.formatName()), "RG32UI");
+    EXPECT_EQ(index.width, GPURT_INDEX_WIDTH);
+    EXPECT_EQ(index.rows, (24000 + GPURT_INDEX_WIDTH - 1) / GPURT_INDEX_WIDTH);
+    for (size_t c = 0; c < index.texels(); ++c) {
+        const size_t x = c % GPURT_INDEX_WIDTH, y = c / GPURT_INDEX_WIDTH;
+        const uint32_t* texel = &index.uints[(y * GPURT_INDEX_WIDTH + x) * 2];
+        const bool cell = c < grid.cells();
+        const bool empty = cell && grid.cellStart[c + 1] == grid.cellStart[c];
+        ASSERT_EQ(texel[0], !cell ? 0u : empty ? uint32_t(std::max<int>(1, grid.skip[c])) : grid.cellStart[c]) << c;
+        ASSERT_EQ(texel[1], cell ? grid.cellStart[c + 1] - grid.cellStart[c] : 0u) << c;
+    }
+
+    const TextureTexels list = cellTriangleTexels(scene, grid);
+    EXPECT_EQ(std::string(list.formatName()), "RGBA32F");
+    EXPECT_EQ(list.width, 3 * GPURT_REFS_PER_ROW);
+    EXPECT_EQ(size_t(list.rows), (grid.cellTriangles.size() + GPURT_REFS_PER_ROW - 1) / GPURT_REFS_PER_ROW);
+    for (size_t k = 0; k < size_t(list.rows) * GPURT_REFS_PER_ROW; ++k) {
+        const size_t row = k / GPURT_REFS_PER_ROW, column = 3 * (k % GPURT_REFS_PER_ROW);
+        const float* texel = &list.floats[(row * size_t(list.width) + column) * 4];
+        if (k >= grid.cellTriangles.size()) {
+            for (int c = 0; c < 12; ++c) ASSERT_EQ(texel[c], 0.0f) << k;
+            continue;
+        }
+        const uint32_t id = grid.cellTriangles[k];
+        const Triangle& tri = scene.triangles[id];
+        const vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(id), e1.x, e1.y, e1.z, 0.0f,
+                                    e2.x, e2.y, e2.z, 0.0f};
+        for (int c = 0; c < 12; ++c) ASSERT_EQ(texel[c], expected[c]) << "entry " << k << " value " << c;
+    }
+
+    const TextureTexels triangles = triangleTexels(scene);
+    EXPECT_EQ(std::string(triangles.formatName()), "RGBA32F");
+    EXPECT_EQ(triangles.width, 3 * GPURT_TRIANGLES_PER_ROW);
+    EXPECT_EQ(triangles.rows, 3);  // 2500 triangles, 1024 a row
+    for (size_t t = 0; t < 3 * GPURT_TRIANGLES_PER_ROW; ++t) {
+        const size_t row = t / GPURT_TRIANGLES_PER_ROW, column = 3 * (t % GPURT_TRIANGLES_PER_ROW);
+        const float* texel = &triangles.floats[(row * size_t(triangles.width) + column) * 4];
+        if (t >= scene.triangles.size()) {
+            for (int k = 0; k < 12; ++k) ASSERT_EQ(texel[k], 0.0f) << t;
+            continue;
+        }
+        const Triangle& tri = scene.triangles[t];
+        const vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(t % 3), e1.x, e1.y,
+                                    e1.z,     0.0f,     e2.x,     e2.y,         e2.z, 0.0f};
+        for (int k = 0; k < 12; ++k) ASSERT_EQ(texel[k], expected[k]) << t << " " << k;
+    }
+
+    const TextureTexels materials = materialTexels(scene);
+    EXPECT_EQ(materials.width, 3 * GPURT_MATERIAL_TEXELS);
+    EXPECT_EQ(materials.rows, 1);
+    for (size_t m = 0; m < 3; ++m) {
+        const Material& mat = scene.materials[m];
+        const float expected[12] = {
+            mat.diffuse.x,      mat.diffuse.y,      mat.diffuse.z,      mat.shininess,
+            mat.specular.x,     mat.specular.y,     mat.specular.z,     0.0f,
+            mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f};
+        for (int k = 0; k < 12; ++k) EXPECT_EQ(materials.floats[m * 12 + size_t(k)], expected[k]);
+    }
+
+    // Sizes as SceneTextures allocates them: texels x channels x 4 bytes.
+    EXPECT_EQ(index.bytes(), size_t(index.width) * size_t(index.rows) * 2 * 4);
+    EXPECT_EQ(triangles.bytes(), size_t(3 * GPURT_TRIANGLES_PER_ROW) * 3 * 4 * 4);
+}
+
+TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
+    Scene empty;
+    empty.materials.push_back(Material{});
+    const std::vector<TextureTexels> all = sceneTextureTexels(empty, buildGrid(empty, {}));
+    ASSERT_EQ(all.size(), 4u);
+    for (const TextureTexels& t : all) {
+        EXPECT_EQ(t.rows, 1) << t.name;
+        EXPECT_EQ(t.isFloat ? t.floats.size() : t.uints.size(), t.texels() * size_t(t.channels))
+            << t.name;
+    }
+}
+
+}  // namespace
+}  // namespace gpurt
