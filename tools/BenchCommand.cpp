@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <optional>
 
 namespace gpurt {
 
@@ -40,6 +41,7 @@ struct BenchOptions {
     int traverseSteps = 0;
     std::string mask;
     float lambda = GridOptions{}.lambda;
+    bool lambdaGiven = false;
     bool skip = true;
     CameraOptions camera;
     ContextOptions context;
@@ -212,10 +214,18 @@ int runBench(const BenchOptions& o) {
     const bool shadow = o.rays == "shadow";
 
     auto start = std::chrono::steady_clock::now();
-    GridOptions gridOptions;
-    gridOptions.lambda = o.lambda;
-    gridOptions.skip = o.skip;
-    const UniformGrid grid = buildGrid(scene, gridOptions);
+    // A packed scene's own grid unless --lambda asks for another (as gpurt render does).
+    std::optional<UniformGrid> built;
+    if (!loaded.grid || o.lambdaGiven) {
+        GridOptions gridOptions;
+        gridOptions.lambda = o.lambda;
+        gridOptions.skip = o.skip;
+        built = buildGrid(scene, gridOptions);
+    } else if (!o.skip) {
+        built = *loaded.grid;
+        built->skip.clear();
+    }
+    const UniformGrid& grid = built ? *built : *loaded.grid;
     const double gridMs = elapsedMs(start);
 
     RayStream rays = primaryRays(camera);
@@ -307,13 +317,18 @@ void addBenchCommand(CLI::App& app, std::function<int()>& run) {
                     "gl: grid cells per trace pass (0 = default: whole traversal when fused, 16 when split)")
         ->check(CLI::Range(0, 1 << 20));
     cmd->add_option("--mask", o->mask, "gl masking mode: earlyz|stencil|exit (default: fastest)");
-    cmd->add_option("--lambda", o->lambda, "Grid density: cells along the longest axis ~ lambda * N^(1/3)")
-        ->check(CLI::Range(0.01f, 64.0f));
+    auto* lambda = cmd->add_option("--lambda", o->lambda,
+                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
+                                   "(a packed scene's own grid is used unless this is given)")
+                       ->check(CLI::Range(0.01f, 64.0f));
     cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
         ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
-    cmd->callback([&run, o] { run = [o] { return runBench(*o); }; });
+    cmd->callback([&run, o, lambda] {
+        o->lambdaGiven = lambda->count() > 0;
+        run = [o] { return runBench(*o); };
+    });
 }
 
 }  // namespace gpurt
