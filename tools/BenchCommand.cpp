@@ -273,8 +273,9 @@ int runBench(const BenchOptions& o) {
         std::printf("%s\n", j.dump().c_str());
         return 0;
     }
-    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (built in %.0f ms)\n", o.scene.c_str(),
-                scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z, gridMs);
+    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (%s in %.0f ms)\n", o.scene.c_str(),
+                scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z,
+                built ? "built" : "packed, read", gridMs);
     std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
                 (unsigned long long)rayCount, camera.width, camera.height, o.runs);
     std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",
