@@ -112,6 +112,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (int b = 0; b <= maxBounces; ++b) {
         const uint64_t rays = traceLoop(p, false);
         (b == 0 ? out.stats.primaryRays : out.stats.secondaryRays) += rays;
+        if (b > 0 && rays == 0) break;  // no mirror ray left: nothing more to shade (the count ends the loop)
         if (b == 0) {
             // The primary AOVs, before shadow rays reuse the ray streams.
             const auto hits = p.hit.download();
