@@ -144,16 +144,17 @@ BenchResult benchCpu(const BenchOptions& o, const BenchInput& in) {
 }
 
 #ifdef GPURT_HAVE_EMBREE
-// Embree's best of single rays and 8-ray packets (its fastest way for coherent rays).
+// Embree's best of single rays and 8- and 16-ray packets (packets are its fastest way for
+// coherent rays; 16 wide uses AVX-512 where the CPU has it).
 BenchResult benchEmbree(const BenchOptions& o, const BenchInput& in) {
     const EmbreeTracer tracer(in.scene, resolveThreads(o.threads));
     BenchResult best;
-    for (EmbreeMode mode : {EmbreeMode::Single, EmbreeMode::Packet8}) {
+    for (const auto& [mode, width] : {std::pair{EmbreeMode::Single, "1"}, {EmbreeMode::Packet8, "8"},
+                                      {EmbreeMode::Packet16, "16"}}) {
         BenchResult r;
         r.backend = "embree";
         r.threads = tracer.threads();
-        const char* call = mode == EmbreeMode::Single ? (in.shadow ? "rtcOccluded1" : "rtcIntersect1")
-                                                      : (in.shadow ? "rtcOccluded8" : "rtcIntersect8");
+        const std::string call = std::string(in.shadow ? "rtcOccluded" : "rtcIntersect") + width;
         r.renderer = "Embree " + EmbreeTracer::version() + ", " + call + ", high-quality BVH";
         measure(r, o.runs, [&] { return tracer.trace(in.rays, in.shadow, mode, r.hits); });
         if (best.rays == 0 || r.ms < best.ms) best = std::move(r);

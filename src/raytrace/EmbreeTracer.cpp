@@ -95,18 +95,33 @@ void traceSingle(RTCScene scene, const RayStream& rays, bool anyHit, size_t begi
     }
 }
 
-// Rays [begin, end) in packets of 8 consecutive elements.
-void tracePacket8(RTCScene scene, const RayStream& rays, bool anyHit, size_t begin, size_t end,
+// Embree's 8- and 16-wide packet calls, chosen by the packet type.
+void intersectPacket(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit8* p) {
+    rtcIntersect8(valid, scene, context, p);
+}
+void intersectPacket(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit16* p) {
+    rtcIntersect16(valid, scene, context, p);
+}
+void occludedPacket(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRay8* p) {
+    rtcOccluded8(valid, scene, context, p);
+}
+void occludedPacket(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRay16* p) {
+    rtcOccluded16(valid, scene, context, p);
+}
+
+// Rays [begin, end) in packets of N consecutive elements (RTCRayHit8 or RTCRayHit16).
+template <size_t N, typename Packet>
+void tracePackets(RTCScene scene, const RayStream& rays, bool anyHit, size_t begin, size_t end,
                   std::vector<glm::vec4>& hits) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) RTCRayHit8 packet;
-    alignas(32) int valid[8];
-    for (size_t first = begin; first < end; first += 8) {
-        const size_t count = std::min<size_t>(8, end - first);
-        RTCRay8& r = packet.ray;
-        for (size_t k = 0; k < 8; ++k) {
+    alignas(64) Packet packet;
+    alignas(64) int valid[N];
+    for (size_t first = begin; first < end; first += N) {
+        const size_t count = std::min<size_t>(N, end - first);
+        auto& r = packet.ray;
+        for (size_t k = 0; k < N; ++k) {
             const size_t i = first + k;
             valid[k] = k < count && rays.tLimit[i] >= 0.0f ? -1 : 0;
             const glm::vec3 o = valid[k] ? rays.origin[i] : glm::vec3(0.0f);
@@ -122,8 +137,8 @@ void tracePacket8(RTCScene scene, const RayStream& rays, bool anyHit, size_t beg
             packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
         }
-        if (anyHit) rtcOccluded8(valid, scene, &context, &r);
-        else rtcIntersect8(valid, scene, &context, &packet);
+        if (anyHit) occludedPacket(valid, scene, &context, &r);
+        else intersectPacket(valid, scene, &context, &packet);
         for (size_t k = 0; k < count; ++k) {
             if (!valid[k]) continue;
             glm::vec4& h = hits[first + k];
@@ -142,7 +157,9 @@ uint64_t EmbreeTracer::trace(const RayStream& rays, bool anyHit, EmbreeMode mode
     hits.assign(n, glm::vec4(std::numeric_limits<float>::infinity(), 0.0f, 0.0f, kNoHit));
     // Chunks of one stream row (an image row for primary rays: coherent), handed out dynamically.
     parallelChunks(n, std::max<size_t>(8, size_t(rays.width)), threads_, [&](size_t begin, size_t end, size_t) {
-        if (mode == EmbreeMode::Packet8) tracePacket8(handles_->scene, rays, anyHit, begin, end, hits);
+        if (mode == EmbreeMode::Packet8) tracePackets<8, RTCRayHit8>(handles_->scene, rays, anyHit, begin, end, hits);
+        else if (mode == EmbreeMode::Packet16)
+            tracePackets<16, RTCRayHit16>(handles_->scene, rays, anyHit, begin, end, hits);
         else traceSingle(handles_->scene, rays, anyHit, begin, end, hits);
     });
     return uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));

@@ -16,8 +16,8 @@ namespace gpurt {
 struct RayStream;
 
 // How rays are handed to Embree: one at a time (rtcIntersect1 / rtcOccluded1) or in packets of
-// 8 consecutive rays (rtcIntersect8 / rtcOccluded8).
-enum class EmbreeMode { Single, Packet8 };
+// 8 or 16 consecutive rays (rtcIntersect8/16, rtcOccluded8/16).
+enum class EmbreeMode { Single, Packet8, Packet16 };
 
 class EmbreeTracer {
   public:
