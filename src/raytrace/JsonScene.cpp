@@ -502,8 +502,11 @@ class SceneReader {
 }  // namespace
 
 JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path) {
+    return parseJsonScene(readSceneText(path), path);
+}
+
+JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::path& path) {
     const std::string name = path.string();
-    const std::string text = readSceneText(path);
     json root;
     DuplicateKeyCheck duplicates(name);
     try {

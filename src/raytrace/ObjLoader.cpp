@@ -286,9 +286,10 @@ glm::vec3 toVec3(const tinyobj::real_t* p) {
 
 }  // namespace
 
-Scene loadObj(const std::filesystem::path& path) {
+Scene loadObj(const std::filesystem::path& path) { return parseObj(readWholeFile(path), path); }
+
+Scene parseObj(std::string text, const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::string text = readWholeFile(path);
     // A UTF-8 byte order mark would hide the first line's keyword from tinyobjloader.
     if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
 
