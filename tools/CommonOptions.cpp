@@ -1,5 +1,7 @@
 #include "CommonOptions.h"
 
+#include "raytrace/SceneScale.h"
+
 #include <sstream>
 #include <vector>
 
@@ -47,7 +49,7 @@ glm::ivec2 CameraOptions::imageSize(std::optional<glm::ivec2> sceneSize) const {
     return sceneSize.value_or(glm::ivec2(512, 512));
 }
 
-CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize) const {
+CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int scaleExponent) const {
     CameraSpec spec;
     if (!fovy.empty()) {
         float f = 0.0f;
@@ -63,8 +65,8 @@ CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize) cons
         const float f = spec.fovy;
         spec = defaultCamera(scene.bounds(), imageSize.x, imageSize.y, f);
     }
-    if (!eye.empty()) spec.eye = parseVec3("--eye", eye);
-    if (!target.empty()) spec.target = parseVec3("--target", target);
+    if (!eye.empty()) spec.eye = rescalePoint(parseVec3("--eye", eye), scaleExponent);
+    if (!target.empty()) spec.target = rescalePoint(parseVec3("--target", target), scaleExponent);
     if (!up.empty()) spec.up = parseVec3("--up", up);
     return makeCamera(spec, imageSize.x, imageSize.y);
 }

@@ -56,7 +56,9 @@ struct CameraOptions {
     glm::ivec2 imageSize(std::optional<glm::ivec2> sceneSize) const;
     // The camera: the scene's (or the contract's default camera for its bounds), with each
     // option given overriding its part. Throws InputError for an unusable camera.
-    CameraBasis camera(const Scene& scene, glm::ivec2 size) const;
+    // `scaleExponent`: the scene was rescaled by 2^-scaleExponent for rendering (SceneScale.h);
+    // --eye and --target, given in the scene file's units, are rescaled alike.
+    CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
 };
 
 }  // namespace gpurt

@@ -8,6 +8,7 @@
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/ImageIO.h"
+#include "raytrace/SceneScale.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/KernelStats.h"
 
@@ -98,10 +99,15 @@ int runRender(const RenderOptions& o) {
     if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
         throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
 
-    const LoadedScene loaded = loadScene(o.scene);
+    LoadedScene loaded = loadScene(o.scene);
+    // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
+    // a power of two, which gives the same image (SceneScale.h); depths are scaled back below.
+    const int scaleExponent = renderScaleExponent(loaded.scene);
+    rescaleScene(loaded.scene, scaleExponent);
+    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    const CameraBasis camera = o.camera.camera(scene, size);
+    const CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
     RenderSettings settings;
     settings.width = size.x;
     settings.height = size.y;
@@ -138,6 +144,7 @@ int runRender(const RenderOptions& o) {
     }
     const double totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    unscaleDepth(out.depth, scaleExponent);
 
     writePng(o.output, out.width, out.height, out.color);
     for (const auto& [name, file] : aovs) {

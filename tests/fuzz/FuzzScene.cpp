@@ -12,6 +12,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/InputError.h"
+#include "raytrace/SceneScale.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt::fuzz {
@@ -56,12 +57,16 @@ const std::filesystem::path& scratchFolder() {
 
 void silenceWarnings() { std::cerr.setstate(std::ios::badbit); }
 
-void exerciseScene(const Scene& scene) {
-    FUZZ_CHECK(!scene.materials.empty());
-    FUZZ_CHECK(scene.materialIds.size() == scene.triangles.size());
-    for (uint32_t id : scene.materialIds) FUZZ_CHECK(id < scene.materials.size());
-    for (const Triangle& t : scene.triangles) FUZZ_CHECK(finite(t.v0) && finite(t.v1) && finite(t.v2));
+void exerciseScene(const Scene& original) {
+    FUZZ_CHECK(!original.materials.empty());
+    FUZZ_CHECK(original.materialIds.size() == original.triangles.size());
+    for (uint32_t id : original.materialIds) FUZZ_CHECK(id < original.materials.size());
+    for (const Triangle& t : original.triangles)
+        FUZZ_CHECK(finite(t.v0) && finite(t.v1) && finite(t.v2));
 
+    // As the render command does: far from unit size, the scene is rescaled (SceneScale.h).
+    Scene scene = original;
+    rescaleScene(scene, renderScaleExponent(scene));
     GridOptions gridOptions;
     gridOptions.threads = 1;
     const UniformGrid grid = buildGrid(scene, gridOptions);
@@ -70,11 +75,15 @@ void exerciseScene(const Scene& scene) {
 
     constexpr int kSize = 6;
     CameraBasis camera;
-    try {
-        camera = makeCamera(scene.camera ? *scene.camera : defaultCamera(scene.bounds(), kSize, kSize),
-                            kSize, kSize);
-    } catch (const InputError&) {
-        return;
+    if (scene.camera) {
+        try {
+            camera = makeCamera(*scene.camera, kSize, kSize);
+        } catch (const InputError&) {
+            return;  // the file's camera may be unusable after all (e.g. at 1e38 from the scene)
+        }
+    } else {
+        // The default camera exists for every scene a reader accepts.
+        camera = makeCamera(defaultCamera(scene.bounds(), kSize, kSize), kSize, kSize);
     }
     RenderSettings settings;
     settings.threads = 1;

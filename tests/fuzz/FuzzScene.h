@@ -14,10 +14,11 @@ namespace gpurt::fuzz {
 const std::filesystem::path& scratchFolder();
 
 // Checks what every later stage relies on (one material per triangle, ids in range, finite
-// vertices), then runs the CPU pipeline on a tiny image: grid, camera (the scene's, else the
-// default one), trace with shadows and mirrors. Accepts an InputError from the camera (an unusable
-// scene camera); aborts, which libFuzzer reports as a crash, on anything else that is wrong: a
-// NaN in colour or depth, a depth without a hit, a ray stopped by the traversal limit.
+// vertices), then runs the CPU pipeline on a tiny image as the render command would: rescaling
+// (SceneScale.h), grid, camera (the scene's, else the default one), trace with shadows and
+// mirrors. Only an InputError from the scene file's own camera is accepted; anything else that
+// is wrong aborts, which libFuzzer reports as a crash: an exception, a NaN in colour or depth, a
+// depth without a hit, a ray stopped by the traversal limit.
 void exerciseScene(const Scene& scene);
 
 // Makes std::cerr silent (the OBJ reader's warnings would flood the fuzzer's output).
