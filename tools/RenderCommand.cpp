@@ -5,6 +5,7 @@
 #include "CommonOptions.h"
 #include "raytrace/SceneLoader.h"
 
+#include "raytrace/AtomicFile.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/ImageIO.h"
@@ -93,8 +94,12 @@ int runRender(const RenderOptions& o) {
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
         if (name != "depth" && name != "prim" && name != "normal" && name != "steps")
             throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps)");
+        if (aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         aovs[name] = a.substr(eq + 1);
     }
+    std::vector<std::filesystem::path> outputPaths = {o.output};
+    for (const auto& [name, file] : aovs) outputPaths.push_back(file);
+    checkOutputPaths(outputPaths);
     MaskMode mask = MaskMode::None;
     if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
         throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
@@ -145,19 +150,25 @@ int runRender(const RenderOptions& o) {
     const double totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     unscaleDepth(out.depth, scaleExponent);
+    if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
+        std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
+                     "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
+                     grid.maxCellSteps());
 
-    writePng(o.output, out.width, out.height, out.color);
+    AtomicFileSet outputs;  // the PNG and the AOVs appear together or not at all
+    writePng(outputs, o.output, out.width, out.height, out.color);
     for (const auto& [name, file] : aovs) {
-        if (name == "depth") writePfm(file, out.width, out.height, 1, out.depth);
-        if (name == "prim") writePfm(file, out.width, out.height, 1, out.prim);
-        if (name == "steps") writePfm(file, out.width, out.height, 1, out.steps);
+        if (name == "depth") writePfm(outputs, file, out.width, out.height, 1, out.depth);
+        if (name == "prim") writePfm(outputs, file, out.width, out.height, 1, out.prim);
+        if (name == "steps") writePfm(outputs, file, out.width, out.height, 1, out.steps);
         if (name == "normal") {
             std::vector<float> flat;
             flat.reserve(out.normal.size() * 3);
             for (const glm::vec3& n : out.normal) flat.insert(flat.end(), {n.x, n.y, n.z});
-            writePfm(file, out.width, out.height, 3, flat);
+            writePfm(outputs, file, out.width, out.height, 3, flat);
         }
     }
+    outputs.commit();
     if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs);
     return 0;
 }
