@@ -57,8 +57,9 @@ class ObjScanner {
         throw InputError(fileName_ + ":" + std::to_string(line) + ": " + what);
     }
 
-    // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r).
-    ObjPreScan scan(std::string_view text) {
+    // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r). Lines
+    // that tinyobjloader should not see are blanked (kept as spaces, so line numbers hold).
+    ObjPreScan scan(std::string& text) {
         ObjPreScan result;
         std::vector<ForwardReference> forward;
         size_t line = 0;
@@ -67,7 +68,9 @@ class ObjScanner {
             size_t end = text.find_first_of("\r\n", pos);
             if (end == std::string_view::npos) end = text.size();
             ++line;
-            scanLine(text.substr(pos, end - pos), line, result, forward);
+            if (!scanLine(std::string_view(text).substr(pos, end - pos), line, result, forward))
+                std::fill(text.begin() + std::ptrdiff_t(pos), text.begin() + std::ptrdiff_t(end),
+                          ' ');
             pos = end;
             if (pos < text.size() && text[pos] == '\r') {
                 ++pos;
@@ -184,7 +187,11 @@ class ObjScanner {
         if (value > 0 && static_cast<size_t>(value) > count) forward.push_back({line, value, kind});
     }
 
-    void scanLine(std::string_view text, size_t line, ObjPreScan& result,
+    // Checks one line; returns whether tinyobjloader should read it. It reads only what the
+    // renderer uses: vertices (v, and vt and vn, which faces refer to), faces, groups and
+    // materials. Its extensions are not for hostile input: "vw" converts any float to int, and
+    // each "t" tag line allocates up to 3 x 8192 values, 300 KB from 19 bytes.
+    bool scanLine(std::string_view text, size_t line, ObjPreScan& result,
                   std::vector<ForwardReference>& forward) {
         // Text files have no control characters besides tab and line ends (the caller split those
         // off).
@@ -196,7 +203,7 @@ class ObjScanner {
             }
         }
         std::vector<std::string_view> tok = tokens(text);
-        if (tok.empty() || tok[0][0] == '#') return;
+        if (tok.empty() || tok[0][0] == '#') return true;
         const std::string_view keyword = tok[0];
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
             float values[3] = {};
@@ -251,6 +258,8 @@ class ObjScanner {
             }
             if (keyword == "f") result.faceSizes.push_back(static_cast<uint32_t>(elements));
         }
+        return keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" ||
+               keyword == "g" || keyword == "o" || keyword == "usemtl" || keyword == "mtllib";
     }
 
     std::string fileName_;
@@ -270,22 +279,26 @@ class MtlReader : public tinyobj::MaterialReader {
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* matMap, std::string* warn,
                     std::string* err) override {
+        // Each library once: a file that names it again and again must not multiply the
+        // materials (or the warnings).
+        if (auto seen = loaded_.find(name); seen != loaded_.end()) return seen->second;
         const std::filesystem::path path = folder_ / name;
         std::error_code ec;
         std::ifstream in;
         if (isReadableKind(std::filesystem::status(path, ec))) in.open(path, std::ios::binary);
         if (!in.is_open() || !in) {
             missing.push_back(path.string());
-            return false;
+            return loaded_[name] = false;
         }
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
-        return true;
+        return loaded_[name] = true;
     }
 
     std::vector<std::string> missing;
 
   private:
     std::filesystem::path folder_;
+    std::map<std::string, bool> loaded_;  // library name -> whether it could be read
 };
 
 std::string readWholeFile(const std::filesystem::path& path) {
