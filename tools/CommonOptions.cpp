@@ -1,7 +1,10 @@
 #include "CommonOptions.h"
 
 #include "raytrace/SceneScale.h"
+#include "stream/StreamErrors.h"
 
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -42,6 +45,33 @@ glm::ivec2 parseSize(const std::string& option, const std::string& text) {
     if (int64_t(w) * int64_t(h) > int64_t(8192) * 8192)
         throw InputError(option + ": " + text + ": at most 67108864 (8192x8192) pixels");
     return {w, h};
+}
+
+void checkRenderFitsInMemory(glm::ivec2 size, bool gl) {
+    // Peak resident memory measured at 1024x1024 and 2048x2048 with every AOV (llvmpipe, Mesa
+    // 22.3): about 232 bytes a pixel for GL (eleven RGBA32F streams, masks, read-backs), 48 for
+    // the CPU backend, plus a fixed part; rounded up.
+    const double pixels = double(size.x) * double(size.y);
+    const double needed = (gl ? 256.0 : 64.0) * pixels + 256e6;
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double availableKiB = 0.0;
+    while (meminfo >> key) {
+        if (key == "MemAvailable:") {
+            meminfo >> availableKiB;
+            break;
+        }
+        meminfo.ignore(1 << 10, '\n');
+    }
+    if (!(availableKiB > 0.0)) return;  // not Linux, or no figure: let the allocations decide
+    if (needed > availableKiB * 1024.0) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "--size %dx%d: the %s backend needs about %.1f GB, only %.1f GB of memory "
+                      "is available",
+                      size.x, size.y, gl ? "gl" : "cpu", needed / 1e9, availableKiB * 1024.0 / 1e9);
+        throw EnvironmentError(text);
+    }
 }
 
 glm::ivec2 CameraOptions::imageSize(std::optional<glm::ivec2> sceneSize) const {

@@ -112,6 +112,7 @@ int runRender(const RenderOptions& o) {
     if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
+    checkRenderFitsInMemory(size, o.backend != "cpu");
     const CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
     RenderSettings settings;
     settings.width = size.x;
@@ -178,8 +179,8 @@ int runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<RenderOptions>();
     auto* cmd = app.add_subcommand("render", "Render a scene (.obj, .json or packed .gpscene) to a PNG");
-    cmd->add_option("scene", o->scene, "Scene file")->required();
-    cmd->add_option("-o,--output", o->output, "Output PNG")->required();
+    cmd->add_option("scene", o->scene, "Scene file")->required()->check(kNotEmpty);
+    cmd->add_option("-o,--output", o->output, "Output PNG")->required()->check(kNotEmpty);
     cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps=FILE");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
@@ -188,7 +189,8 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                       ->check(CLI::IsMember({"", "text", "json"}));
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
-    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)");
+    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)")
+        ->check(kNotEmpty);
     cmd->add_option("--kernel", o->kernel,
                     "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
                     "(the Purcell/Christen traverser and intersector pair)")
