@@ -73,7 +73,10 @@ void rescaleGrid(UniformGrid& grid, int exponent) {
 
 void unscaleDepth(std::vector<float>& depth, int exponent) {
     if (exponent == 0) return;
-    for (float& t : depth) t = std::ldexp(t, exponent);
+    // A hit farther away than the largest float (in a scene that spans nearly the float range)
+    // keeps the largest float as its depth: +inf means a miss.
+    for (float& t : depth)
+        if (std::isfinite(t)) t = std::min(std::ldexp(t, exponent), FLT_MAX);
 }
 
 }  // namespace gpurt

@@ -35,7 +35,8 @@ void rescaleScene(Scene& scene, int exponent);
 // The same for a grid built over the unscaled scene (a packed scene's): its box and cell size.
 void rescaleGrid(UniformGrid& grid, int exponent);
 
-// Depths of the rescaled scene back in the original units: each times 2^exponent.
+// Depths of the rescaled scene back in the original units: each times 2^exponent, at most the
+// largest float (+inf stays a miss).
 void unscaleDepth(std::vector<float>& depth, int exponent);
 
 }  // namespace gpurt
