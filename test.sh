@@ -1,11 +1,36 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Release into build/ and runs the whole test suite with ctest.
-#   ./test.sh             the suite
-#   ./test.sh -R PATTERN  only the tests whose names match (ctest -R)
+# Installs what is missing, builds and runs the whole test suite with ctest.
+#   ./test.sh             Release build in build/, the suite, then each libFuzzer target for a
+#                         bounded time (tests/fuzz/run.sh: clang, build-fuzz/, about 30 s)
+#   ./test.sh --sanitize  the suite built with AddressSanitizer and UndefinedBehaviorSanitizer in
+#                         build-sanitize/ (tests/sanitize/: options and leak suppressions)
+#   ./test.sh --fuzz      only the fuzz targets
+#   ./test.sh -R PATTERN  only the tests whose names match (other arguments go to ctest); no fuzzing
+# GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 12).
 set -euo pipefail
 cd "$(dirname "$0")"
 ./tools/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)"
-cd build
-ctest --output-on-failure -j"$(nproc)" --timeout 600 "$@"
+
+mode=plain
+case "${1:-}" in
+  --sanitize) mode=sanitize; shift ;;
+  --fuzz) mode=fuzz; shift ;;
+esac
+
+if [ "$mode" = fuzz ]; then
+  exec tests/fuzz/run.sh
+fi
+
+build=build
+config=(-DCMAKE_BUILD_TYPE=Release)
+if [ "$mode" = sanitize ]; then
+  build=build-sanitize
+  config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPURT_SANITIZE=ON)
+fi
+cmake -S . -B "$build" "${config[@]}" >/dev/null
+cmake --build "$build" -j"$(nproc)"
+(cd "$build" && ctest --output-on-failure -j"$(nproc)" --timeout 600 "$@")
+
+if [ "$mode" = plain ] && [ $# -eq 0 ]; then
+  tests/fuzz/run.sh
+fi

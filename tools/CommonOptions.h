@@ -42,21 +42,36 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with 1 <= W, H <= 16384 and W * H <= 8192 * 8192.
 glm::ivec2 parseSize(const std::string& option, const std::string& text);
 
+// Throws EnvironmentError (exit 2) when a render of `size` on the GL (`gl`) or CPU backend would
+// need more memory than the machine has available (MemAvailable): Linux overcommits, so past
+// that point the render would be killed instead of failing cleanly.
+void checkRenderFitsInMemory(glm::ivec2 size, bool gl);
+
+// Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
+inline const CLI::Validator kNotEmpty(
+    [](std::string& value) { return value.empty() ? std::string("empty value") : std::string(); },
+    "", "NOT_EMPTY");
+
 struct CameraOptions {
     std::string eye, target, up, fovy, size;
 
     void add(CLI::App& cmd) {
-        cmd.add_option("--eye", eye, "Camera position x,y,z (overrides the scene's camera)");
-        cmd.add_option("--target", target, "Point the camera looks at, x,y,z");
-        cmd.add_option("--up", up, "Up vector x,y,z (default 0,1,0)");
-        cmd.add_option("--fovy", fovy, "Vertical field of view in degrees (default 45)");
-        cmd.add_option("--size", size, "Image size WxH (default 512x512, or the scene's)");
+        cmd.add_option("--eye", eye, "Camera position x,y,z (overrides the scene's camera)")
+            ->check(kNotEmpty);
+        cmd.add_option("--target", target, "Point the camera looks at, x,y,z")->check(kNotEmpty);
+        cmd.add_option("--up", up, "Up vector x,y,z (default 0,1,0)")->check(kNotEmpty);
+        cmd.add_option("--fovy", fovy, "Vertical field of view in degrees (default 45)")
+            ->check(kNotEmpty);
+        cmd.add_option("--size", size, "Image size WxH (default 512x512, or the scene's)")
+            ->check(kNotEmpty);
     }
     // The image size: --size, else the scene file's, else 512x512.
     glm::ivec2 imageSize(std::optional<glm::ivec2> sceneSize) const;
     // The camera: the scene's (or the contract's default camera for its bounds), with each
     // option given overriding its part. Throws InputError for an unusable camera.
-    CameraBasis camera(const Scene& scene, glm::ivec2 size) const;
+    // `scaleExponent`: the scene was rescaled by 2^-scaleExponent for rendering (SceneScale.h);
+    // --eye and --target, given in the scene file's units, are rescaled alike.
+    CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
 };
 
 }  // namespace gpurt

@@ -5,9 +5,11 @@
 #include "CommonOptions.h"
 #include "raytrace/SceneLoader.h"
 
+#include "raytrace/AtomicFile.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/ImageIO.h"
+#include "raytrace/SceneScale.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/KernelStats.h"
 
@@ -92,16 +94,26 @@ int runRender(const RenderOptions& o) {
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
         if (name != "depth" && name != "prim" && name != "normal" && name != "steps")
             throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps)");
+        if (aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         aovs[name] = a.substr(eq + 1);
     }
+    std::vector<std::filesystem::path> outputPaths = {o.output};
+    for (const auto& [name, file] : aovs) outputPaths.push_back(file);
+    checkOutputPaths(outputPaths);
     MaskMode mask = MaskMode::None;
     if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
         throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
 
-    const LoadedScene loaded = loadScene(o.scene);
+    LoadedScene loaded = loadScene(o.scene);
+    // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
+    // a power of two, which gives the same image (SceneScale.h); depths are scaled back below.
+    const int scaleExponent = renderScaleExponent(loaded.scene);
+    rescaleScene(loaded.scene, scaleExponent);
+    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    const CameraBasis camera = o.camera.camera(scene, size);
+    checkRenderFitsInMemory(size, o.backend != "cpu");
+    const CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
     RenderSettings settings;
     settings.width = size.x;
     settings.height = size.y;
@@ -138,19 +150,26 @@ int runRender(const RenderOptions& o) {
     }
     const double totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    unscaleDepth(out.depth, scaleExponent);
+    if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
+        std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
+                     "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
+                     grid.maxCellSteps());
 
-    writePng(o.output, out.width, out.height, out.color);
+    AtomicFileSet outputs;  // the PNG and the AOVs appear together or not at all
+    writePng(outputs, o.output, out.width, out.height, out.color);
     for (const auto& [name, file] : aovs) {
-        if (name == "depth") writePfm(file, out.width, out.height, 1, out.depth);
-        if (name == "prim") writePfm(file, out.width, out.height, 1, out.prim);
-        if (name == "steps") writePfm(file, out.width, out.height, 1, out.steps);
+        if (name == "depth") writePfm(outputs, file, out.width, out.height, 1, out.depth);
+        if (name == "prim") writePfm(outputs, file, out.width, out.height, 1, out.prim);
+        if (name == "steps") writePfm(outputs, file, out.width, out.height, 1, out.steps);
         if (name == "normal") {
             std::vector<float> flat;
             flat.reserve(out.normal.size() * 3);
             for (const glm::vec3& n : out.normal) flat.insert(flat.end(), {n.x, n.y, n.z});
-            writePfm(file, out.width, out.height, 3, flat);
+            writePfm(outputs, file, out.width, out.height, 3, flat);
         }
     }
+    outputs.commit();
     if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs);
     return 0;
 }
@@ -160,8 +179,8 @@ int runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<RenderOptions>();
     auto* cmd = app.add_subcommand("render", "Render a scene (.obj, .json or packed .gpscene) to a PNG");
-    cmd->add_option("scene", o->scene, "Scene file")->required();
-    cmd->add_option("-o,--output", o->output, "Output PNG")->required();
+    cmd->add_option("scene", o->scene, "Scene file")->required()->check(kNotEmpty);
+    cmd->add_option("-o,--output", o->output, "Output PNG")->required()->check(kNotEmpty);
     cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps=FILE");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
@@ -170,7 +189,8 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                       ->check(CLI::IsMember({"", "text", "json"}));
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
-    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)");
+    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)")
+        ->check(kNotEmpty);
     cmd->add_option("--kernel", o->kernel,
                     "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
                     "(the Purcell/Christen traverser and intersector pair)")

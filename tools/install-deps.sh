@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages gpurt builds and tests with (only those missing): toolchain,
 # glad (GL loader generator), EGL + Mesa llvmpipe + OSMesa, GLFW, GLM, glslang, GoogleTest,
 # tinyobjloader, nlohmann-json, libpng, zlib (CRC-32 of packed scenes) and Embree (benchmark
-# baseline, test cross-checks).
+# baseline, test cross-checks); clang with its libFuzzer and sanitizer runtimes and llvm-symbolizer
+# for the fuzz targets.
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev
   libtinyobjloader-dev nlohmann-json3-dev libpng-dev zlib1g-dev libcli11-dev
   libembree-dev
+  clang libclang-rt-14-dev llvm
 )
 
 missing=()

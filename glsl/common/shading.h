@@ -22,9 +22,18 @@
 #define GPURT_AMBIENT 0.1f  // ambient term: this fraction of the diffuse colour
 
 // Geometric unit normal of the triangle with edges e1 = v1 - v0, e2 = v2 - v0, turned to face
-// the incoming ray direction d. Hit triangles are never degenerate (their det != 0).
+// the incoming ray direction d. The squared length of cross(e1, e2) is quartic in the edges and
+// leaves the float range for edges below about 1e-10 or above 1e9: a cross product below 1e-12
+// or above 1e12 is first scaled by 2^100 or 2^-100 (exact: the direction is kept). A triangle
+// whose cross product is zero in float (collinear vertices) can still pass the hit test by
+// rounding; it has no normal and faces the ray.
 GPURT_FN vec3 facingNormal(vec3 e1, vec3 e2, vec3 d) {
-    vec3 n = contractNormalize(cross(e1, e2));
+    vec3 c = cross(e1, e2);
+    float m = max(abs(c.x), max(abs(c.y), abs(c.z)));
+    if (m == 0.0f) return -d;
+    if (m < 1e-12f) c = c * 1.2676506e30f;  // 2^100
+    if (m > 1e12f) c = c * 7.8886091e-31f;  // 2^-100
+    vec3 n = contractNormalize(c);
     if (dot(n, d) > 0.0f) n = -n;
     return n;
 }

@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace gpurt {
 
@@ -13,5 +16,33 @@ namespace gpurt {
 // of the file system throw InputError("<path>: cannot ...").
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::FILE*)>& write);
+
+// Throws InputError("<path>: ...") when `path` cannot be an output file: its folder does not
+// exist, or it names a folder.
+void checkOutputPath(const std::filesystem::path& path);
+// checkOutputPath for each, and no file named twice. Lets a command refuse its outputs before
+// doing the work.
+void checkOutputPaths(const std::vector<std::filesystem::path>& paths);
+
+// Several output files that appear together or not at all (the PNG and the AOVs of a render):
+// add() writes each to its temporary file at once, commit() renames them all over their targets.
+// Whatever is not committed, because add() or the work in between threw, is removed by the
+// destructor, so a failed command leaves nothing behind.
+class AtomicFileSet {
+  public:
+    AtomicFileSet() = default;
+    ~AtomicFileSet();
+    AtomicFileSet(const AtomicFileSet&) = delete;
+    AtomicFileSet& operator=(const AtomicFileSet&) = delete;
+
+    // Writes the file's temporary copy as writeFileAtomically does. Throws InputError for a
+    // target that is not a possible output (checkOutputPath) or already in the set.
+    void add(const std::filesystem::path& path, const std::function<void(std::FILE*)>& write);
+    // Renames every temporary file to its target.
+    void commit();
+
+  private:
+    std::vector<std::pair<std::string, std::string>> staged_;  // (temporary, target)
+};
 
 }  // namespace gpurt

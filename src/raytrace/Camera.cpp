@@ -1,6 +1,8 @@
 // Camera set-up and primary rays, exactly as CONTRACT.md writes them.
 #include "raytrace/Camera.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -20,6 +22,19 @@ std::string format(glm::vec3 v) {
     std::ostringstream s;
     s << v.x << "," << v.y << "," << v.z;
     return s.str();
+}
+
+// The contract's normalize, a / sqrt(dot(a, a)). Where dot(a, a) leaves the float range (|a|
+// beyond about 1e19 or below 1e-19), a is first scaled by a power of two, which keeps its
+// direction: a camera far from its target, or very close to it, still gets the frame the
+// contract means. Elsewhere the result is the contract's formula, bit for bit.
+glm::vec3 unitVector(glm::vec3 a) {
+    const float length2 = glm::dot(a, a);
+    if (length2 >= FLT_MIN && length2 <= FLT_MAX) return raymath::contractNormalize(a);
+    int exponent = 0;
+    std::frexp(std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z))), &exponent);
+    return raymath::contractNormalize(glm::vec3(
+        std::ldexp(a.x, -exponent), std::ldexp(a.y, -exponent), std::ldexp(a.z, -exponent)));
 }
 
 // tan(fovy * pi / 360) in double, rounded to float (the contract's t).
@@ -44,14 +59,17 @@ CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
     CameraBasis c;
     c.eye = spec.eye;
     const glm::vec3 view = spec.target - spec.eye;
-    if (!(glm::dot(view, view) > 0.0f))
+    if (view == glm::vec3(0.0f))
         throw InputError("--target: must differ from --eye (both are " + format(spec.eye) + ")");
-    c.forward = raymath::contractNormalize(view);
+    if (!isFinite(view))
+        throw InputError("--target: too far from --eye (" + format(spec.target) + " from " +
+                         format(spec.eye) + " overflows float)");
+    c.forward = unitVector(view);
     const glm::vec3 side = glm::cross(c.forward, spec.up);
-    if (!(glm::dot(side, side) > 0.0f))
+    if (side == glm::vec3(0.0f))
         throw InputError("--up: " + format(spec.up) +
                          " is parallel to the viewing direction (or zero)");
-    c.right = raymath::contractNormalize(side);
+    c.right = unitVector(side);
     c.upOrtho = glm::cross(c.right, c.forward);
     if (!isFinite(c.forward) || !isFinite(c.right) || !isFinite(c.upOrtho))
         throw InputError("--eye: eye, target and up give no valid camera frame");

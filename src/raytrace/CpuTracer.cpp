@@ -27,8 +27,7 @@ CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
       grid_(grid),
       hitTolerance_(grid.hitTolerance()),
       rayOffset_(grid.rayOffset()),
-      // A straight line crosses at most nx + ny + nz cells; the rest is slack for rounding.
-      maxSteps_(grid.resolution.x + grid.resolution.y + grid.resolution.z + 3) {
+      maxSteps_(grid.maxCellSteps()) {
     triangles_.reserve(scene.triangles.size());
     for (const Triangle& t : scene.triangles)
         triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});

@@ -27,12 +27,18 @@ bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
     return true;
 }
 
+int GpuTracer::cellLimit() const {
+    return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
+}
+
 GpuPipeline& GpuTracer::pipeline(int width, int height) {
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         const int steps = options_.traverseSteps;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps);
+        if (options_.maxCellSteps > 0)
+            for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
     }
     return *pipeline_;
 }
@@ -50,8 +56,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height) {
 // pass counts the waiting rays, and the intersector is skipped while they are fewer than
 // waitThreshold of the live rays. Returns the rays traced.
 uint64_t GpuTracer::traceLoop(GpuPipeline& p, bool anyHit) {
-    const glm::ivec3 r = grid_.resolution;
-    const int maxCells = r.x + r.y + r.z + 3;  // as maxCellSteps in SceneTextures::bind
+    const int maxCells = cellLimit();
     if (options_.kernel == TraceKernel::Fused) {
         GPUKernel& trace = anyHit ? p.traceAny : p.trace;
         const int steps = options_.traverseSteps;
@@ -125,6 +130,9 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 out.depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
                 out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
                 out.steps[i] = float(cells[i * 4 + 3]);
+                // Reaching the cell limit is the only way to visit that many cells (overflow
+                // is counted for primary rays: their cell counts are read back anyway).
+                if (cells[i * 4 + 3] >= cellLimit()) ++out.stats.overflowRays;
             }
         }
         p.surface.dispatch();

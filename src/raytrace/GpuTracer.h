@@ -38,6 +38,10 @@ struct GpuTracerOptions {
     // pass.
     float waitThreshold = 0.0f;
     TraceKernel kernel = TraceKernel::Fused;
+    // Cells a ray may visit before it is stopped (RAY_OVERFLOW) and counted in
+    // RenderStats::overflowRays; 0: UniformGrid::maxCellSteps(), which no ray reaches. Tests
+    // lower it to see that reaching it is reported.
+    int maxCellSteps = 0;
 };
 
 
@@ -66,6 +70,7 @@ class GpuTracer {
   private:
     GpuPipeline& pipeline(int width, int height);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
+    int cellLimit() const;  // options_.maxCellSteps or the grid's
 
     const Scene& scene_;
     const UniformGrid& grid_;

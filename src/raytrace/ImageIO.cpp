@@ -91,6 +91,20 @@ unsigned char linearToSrgb8(float linear) {
 
 void writePng(const std::filesystem::path& path, int width, int height,
               const std::vector<glm::vec3>& linearTopFirst) {
+    AtomicFileSet file;
+    writePng(file, path, width, height, linearTopFirst);
+    file.commit();
+}
+
+void writePfm(const std::filesystem::path& path, int width, int height, int channels,
+              const std::vector<float>& topFirst) {
+    AtomicFileSet file;
+    writePfm(file, path, width, height, channels, topFirst);
+    file.commit();
+}
+
+void writePng(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
+              const std::vector<glm::vec3>& linearTopFirst) {
     checkSize(path, width, height, linearTopFirst.size(), 1);
     std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 3);
     for (size_t k = 0; k < linearTopFirst.size(); ++k)
@@ -98,22 +112,22 @@ void writePng(const std::filesystem::path& path, int width, int height,
     std::vector<unsigned char*> rows(static_cast<size_t>(height));
     for (int j = 0; j < height; ++j)
         rows[size_t(j)] = pixels.data() + size_t(j) * size_t(width) * 3;
-    writeFileAtomically(path, [&](FILE* file) {
+    files.add(path, [&](FILE* file) {
         PngErrorState state;
         if (!writePngRows(file, width, height, rows.data(), state))
             throw InputError(path.string() + ": cannot write PNG (" + state.message + ")");
     });
 }
 
-void writePfm(const std::filesystem::path& path, int width, int height, int channels,
-              const std::vector<float>& topFirst) {
+void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
+              int channels, const std::vector<float>& topFirst) {
     if (channels != 1 && channels != 3)
         throw InputError(path.string() + ": a PFM has 1 or 3 channels, not " +
                          std::to_string(channels));
     checkSize(path, width, height, topFirst.size(), size_t(channels));
     const size_t rowFloats = size_t(width) * size_t(channels);
     std::vector<float> row(rowFloats);
-    writeFileAtomically(path, [&](FILE* file) {
+    files.add(path, [&](FILE* file) {
         std::fprintf(file, "%s\n%d %d\n-1.0\n", channels == 1 ? "Pf" : "PF", width, height);
         // The file's first scanline is the image's bottom row.
         for (int j = height - 1; j >= 0; --j) {

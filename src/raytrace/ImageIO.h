@@ -9,6 +9,8 @@
 
 namespace gpurt {
 
+class AtomicFileSet;
+
 // 8-bit sRGB RGB PNG from linear colour (clamped to [0, 1], sRGB transfer, rounded); row 0 of
 // `linearTopFirst` is the top row. Throws InputError("<path>: ...") when it cannot be written.
 void writePng(const std::filesystem::path& path, int width, int height,
@@ -19,6 +21,12 @@ void writePng(const std::filesystem::path& path, int width, int height,
 // width * height * channels floats. Throws InputError("<path>: ...") when it cannot be written.
 void writePfm(const std::filesystem::path& path, int width, int height, int channels,
               const std::vector<float>& topFirst);
+
+// The same, as part of a set of files that appear together (AtomicFileSet::commit).
+void writePng(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
+              const std::vector<glm::vec3>& linearTopFirst);
+void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
+              int channels, const std::vector<float>& topFirst);
 
 // Reads a PFM (either byte order) back into top-first rows. Throws InputError on a malformed file.
 std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,

@@ -64,6 +64,11 @@ std::string formatNumber(double value) {
     return text;
 }
 
+// A regular file or a pipe: a device such as /dev/zero would be read forever.
+bool isReadableKind(const std::filesystem::file_status& status) {
+    return std::filesystem::is_regular_file(status) || std::filesystem::is_fifo(status);
+}
+
 std::string readSceneText(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
@@ -71,6 +76,8 @@ std::string readSceneText(const std::filesystem::path& path) {
     if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
     if (std::filesystem::is_directory(status))
         throw InputError(name + ": is a directory, not a scene file");
+    if (!isReadableKind(status))
+        throw InputError(name + ": is a device or socket, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
     std::ostringstream buffer;
@@ -341,6 +348,8 @@ class SceneReader {
             fail(fileAt, "no such file " + quote(printable(fileName)));
         if (std::filesystem::is_directory(status))
             fail(fileAt, quote(printable(fileName)) + " is a directory");
+        if (!isReadableKind(status))
+            fail(fileAt, quote(printable(fileName)) + " is a device or socket, not a file");
 
         // The same OBJ listed twice (e.g. with two transforms) is read once.
         const std::string key = objPath.lexically_normal().string();
@@ -482,14 +491,14 @@ class SceneReader {
                      "must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
             camera.fovy = static_cast<float>(degrees);
         }
-        // The contract's basis (CONTRACT.md, camera convention) must exist.
-        const glm::vec3 forward = camera.target - camera.eye;
-        const float forwardLength2 = glm::dot(forward, forward);
-        if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
+        // The contract's basis (CONTRACT.md, camera convention) must exist. In double: in float
+        // the squared lengths would overflow for a camera far away in a huge scene, which the
+        // renderer handles (SceneScale.h).
+        const glm::dvec3 forward = glm::dvec3(camera.target) - glm::dvec3(camera.eye);
+        if (forward == glm::dvec3(0.0))
             fail(at / "target", "target - eye must be a non-zero vector of finite length");
-        const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), camera.up);
-        const float rightLength2 = glm::dot(right, right);
-        if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
+        const glm::dvec3 right = glm::cross(forward / glm::length(forward), glm::dvec3(camera.up));
+        if (right == glm::dvec3(0.0))
             fail(at / "up", "up must be non-zero and not parallel to target - eye");
         return camera;
     }
@@ -502,8 +511,11 @@ class SceneReader {
 }  // namespace
 
 JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path) {
+    return parseJsonScene(readSceneText(path), path);
+}
+
+JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::path& path) {
     const std::string name = path.string();
-    const std::string text = readSceneText(path);
     json root;
     DuplicateKeyCheck duplicates(name);
     try {

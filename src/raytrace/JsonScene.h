@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -26,6 +27,11 @@ struct JsonSceneFile {
 // numbers and singular transforms. An error inside an OBJ file is the OBJ loader's (naming the
 // OBJ).
 JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path);
+
+// loadJsonSceneFile on text already in memory: `path` names the file in messages, and mesh files
+// are found relative to its folder (the file itself need not exist). The fuzz target's entry
+// point.
+JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::path& path);
 
 // loadJsonSceneFile(path).scene.
 Scene loadJsonScene(const std::filesystem::path& path);

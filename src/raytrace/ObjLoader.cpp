@@ -1,7 +1,9 @@
 // OBJ loading: tinyobjloader parses, after a light pre-scan of the lines has rejected what it
 // would accept silently (a NaN read as 0, a zero or out-of-range index, a two-vertex face, a
 // vertex with two coordinates, binary data). The pre-scan also records each face's vertex count,
-// because tinyobjloader stores that count in an unsigned char.
+// because tinyobjloader stores that count in an unsigned char, and the vertex positions, read
+// with strtof: tinyobjloader's own number parser loses values with very long mantissas or
+// exponents.
 #include "raytrace/ObjLoader.h"
 
 #include <cerrno>
@@ -35,8 +37,8 @@ std::string quote(std::string_view text) {
 // What the pre-scan learns about the file.
 struct ObjPreScan {
     size_t vertices = 0, normals = 0, texcoords = 0;
-    std::vector<uint32_t> faceSizes;  // vertex count of each `f` line, in file order
-    std::vector<size_t> vertexLines;  // line number of each `v` line (for messages)
+    std::vector<uint32_t> faceSizes;   // vertex count of each `f` line, in file order
+    std::vector<glm::vec3> positions;  // x y z of each `v` line, in file order
 };
 
 // An index that refers forward (OBJ allows that for positive indices); checked at the end of
@@ -55,8 +57,9 @@ class ObjScanner {
         throw InputError(fileName_ + ":" + std::to_string(line) + ": " + what);
     }
 
-    // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r).
-    ObjPreScan scan(std::string_view text) {
+    // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r). Lines
+    // that tinyobjloader should not see are blanked (kept as spaces, so line numbers hold).
+    ObjPreScan scan(std::string& text) {
         ObjPreScan result;
         std::vector<ForwardReference> forward;
         size_t line = 0;
@@ -65,7 +68,9 @@ class ObjScanner {
             size_t end = text.find_first_of("\r\n", pos);
             if (end == std::string_view::npos) end = text.size();
             ++line;
-            scanLine(text.substr(pos, end - pos), line, result, forward);
+            if (!scanLine(std::string_view(text).substr(pos, end - pos), line, result, forward))
+                std::fill(text.begin() + std::ptrdiff_t(pos), text.begin() + std::ptrdiff_t(end),
+                          ' ');
             pos = end;
             if (pos < text.size() && text[pos] == '\r') {
                 ++pos;
@@ -128,7 +133,8 @@ class ObjScanner {
         return i == s.size();
     }
 
-    void checkNumber(std::string_view token, size_t line) const {
+    // The value of a number token, which must be a decimal that fits in a float.
+    float checkNumber(std::string_view token, size_t line) const {
         if (!isDecimal(token)) {
             std::string lower(token);
             for (char& c : lower)
@@ -138,11 +144,20 @@ class ObjScanner {
                 fail(line, quote(token) + " is not a finite number");
             fail(line, quote(token) + " is not a number");
         }
-        // The value only matters for range: doubles at or above 2^128 - 2^103 round to float
-        // infinity.
-        const double value = std::strtod(std::string(token).c_str(), nullptr);
+        // tinyobjloader accumulates the exponent in an int (signed overflow from 2^31 on).
+        const size_t e = token.find_first_of("eE");
+        if (e != std::string_view::npos) {
+            std::string_view digits = token.substr(e + 1);
+            if (digits[0] == '+' || digits[0] == '-') digits.remove_prefix(1);
+            while (digits.size() > 1 && digits[0] == '0') digits.remove_prefix(1);
+            if (digits.size() > 9) fail(line, quote(token) + ": exponent out of range");
+        }
+        const std::string text(token);
+        // Doubles at or above 2^128 - 2^103 round to float infinity.
+        const double value = std::strtod(text.c_str(), nullptr);
         if (!(std::fabs(value) < 0x1.ffffffp127))
             fail(line, quote(token) + " does not fit in a 32-bit float");
+        return std::strtof(text.c_str(), nullptr);
     }
 
     // Parses one index of a face element and checks 0 and range; `count` is how many elements of
@@ -172,7 +187,11 @@ class ObjScanner {
         if (value > 0 && static_cast<size_t>(value) > count) forward.push_back({line, value, kind});
     }
 
-    void scanLine(std::string_view text, size_t line, ObjPreScan& result,
+    // Checks one line; returns whether tinyobjloader should read it. It reads only what the
+    // renderer uses: vertices (v, and vt and vn, which faces refer to), faces, groups and
+    // materials. Its extensions are not for hostile input: "vw" converts any float to int, and
+    // each "t" tag line allocates up to 3 x 8192 values, 300 KB from 19 bytes.
+    bool scanLine(std::string_view text, size_t line, ObjPreScan& result,
                   std::vector<ForwardReference>& forward) {
         // Text files have no control characters besides tab and line ends (the caller split those
         // off).
@@ -184,16 +203,20 @@ class ObjScanner {
             }
         }
         std::vector<std::string_view> tok = tokens(text);
-        if (tok.empty() || tok[0][0] == '#') return;
+        if (tok.empty() || tok[0][0] == '#') return true;
         const std::string_view keyword = tok[0];
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
-            for (size_t i = 1; i < tok.size(); ++i) checkNumber(tok[i], line);
+            float values[3] = {};
+            for (size_t i = 1; i < tok.size(); ++i) {
+                const float value = checkNumber(tok[i], line);
+                if (i <= 3) values[i - 1] = value;
+            }
             const size_t have = tok.size() - 1;
             if (keyword == "v") {
                 if (have < 3)
                     fail(line, "vertex has " + std::to_string(have) + " coordinates; needs x y z");
                 ++result.vertices;
-                result.vertexLines.push_back(line);
+                result.positions.emplace_back(values[0], values[1], values[2]);
             } else if (keyword == "vn") {
                 if (have < 3)
                     fail(line, "normal has " + std::to_string(have) + " coordinates; needs x y z");
@@ -235,10 +258,17 @@ class ObjScanner {
             }
             if (keyword == "f") result.faceSizes.push_back(static_cast<uint32_t>(elements));
         }
+        return keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" ||
+               keyword == "g" || keyword == "o" || keyword == "usemtl" || keyword == "mtllib";
     }
 
     std::string fileName_;
 };
+
+// A regular file or a pipe: a device such as /dev/zero would be read forever.
+bool isReadableKind(const std::filesystem::file_status& status) {
+    return std::filesystem::is_regular_file(status) || std::filesystem::is_fifo(status);
+}
 
 // Opens material libraries next to the OBJ file and remembers which could not be opened (the
 // stock MaterialFileReader splits its folder at ':' and only reports failures as text).
@@ -249,29 +279,36 @@ class MtlReader : public tinyobj::MaterialReader {
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* matMap, std::string* warn,
                     std::string* err) override {
+        // Each library once: a file that names it again and again must not multiply the
+        // materials (or the warnings).
+        if (auto seen = loaded_.find(name); seen != loaded_.end()) return seen->second;
         const std::filesystem::path path = folder_ / name;
         std::error_code ec;
         std::ifstream in;
-        if (!std::filesystem::is_directory(path, ec)) in.open(path, std::ios::binary);
-        if (!in) {
+        if (isReadableKind(std::filesystem::status(path, ec))) in.open(path, std::ios::binary);
+        if (!in.is_open() || !in) {
             missing.push_back(path.string());
-            return false;
+            return loaded_[name] = false;
         }
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
-        return true;
+        return loaded_[name] = true;
     }
 
     std::vector<std::string> missing;
 
   private:
     std::filesystem::path folder_;
+    std::map<std::string, bool> loaded_;  // library name -> whether it could be read
 };
 
 std::string readWholeFile(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status))
         throw InputError(name + ": is a directory, not an OBJ file");
+    if (std::filesystem::exists(status) && !isReadableKind(status))
+        throw InputError(name + ": is a device or socket, not an OBJ file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
     std::ostringstream buffer;
@@ -286,16 +323,17 @@ glm::vec3 toVec3(const tinyobj::real_t* p) {
 
 }  // namespace
 
-Scene loadObj(const std::filesystem::path& path) {
+Scene loadObj(const std::filesystem::path& path) { return parseObj(readWholeFile(path), path); }
+
+Scene parseObj(std::string text, const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::string text = readWholeFile(path);
     // A UTF-8 byte order mark would hide the first line's keyword from tinyobjloader.
     if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
 
-    // Comments run from '#' to the end of the line, also after data ("f 1 2 3 # quad"), as
-    // exporters write them; blanking them keeps line numbers and spares tinyobjloader.
+    // Comments run from '#' to the end of the line (\n, \r\n or \r), also after data ("f 1 2 3 #
+    // quad"), as exporters write them; blanking them keeps line numbers and spares tinyobjloader.
     for (size_t at = text.find('#'); at != std::string::npos; at = text.find('#', at)) {
-        const size_t end = text.find('\n', at);
+        const size_t end = text.find_first_of("\r\n", at);
         std::fill(text.begin() + std::ptrdiff_t(at),
                   end == std::string::npos ? text.end() : text.begin() + std::ptrdiff_t(end), ' ');
         if (end == std::string::npos) break;
@@ -363,11 +401,6 @@ Scene loadObj(const std::filesystem::path& path) {
         return defaultMaterial;
     };
 
-    for (size_t k = 0; k < attrib.vertices.size(); ++k)
-        if (!std::isfinite(static_cast<float>(attrib.vertices[k])))
-            throw InputError(name + ":" + std::to_string(scan.vertexLines[k / 3]) +
-                             ": coordinate is not a finite float");
-
     scene.triangles.reserve(expectedIndices - 2 * scan.faceSizes.size());
     size_t face = 0;
     for (const tinyobj::shape_t& shape : shapes) {
@@ -377,7 +410,7 @@ Scene loadObj(const std::filesystem::path& path) {
             const uint32_t material = materialFor(shape.mesh.material_ids[f]);
             auto vertex = [&](size_t i) {
                 const int index = shape.mesh.indices[first + i].vertex_index;
-                return toVec3(&attrib.vertices[3 * static_cast<size_t>(index)]);
+                return scan.positions[static_cast<size_t>(index)];
             };
             const glm::vec3 v0 = vertex(0);
             for (uint32_t i = 1; i + 1 < n; ++i) {

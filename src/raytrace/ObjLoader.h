@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "raytrace/Scene.h"
 
@@ -14,5 +15,9 @@ namespace gpurt {
 // out-of-range index, a face with fewer than 3 vertices, a vertex with fewer than 3 coordinates,
 // or a coordinate that is not a finite float.
 Scene loadObj(const std::filesystem::path& path);
+
+// loadObj on text already in memory: `path` names the file in messages, and material libraries
+// are opened in its folder (the file itself need not exist). The fuzz target's entry point.
+Scene parseObj(std::string text, const std::filesystem::path& path);
 
 }  // namespace gpurt

@@ -19,7 +19,8 @@ struct RenderSettings {
 
 struct RenderStats {
     uint64_t primaryRays = 0, shadowRays = 0, secondaryRays = 0;
-    // Rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0.
+    // Rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0. The GL backend
+    // counts primary rays only (their cell counts are read back for the steps AOV).
     uint64_t overflowRays = 0;
     double totalMs = 0;
 };

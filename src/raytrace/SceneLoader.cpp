@@ -26,6 +26,10 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
     if (std::filesystem::is_directory(status))
         throw InputError(name + ": is a directory, not a scene file");
+    // A device such as /dev/zero would be read forever; pipes are fine.
+    if (std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ||
+        std::filesystem::is_socket(status))
+        throw InputError(name + ": is a device or socket, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
 

@@ -77,7 +77,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .setUniform("cellSize", grid_.cellSize)
         .setUniform("gridRes", grid_.resolution)
         .setUniform("cellTolerance", grid_.hitTolerance())
-        .setUniform("maxCellSteps", grid_.resolution.x + grid_.resolution.y + grid_.resolution.z + 3)
+        .setUniform("maxCellSteps", grid_.maxCellSteps())
         .setUniform("rayOffset", grid_.rayOffset());
 }
 

@@ -44,6 +44,9 @@ struct UniformGrid {
     float rayOffset() const;
     // Slack when accepting a hit beyond the current cell's exit: 1e-4 * the smallest cell size.
     float hitTolerance() const;
+    // The cells a ray may visit before both backends stop it (RAY_OVERFLOW): nx + ny + nz + 3,
+    // more than a straight line can cross, so only a bug can reach it.
+    int maxCellSteps() const { return resolution.x + resolution.y + resolution.z + 3; }
 };
 
 // Fills grid.skip from grid.cellStart: an exact chessboard distance transform (two raster passes

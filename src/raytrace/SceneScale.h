@@ -1,0 +1,42 @@
+// Rendering scenes far from unit size. Both backends trace in float32, and some of their values
+// grow with a power of the coordinates: Moller-Trumbore's t is a ratio of cubic terms, the
+// normal's squared length is quartic. A scene at 1e10 loses its normals to overflow, one at 1e15
+// or 1e-15 all its hits, and the default camera of one at 1e20 cannot even be set up.
+// Multiplying every position by a power of two is exact, and so is every float operation of the
+// backends on the scaled values as long as nothing over- or underflows; the image of the rescaled
+// scene is therefore the image of the original, where that one was computable, and its depths
+// scale back exactly. The render command rescales scenes outside a comfortable range.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
+
+namespace gpurt {
+
+// The exponent e such that the scene times 2^-e renders without over- or underflow: 0 when its
+// coordinates are within 2^28 in magnitude and its shortest non-zero triangle edge is at least
+// 2^-28 (those scenes are left as they are), else the power of two that puts the geometric mean
+// of the two at about 1, but no lower than needed to bring the coordinates within 2^28. 0 for a
+// scene without triangles.
+int renderScaleExponent(const Scene& scene);
+
+// p * 2^-exponent, component by component (exact unless it over- or underflows).
+glm::vec3 rescalePoint(glm::vec3 p, int exponent);
+
+// Multiplies every position of the scene by 2^-exponent (vertices, lights, the camera's eye and
+// target) and light intensities by 2^-2*exponent, so that radiance, intensity / distance^2,
+// stays the same.
+void rescaleScene(Scene& scene, int exponent);
+
+// The same for a grid built over the unscaled scene (a packed scene's): its box and cell size.
+void rescaleGrid(UniformGrid& grid, int exponent);
+
+// Depths of the rescaled scene back in the original units: each times 2^exponent, at most the
+// largest float (+inf stays a miss).
+void unscaleDepth(std::vector<float>& depth, int exponent);
+
+}  // namespace gpurt

@@ -1,0 +1,104 @@
+#include "FuzzScene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include <unistd.h>
+
+#include "raytrace/Camera.h"
+#include "raytrace/CpuTracer.h"
+#include "raytrace/InputError.h"
+#include "raytrace/SceneScale.h"
+#include "raytrace/UniformGrid.h"
+
+namespace gpurt::fuzz {
+namespace {
+
+[[noreturn]] void fail(const char* what) {
+    std::fprintf(stderr, "fuzz check failed: %s\n", what);
+    std::abort();
+}
+
+#define FUZZ_CHECK(condition) \
+    if (!(condition)) fail(#condition)
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::filesystem::path makeScratchFolder() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "gpurt-fuzz-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) fail("cannot create a scratch folder");
+    const std::filesystem::path folder(pattern);
+    auto write = [&](const char* name, const char* text) {
+        std::ofstream(folder / name, std::ios::binary) << text;
+    };
+    write("a.mtl",
+          "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 20\nillum 2\n"
+          "newmtl mirror\nKd 0.1 0.1 0.1\nKs 0.9 0.9 0.9\nNs 200\nillum 3\n");
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write("quad.mtl", "newmtl glass\nKd 0 0 0\nKs 0.8 0.8 0.8\nillum 5\n");
+    write("quad.obj",
+          "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl glass\nf 1 2 3 4\n");
+    write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+    write("empty.obj", "");
+    std::atexit([] { std::filesystem::remove_all(scratchFolder()); });
+    return folder;
+}
+
+}  // namespace
+
+const std::filesystem::path& scratchFolder() {
+    static const std::filesystem::path folder = makeScratchFolder();
+    return folder;
+}
+
+void silenceWarnings() { std::cerr.setstate(std::ios::badbit); }
+
+void exerciseScene(const Scene& original) {
+    FUZZ_CHECK(!original.materials.empty());
+    FUZZ_CHECK(original.materialIds.size() == original.triangles.size());
+    for (uint32_t id : original.materialIds) FUZZ_CHECK(id < original.materials.size());
+    for (const Triangle& t : original.triangles)
+        FUZZ_CHECK(finite(t.v0) && finite(t.v1) && finite(t.v2));
+
+    // As the render command does: far from unit size, the scene is rescaled (SceneScale.h).
+    Scene scene = original;
+    rescaleScene(scene, renderScaleExponent(scene));
+    GridOptions gridOptions;
+    gridOptions.threads = 1;
+    const UniformGrid grid = buildGrid(scene, gridOptions);
+    FUZZ_CHECK(grid.cellStart.size() == grid.cells() + 1);
+    FUZZ_CHECK(grid.cellStart.back() == grid.cellTriangles.size());
+
+    constexpr int kSize = 6;
+    CameraBasis camera;
+    if (scene.camera) {
+        try {
+            camera = makeCamera(*scene.camera, kSize, kSize);
+        } catch (const InputError&) {
+            return;  // the file's camera may be unusable after all (e.g. at 1e38 from the scene)
+        }
+    } else {
+        // The default camera exists for every scene a reader accepts.
+        camera = makeCamera(defaultCamera(scene.bounds(), kSize, kSize), kSize, kSize);
+    }
+    RenderSettings settings;
+    settings.threads = 1;
+    settings.maxBounces = std::min(scene.maxBounces, 2);
+    const RenderOutput out = CpuTracer(scene, grid).render(camera, settings);
+    FUZZ_CHECK(out.stats.overflowRays == 0);
+    for (size_t k = 0; k < out.depth.size(); ++k) {
+        FUZZ_CHECK(!std::isnan(out.depth[k]));
+        FUZZ_CHECK(!std::isnan(out.color[k].x) && !std::isnan(out.color[k].y) &&
+                   !std::isnan(out.color[k].z));
+        const bool hit = out.prim[k] >= 0.0f;
+        FUZZ_CHECK(hit == std::isfinite(out.depth[k]));
+        FUZZ_CHECK(out.prim[k] < float(scene.triangles.size()));
+        FUZZ_CHECK(!hit || out.depth[k] > 0.0f);
+    }
+}
+
+}  // namespace gpurt::fuzz
