@@ -130,8 +130,8 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 out.depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
                 out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
                 out.steps[i] = float(cells[i * 4 + 3]);
-                // Reaching the cell limit is the only way to visit that many cells (overflow
-                // is counted for primary rays: their cell counts are read back anyway).
+                // Overflow, counted for primary rays (their cell counts are read back anyway):
+                // with the grid's limit, reaching it is the only way to visit that many cells.
                 if (cells[i * 4 + 3] >= cellLimit()) ++out.stats.overflowRays;
             }
         }

@@ -14,7 +14,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build-fuzz -j"$(nproc)"
 
 status=0
-for name in obj json; do
+for name in obj json; do  # FOLLOW-UP: packed (see tests/fuzz/CMakeLists.txt)
   mkdir -p "build-fuzz/corpus/$name" build-fuzz/artifacts
   log="build-fuzz/fuzz_$name.log"
   # One process, so that the time bound holds on a loaded machine; -timeout is per input.

@@ -142,6 +142,34 @@ TEST(CameraTest, RejectsBadParameters) {
     expectOptionError(badTarget, 64, 64, "--target");
     expectOptionError(good, 0, 64, "--size");
     expectOptionError(good, 64, -1, "--size");
+    CameraSpec overflow = good;  // target - eye is not a float
+    overflow.eye = {0, 0, 3e38f};
+    overflow.target = {0, 0, -3e38f};
+    expectOptionError(overflow, 64, 64, "--target");
+}
+
+// Where dot(view, view) over- or underflows, the frame is still the one the contract means: the
+// same as for the same direction at unit length (exactly, as scaling by 2^k is exact).
+TEST(CameraTest, FarAndNearTargetsGiveTheUnitFrame) {
+    const CameraSpec unit{{0, 0, 0}, {0.6f, -0.8f, -1.5f}, {0, 1, 0}, 45.0f};
+    const CameraBasis reference = makeCamera(unit, 32, 24);
+    for (int exponent : {-120, -80, 70, 120}) {
+        SCOPED_TRACE(exponent);
+        CameraSpec scaled = unit;
+        scaled.target =
+            glm::vec3(std::ldexp(unit.target.x, exponent), std::ldexp(unit.target.y, exponent),
+                      std::ldexp(unit.target.z, exponent));
+        const CameraBasis c = makeCamera(scaled, 32, 24);
+        EXPECT_EQ(c.forward, reference.forward);
+        EXPECT_EQ(c.right, reference.right);
+        EXPECT_EQ(c.upOrtho, reference.upOrtho);
+    }
+    // A huge up vector and a tiny one are directions like any other.
+    for (float length : {0x1p100f, 0x1p-100f}) {
+        CameraSpec up = unit;
+        up.up = glm::vec3(0, length, 0);
+        EXPECT_EQ(makeCamera(up, 32, 24).right, reference.right) << length;
+    }
 }
 
 }  // namespace

@@ -312,6 +312,18 @@ TEST_F(JsonSceneTest, RangeErrorsNameTheJsonPointer) {
                 {"/meshes/0/material/reflectivity/1: must be <= 1"});
 }
 
+// The camera check is done in double: in float, |target - eye|^2 overflows for a camera 1e20
+// away, which the renderer handles (SceneScale.h), and underflows for one 1e-20 away.
+TEST_F(JsonSceneTest, CamerasFarAwayOrVeryCloseAreAccepted) {
+    for (const char* camera : {R"("eye": [0, 0, 3e30], "target": [1e30, 0, 0])",
+                               R"("eye": [0, 0, 3e-30], "target": [1e-30, 0, 0])",
+                               R"("eye": [0, 0, 1], "target": [0, 0, 0], "up": [0, 1e-30, 0])"}) {
+        const Scene scene = loadJsonScene(
+            write("scene.json", std::string(R"({"meshes": [], "camera": {)") + camera + "}}"));
+        EXPECT_TRUE(scene.camera.has_value()) << camera;
+    }
+}
+
 TEST_F(JsonSceneTest, TransformErrors) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": [{"file": "tri.obj", "transform": {"scale": [1, 0, 1]}}]})",

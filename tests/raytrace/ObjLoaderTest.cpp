@@ -2,6 +2,8 @@
 // one InputError naming file and line for each kind of bad input tinyobjloader would accept.
 #include "raytrace/ObjLoader.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -226,9 +228,87 @@ TEST_F(ObjLoaderTest, BadVertices) {
 
 TEST_F(ObjLoaderTest, TrailingCommentsAreComments) {
     // Exporters write "f 1 2 3 # note"; the comment runs to the end of the line.
-    const Scene scene = loadObj(write("c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # one\nf 3 2 1#two\n"));
+    const Scene scene =
+        loadObj(write("c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # one\nf 3 2 1#two\n"));
     ASSERT_EQ(scene.triangles.size(), 2u);
     EXPECT_EQ(scene.triangles[1].v0, glm::vec3(0, 1, 0));
+}
+
+TEST_F(ObjLoaderTest, CommentsEndAtALoneCarriageReturn) {
+    // Old Mac line ends: a comment must not swallow the lines after it.
+    const Scene scene =
+        loadObj(write("cr.obj", "# comment\rv 0 0 0 # origin\rv 1 0 0\rv 0 1 0\rf 1 2 3 # one\r"));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    expectTriangle(scene.triangles[0], {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    expectError("# comment\rv 0 0\r", 2, "2 coordinates");
+}
+
+TEST_F(ObjLoaderTest, CoordinatesAreCorrectlyRoundedFloats) {
+    // What strtof gives, also for spellings tinyobjloader's own parser gets wrong: a long
+    // mantissa, an exponent with leading zeros, the limits of the float range.
+    const std::string longMantissa = "0." + std::string(60, '0') + "123456789e61";
+    const Scene scene = loadObj(write("exact.obj", "v " + longMantissa + " 1e-0000000045 -0.0\n" +
+                                                       "v 3.4028234e38 1.17549435e-38 1e-46\n" +
+                                                       "v 0.1 16777217 -7e-39\nf 1 2 3\n"));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    const Triangle& t = scene.triangles[0];
+    EXPECT_EQ(t.v0, glm::vec3(std::strtof(longMantissa.c_str(), nullptr), 1e-45f, 0.0f));
+    EXPECT_EQ(t.v0.x, 1.23456789f);
+    EXPECT_EQ(t.v1, glm::vec3(3.4028234e38f, 1.17549435e-38f, 0.0f));
+    EXPECT_EQ(t.v2, glm::vec3(0.1f, 16777216.0f, -7e-39f));
+}
+
+TEST_F(ObjLoaderTest, ExponentsBeyondTinyobjloadersIntAreRefused) {
+    expectError("v 0 0 1e-2147483648\n", 1, "exponent out of range");
+    expectError("v 0 0 1e+0000000002147483649\n", 1, "exponent out of range");
+    // Nine digits are fine (and zero or infinity decide).
+    EXPECT_EQ(loadObj(write("e9.obj", "v 1e-999999999 0 0\n")).triangles.size(), 0u);
+    expectError("v 1e+999999999 0 0\n", 1, "does not fit in a 32-bit float");
+}
+
+TEST_F(ObjLoaderTest, ExtensionsTheRendererDoesNotUseAreIgnored) {
+    // tinyobjloader's skin weights (vw) and tags (t) are not read, nor are lines, points and
+    // smoothing groups: the triangles are those of the faces alone.
+    const std::string text = kThreeVertices + "vw 1 2e30 1 3e30 0.5\n" + std::string(2000, 't') +
+                             "\n" + "t crease 8192/8192/8192 1 2\n" +
+                             "s 99999999999\nl 1 2\np 3\nvp 0.5 0.5\nf 1 2 3\n";
+    const Scene scene = loadObj(write("ext.obj", text));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    expectTriangle(scene.triangles[0], {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    // Lines and points are still checked: a bad index is an error wherever it is.
+    expectError(kThreeVertices + "l 1 9\n", 4, "out of range");
+}
+
+TEST_F(ObjLoaderTest, MaterialLibraryNamedManyTimesIsReadOnce) {
+    write("m.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
+    std::string text;
+    for (int k = 0; k < 500; ++k) text += "mtllib m.mtl\nmtllib nosuch.mtl\n";
+    ::testing::internal::CaptureStderr();
+    const Scene scene =
+        loadObj(write("many.obj", text + kThreeVertices + "usemtl blue\nf 1 2 3\n"));
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(scene.materials.size(), 2u);
+    EXPECT_EQ(scene.materials[scene.materialIds[0]].name, "blue");
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;  // one warning
+}
+
+TEST_F(ObjLoaderTest, DevicesAreRefusedAndUnreadableLibrariesAreWarnings) {
+    try {
+        loadObj("/dev/zero");
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/dev/zero: is a device"), std::string::npos)
+            << e.what();
+    }
+    std::filesystem::create_directories(dir_ / "folder.mtl");
+    for (const char* library : {"/dev/zero", "folder.mtl"}) {
+        ::testing::internal::CaptureStderr();
+        const Scene scene = loadObj(write(
+            "lib.obj", "mtllib " + std::string(library) + "\n" + kThreeVertices + "f 1 2 3\n"));
+        const std::string err = ::testing::internal::GetCapturedStderr();
+        EXPECT_NE(err.find("warning"), std::string::npos) << library;
+        EXPECT_EQ(scene.materials.size(), 1u);
+    }
 }
 
 }  // namespace

@@ -7,7 +7,12 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
+#include "raytrace/RayMath.h"
 #include "raytrace/UniformGrid.h"
+
+namespace gpurt::raymath {
+#include "../../glsl/common/shading.h"
+}  // namespace gpurt::raymath
 
 namespace gpurt {
 namespace {
@@ -48,6 +53,24 @@ void expectColor(glm::vec3 actual, glm::dvec3 expected) {
 }
 
 const glm::dvec3 kd(0.5, 0.25, 1.0), ks(0.2, 0.3, 0.4);
+
+// The normal's squared length is quartic in the edges: triangles 1e-15 or 1e15 across still get
+// a unit normal facing the ray, and a triangle whose vertices are collinear in float (no normal
+// at all) faces the ray instead of giving NaN.
+TEST(ShadingTest, FacingNormalOfTinyHugeAndCollinearTriangles) {
+    using namespace raymath;
+    const glm::vec3 d = glm::normalize(glm::vec3(0.1f, -0.2f, -1.0f));
+    for (float size : {1e-18f, 1e-15f, 1e-8f, 1.0f, 1e8f, 1e15f, 1e18f}) {
+        SCOPED_TRACE(size);
+        const glm::vec3 n = facingNormal(glm::vec3(size, 0, 0), glm::vec3(0, 2 * size, 0), d);
+        EXPECT_EQ(n, glm::vec3(0, 0, 1));
+        const glm::vec3 tilted = facingNormal(glm::vec3(size, 0, size), glm::vec3(0, size, 0), d);
+        EXPECT_NEAR(tilted.x, -std::sqrt(0.5f), 1e-6f);
+        EXPECT_NEAR(tilted.z, std::sqrt(0.5f), 1e-6f);
+    }
+    EXPECT_EQ(facingNormal(glm::vec3(1, 1, 1), glm::vec3(2, 2, 2), d), -d);
+    EXPECT_EQ(facingNormal(glm::vec3(0), glm::vec3(0, 1, 0), d), -d);
+}
 
 TEST(ShadingTest, LightStraightAbove) {
     Scene scene = floorScene(material(kd, ks, 8.0f));
