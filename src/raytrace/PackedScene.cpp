@@ -164,6 +164,8 @@ bool isFinite(glm::vec3 v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+bool nonNegative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
+
 // Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
 // the writer (name = the source scene) and the reader (name = the packed file).
 void validateScene(const std::string& name, const LoadedScene& loaded, const UniformGrid& grid) {
@@ -196,11 +198,18 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
         if (!isFinite(mat.diffuse) || !isFinite(mat.specular) || !std::isfinite(mat.shininess) ||
             !isFinite(mat.reflectivity))
             fail("material " + std::to_string(m) + ": values are not finite");
+        // The ranges a JSON scene allows (docs/SCENE_FORMAT.md): the shading relies on them.
+        if (!nonNegative(mat.diffuse) || !nonNegative(mat.specular) || !(mat.shininess >= 0.0f) ||
+            !nonNegative(mat.reflectivity) || glm::any(glm::greaterThan(mat.reflectivity, glm::vec3(1.0f))))
+            fail("material " + std::to_string(m) +
+                 ": colours and shininess must be >= 0 and reflectivity in [0, 1]");
     }
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
         if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
             fail("light " + std::to_string(l) + ": values are not finite");
+        if (!nonNegative(light.color) || !(light.intensity >= 0.0f))
+            fail("light " + std::to_string(l) + ": colour and intensity must be >= 0");
     }
     if (scene.camera) {
         // The checks of a JSON scene's camera: the contract's basis must exist.
@@ -219,6 +228,7 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
             fail("camera: up must be non-zero and not parallel to target - eye");
     }
     if (!isFinite(scene.background)) fail("background colour is not finite");
+    if (!nonNegative(scene.background)) fail("background colour must be >= 0");
     if (scene.maxBounces < 0 || uint32_t(scene.maxBounces) > kMaxBounces)
         fail("max bounces " + std::to_string(scene.maxBounces) + " outside 0.." +
              std::to_string(kMaxBounces));

@@ -57,7 +57,7 @@ const std::filesystem::path& scratchFolder() {
 
 void silenceWarnings() { std::cerr.setstate(std::ios::badbit); }
 
-void exerciseScene(const Scene& original) {
+void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
     FUZZ_CHECK(!original.materials.empty());
     FUZZ_CHECK(original.materialIds.size() == original.triangles.size());
     for (uint32_t id : original.materialIds) FUZZ_CHECK(id < original.materials.size());
@@ -66,10 +66,17 @@ void exerciseScene(const Scene& original) {
 
     // As the render command does: far from unit size, the scene is rescaled (SceneScale.h).
     Scene scene = original;
-    rescaleScene(scene, renderScaleExponent(scene));
-    GridOptions gridOptions;
-    gridOptions.threads = 1;
-    const UniformGrid grid = buildGrid(scene, gridOptions);
+    const int scaleExponent = renderScaleExponent(scene);
+    rescaleScene(scene, scaleExponent);
+    UniformGrid grid;
+    if (packedGrid) {  // a packed scene's own grid, validated by its reader
+        grid = *packedGrid;
+        rescaleGrid(grid, scaleExponent);
+    } else {
+        GridOptions gridOptions;
+        gridOptions.threads = 1;
+        grid = buildGrid(scene, gridOptions);
+    }
     FUZZ_CHECK(grid.cellStart.size() == grid.cells() + 1);
     FUZZ_CHECK(grid.cellStart.back() == grid.cellTriangles.size());
 

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "raytrace/Scene.h"
+#include "raytrace/UniformGrid.h"
 
 namespace gpurt::fuzz {
 
@@ -19,7 +20,8 @@ const std::filesystem::path& scratchFolder();
 // mirrors. Only an InputError from the scene file's own camera is accepted; anything else that
 // is wrong aborts, which libFuzzer reports as a crash: an exception, a NaN in colour or depth, a
 // depth without a hit, a ray stopped by the traversal limit.
-void exerciseScene(const Scene& scene);
+// With `packedGrid` (a packed scene's), that grid is traced instead of a new one.
+void exerciseScene(const Scene& scene, const UniformGrid* packedGrid = nullptr);
 
 // Makes std::cerr silent (the OBJ reader's warnings would flood the fuzzer's output).
 void silenceWarnings();

@@ -2,24 +2,26 @@
 # Builds the libFuzzer targets with clang into build-fuzz/ (GPURT_FUZZ=ON) and runs each for a
 # bounded time on its committed seed corpus (tests/fuzz/corpus/NAME) plus the inputs earlier runs
 # found (build-fuzz/corpus/NAME). Any crash, sanitizer report, leak, timeout or out-of-memory fails.
-#   tests/fuzz/run.sh [SECONDS_PER_TARGET]      default 12 (GPURT_FUZZ_SECONDS)
+#   tests/fuzz/run.sh [SECONDS_PER_TARGET]      default 10 (GPURT_FUZZ_SECONDS)
 # A failing input is kept as build-fuzz/artifacts/NAME-crash-*; replay it with
 #   build-fuzz/tests/fuzz/fuzz_NAME build-fuzz/artifacts/NAME-crash-...
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-seconds="${1:-${GPURT_FUZZ_SECONDS:-12}}"
+seconds="${1:-${GPURT_FUZZ_SECONDS:-10}}"
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPURT_FUZZ=ON \
   >/dev/null
 cmake --build build-fuzz -j"$(nproc)"
 
 status=0
-for name in obj json; do  # FOLLOW-UP: packed (see tests/fuzz/CMakeLists.txt)
+for name in obj json packed; do
   mkdir -p "build-fuzz/corpus/$name" build-fuzz/artifacts
   log="build-fuzz/fuzz_$name.log"
   # One process, so that the time bound holds on a loaded machine; -timeout is per input.
+  maxLen=4096 dict=(-dict="tests/fuzz/$name.dict")
+  if [ "$name" = packed ]; then maxLen=8192 dict=(); fi  # binary: seeds up to 4 KB, no dictionary
   if "build-fuzz/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-      -max_len=4096 -dict="tests/fuzz/$name.dict" -print_final_stats=1 \
+      -max_len="$maxLen" "${dict[@]}" -print_final_stats=1 \
       -artifact_prefix="build-fuzz/artifacts/$name-" \
       "build-fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")

@@ -334,6 +334,34 @@ TEST_F(PackedSceneTest, WriterRefusesScenesItCannotPack) {
     EXPECT_FALSE(fs::exists(dir_ / "x.gpscene"));
 }
 
+// Material and light values outside the ranges a JSON scene allows (the shading relies on them;
+// a negative shininess made NaN pixels, found by fuzz_packed) are refused by writer and reader.
+TEST_F(PackedSceneTest, RefusesMaterialAndLightValuesOutOfRange) {
+    const auto refused = [&](LoadedScene scene, const char* what) {
+        try {
+            encodePackedScene(scene, grid_, "source");
+            ADD_FAILURE() << what << " was packed";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("must be"), std::string::npos) << e.what();
+        }
+    };
+    LoadedScene s = source_;
+    s.scene.materials[0].shininess = -1.0f;
+    refused(s, "negative shininess");
+    s = source_;
+    s.scene.materials[0].reflectivity = glm::vec3(0.5f, 1.5f, 0.5f);
+    refused(s, "reflectivity above 1");
+    s = source_;
+    s.scene.materials[0].diffuse.y = -0.25f;
+    refused(s, "negative diffuse");
+    s = source_;
+    s.scene.lights.push_back(PointLight{glm::vec3(0.0f), glm::vec3(1.0f), -2.0f});
+    refused(s, "negative intensity");
+    s = source_;
+    s.scene.background = glm::vec3(-1.0f, 0.0f, 0.0f);
+    refused(s, "negative background");
+}
+
 // --- Damage ------------------------------------------------------------------------------------
 
 TEST_F(PackedSceneTest, RefusesAWrongMagic) {
