@@ -119,6 +119,19 @@ TEST_F(ObjErrors, FolderOrDeviceInsteadOfAFile) {
     expectRefused("render /dev/zero -o " + quoted("out.png"), {"/dev/zero: ", "device"});
 }
 
+TEST_F(ObjErrors, MaterialLibraryWithUnusableValues) {
+    // tinyobjloader reads 1e39 as infinity; a negative colour or exponent means nothing either.
+    const std::pair<const char*, const char*> cases[] = {
+        {"Kd 1e39 0 0", "Kd"}, {"Kd 0.5 -0.1 0", "Kd"}, {"Ks 0 0 -1", "Ks"}, {"Ns -5", "Ns"},
+        {"Ns 1e39", "Ns"}};
+    for (const auto& [line, key] : cases) {
+        write("bad.mtl", std::string("newmtl good\nKd 1 0 0\nnewmtl shiny\n") + line + "\n");
+        write("scene.obj", "mtllib bad.mtl\nusemtl good\n" + kTriangle);
+        expectRefused(render("scene.obj"),
+                      {path("bad.mtl") + ": material 'shiny': ", std::string(key) + " must be"});
+    }
+}
+
 TEST_F(ObjWarnings, MissingMtlIsAWarningAndTheDefaultMaterial) {
     write("plain.obj", kTriangle);
     write("nomtl.obj", "mtllib missing.mtl\nusemtl red\n" + kTriangle);

@@ -290,13 +290,34 @@ class MtlReader : public tinyobj::MaterialReader {
             missing.push_back(path.string());
             return loaded_[name] = false;
         }
+        const size_t first = materials->size();
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        for (size_t m = first; m < materials->size() && invalid.empty(); ++m)
+            invalid = checkMaterial((*materials)[m], path.string());
         return loaded_[name] = true;
     }
+
+    // The first material of a library that the renderer cannot use: a colour or exponent that
+    // is negative or not finite (tinyobjloader reads "Kd 1e39" as infinity). Empty when none.
+    std::string invalid;
 
     std::vector<std::string> missing;
 
   private:
+    static std::string checkMaterial(const tinyobj::material_t& m, const std::string& library) {
+        auto bad = [](float x) { return !std::isfinite(x) || x < 0.0f; };
+        std::string what;
+        if (bad(m.diffuse[0]) || bad(m.diffuse[1]) || bad(m.diffuse[2]))
+            what = "Kd";
+        else if (bad(m.specular[0]) || bad(m.specular[1]) || bad(m.specular[2]))
+            what = "Ks";
+        else if (bad(m.shininess))
+            what = "Ns";
+        if (what.empty()) return {};
+        return library + ": material " + quote(m.name) + ": " + what +
+               " must be finite and not negative";
+    }
+
     std::filesystem::path folder_;
     std::map<std::string, bool> loaded_;  // library name -> whether it could be read
 };
@@ -358,6 +379,7 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         std::string first = err.substr(0, err.find('\n'));
         throw InputError(name + ": " + (first.empty() ? "cannot parse OBJ file" : first));
     }
+    if (!mtlReader.invalid.empty()) throw InputError(mtlReader.invalid);
     for (const std::string& missing : mtlReader.missing)
         std::cerr << name << ": warning: cannot open material library " << missing
                   << "; using the default material\n";
