@@ -409,17 +409,13 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         material.shininess = static_cast<float>(m.shininess);
         // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
         if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
-        // The ranges a JSON scene allows, which the shading relies on (a negative Ns gives NaN
-        // pixels): values outside are clamped with a warning, not refused (exporters write them).
-        const Material given = material;
-        material.diffuse = glm::max(material.diffuse, glm::vec3(0.0f));
-        material.specular = glm::max(material.specular, glm::vec3(0.0f));
-        material.shininess = std::max(material.shininess, 0.0f);
-        material.reflectivity = glm::clamp(material.reflectivity, glm::vec3(0.0f), glm::vec3(1.0f));
-        if (given.diffuse != material.diffuse || given.specular != material.specular ||
-            given.shininess != material.shininess || given.reflectivity != material.reflectivity)
+        // A mirror reflects at most all light (a JSON scene's range): Ks above 1 with a
+        // reflective illum model is clamped for the reflectivity, with a warning.
+        if (glm::any(glm::greaterThan(material.reflectivity, glm::vec3(1.0f)))) {
+            material.reflectivity = glm::min(material.reflectivity, glm::vec3(1.0f));
             std::cerr << name << ": warning: material '" << m.name
-                      << "': negative colours or Ns, or reflectivity above 1, clamped\n";
+                      << "': reflectivity (Ks with illum " << m.illum << ") above 1, clamped to 1\n";
+        }
         scene.materials.push_back(material);
     }
     // Faces without a (known) material get the default one, appended after the MTL's.

@@ -172,21 +172,20 @@ TEST_F(ObjLoaderTest, MissingMtlIsAWarning) {
     EXPECT_EQ(scene.materials[0].name, "default");
 }
 
-// Out-of-range MTL values (a negative Ns made NaN highlights) are clamped to the ranges a JSON
-// scene allows, with a warning naming the file and the material.
-TEST_F(ObjLoaderTest, OutOfRangeMtlValuesAreClampedWithAWarning) {
-    write("bad.mtl", "newmtl odd\nKd -0.5 0.5 2\nKs 1.5 -1 0.5\nNs -5\nillum 3\n");
-    const fs::path path = write("odd.obj", "mtllib bad.mtl\n" + kThreeVertices + "usemtl odd\nf 1 2 3\n");
+// A reflective material's Ks above 1 is kept as specular colour but clamped to 1 as reflectivity
+// (a mirror cannot add light), with a warning naming the file and the material.
+TEST_F(ObjLoaderTest, ReflectivityAboveOneIsClampedWithAWarning) {
+    write("bright.mtl", "newmtl odd\nKd 0.5 0.5 2\nKs 1.5 0.25 1\nNs 8\nillum 3\n");
+    const fs::path path = write("odd.obj", "mtllib bright.mtl\n" + kThreeVertices + "usemtl odd\nf 1 2 3\n");
     ::testing::internal::CaptureStderr();
     const Scene scene = loadObj(path);
     const std::string err = ::testing::internal::GetCapturedStderr();
     EXPECT_NE(err.find("odd.obj: warning: material 'odd'"), std::string::npos) << err;
     ASSERT_GE(scene.materials.size(), 1u);
     const Material& m = scene.materials[0];
-    EXPECT_EQ(m.diffuse, glm::vec3(0.0f, 0.5f, 2.0f));  // colours >= 0, not capped above
-    EXPECT_EQ(m.specular, glm::vec3(1.5f, 0.0f, 0.5f));
-    EXPECT_EQ(m.shininess, 0.0f);
-    EXPECT_EQ(m.reflectivity, glm::vec3(1.0f, 0.0f, 0.5f));  // illum 3: from Ks, in [0, 1]
+    EXPECT_EQ(m.diffuse, glm::vec3(0.5f, 0.5f, 2.0f));
+    EXPECT_EQ(m.specular, glm::vec3(1.5f, 0.25f, 1.0f));
+    EXPECT_EQ(m.reflectivity, glm::vec3(1.0f, 0.25f, 1.0f));
 }
 
 TEST_F(ObjLoaderTest, MissingOrUnreadableFile) {
