@@ -8,39 +8,28 @@
 namespace gpurt {
 namespace {
 
-// Scenes within these bounds render as they are: with coordinates below 2^28 the quartic normal
-// length stays below 2^126, with edges from 2^-28 on it stays above 2^-126 (llvmpipe flushes
-// denormals to zero).
+// Scenes whose largest coordinate is within these bounds render as they are. Above 2^28 the
+// cubic numerator of Moller-Trumbore's t can overflow for rays from a camera a few scene sizes
+// away; below 2^-28 the quadratic determinant of typical triangles approaches the denormals,
+// which llvmpipe flushes to zero. (Tiny triangles in a scene of ordinary size are not a reason
+// to rescale: it would push the rest of the scene, lights included, towards overflow; their
+// normals are computed safely anyway, shading.h facingNormal.)
 constexpr double kLargestCoordinate = 0x1p28;
-constexpr double kShortestEdge = 0x1p-28;
-
-// Largest coordinate difference along one axis (double: float could overflow).
-double edgeLength(glm::vec3 a, glm::vec3 b) {
-    const glm::dvec3 e = glm::abs(glm::dvec3(b) - glm::dvec3(a));
-    return std::max(e.x, std::max(e.y, e.z));
-}
+constexpr double kSmallestLargestCoordinate = 0x1p-28;
 
 }  // namespace
 
 int renderScaleExponent(const Scene& scene) {
-    double largest = 0.0, shortest = INFINITY;
-    for (const Triangle& t : scene.triangles) {
+    double largest = 0.0;
+    for (const Triangle& t : scene.triangles)
         for (const glm::vec3& v : {t.v0, t.v1, t.v2})
             largest = std::max(
                 {largest, double(std::fabs(v.x)), double(std::fabs(v.y)), double(std::fabs(v.z))});
-        for (double e : {edgeLength(t.v0, t.v1), edgeLength(t.v1, t.v2), edgeLength(t.v2, t.v0)})
-            if (e > 0.0) shortest = std::min(shortest, e);
-    }
     if (!(largest > 0.0) || !std::isfinite(largest)) return 0;
-    if (!std::isfinite(shortest)) shortest = largest;  // only zero-area triangles: no edge
-    if (largest <= kLargestCoordinate && shortest >= kShortestEdge) return 0;
-    // Centre both ends: 2 * largest (the longest possible edge) and the shortest edge end up
-    // equally far from 1. Where they are too far apart for both to fit, overflow is the worse
-    // failure (no camera, no hits anywhere): the largest coordinate is brought within range, and
-    // the shortest edges may then be too short to be hit.
-    const int centred = int(std::lround((std::log2(2.0 * largest) + std::log2(shortest)) / 2.0));
-    const int fitLargest = int(std::ceil(std::log2(largest / kLargestCoordinate)));
-    return std::max(centred, fitLargest);
+    if (largest >= kSmallestLargestCoordinate && largest <= kLargestCoordinate) return 0;
+    int exponent = 0;
+    std::frexp(largest, &exponent);  // largest = m 2^exponent, 0.5 <= m < 1
+    return exponent - 1;             // the largest coordinate becomes m 2 in [1, 2)
 }
 
 glm::vec3 rescalePoint(glm::vec3 p, int exponent) {

@@ -5,7 +5,7 @@
 // Multiplying every position by a power of two is exact, and so is every float operation of the
 // backends on the scaled values as long as nothing over- or underflows; the image of the rescaled
 // scene is therefore the image of the original, where that one was computable, and its depths
-// scale back exactly. The render command rescales scenes outside a comfortable range.
+// scale back exactly. The render command rescales scenes whose coordinates are far from 1.
 #pragma once
 
 #include <vector>
@@ -18,10 +18,8 @@
 namespace gpurt {
 
 // The exponent e such that the scene times 2^-e renders without over- or underflow: 0 when its
-// coordinates are within 2^28 in magnitude and its shortest non-zero triangle edge is at least
-// 2^-28 (those scenes are left as they are), else the power of two that puts the geometric mean
-// of the two at about 1, but no lower than needed to bring the coordinates within 2^28. 0 for a
-// scene without triangles.
+// largest coordinate is within [2^-28, 2^28] in magnitude (those scenes are left as they are),
+// else the power of two that brings it into [1, 2). 0 for a scene without triangles.
 int renderScaleExponent(const Scene& scene);
 
 // p * 2^-exponent, component by component (exact unless it over- or underflows).
