@@ -71,7 +71,10 @@ GPURT_FN vec3 lightContribution(vec3 p, vec3 n, vec3 d, vec3 kd, vec3 ks, float 
     float s = max(0.0f, dot(mirrorDirection(-l, n), -d));
     // GLSL leaves pow(0, y) undefined; a zero base contributes nothing.
     float specular = s > 0.0f ? pow(s, ns) : 0.0f;
-    return (kd * diffuse + ks * specular) * lightColor * intensity / dist2;
+    // Bounded: a light of colour 1e30 and intensity 1e30 (or one at 1e-20 from the surface)
+    // would give infinity, and a later bounce's weight of 0 times infinity a NaN pixel. 1e30 is
+    // far beyond white and leaves room to sum any number of lights.
+    return min((kd * diffuse + ks * specular) * lightColor * intensity / dist2, vec3(1e30f));
 }
 
 // The ambient part of the local colour.

@@ -57,6 +57,23 @@ const glm::dvec3 kd(0.5, 0.25, 1.0), ks(0.2, 0.3, 0.4);
 // The normal's squared length is quartic in the edges: triangles 1e-15 or 1e15 across still get
 // a unit normal facing the ray, and a triangle whose vertices are collinear in float (no normal
 // at all) faces the ray instead of giving NaN.
+// A light far brighter than white (colour and intensity near the float limit, or a surface point
+// almost at the light) gives a large but finite contribution: infinity would turn into NaN when a
+// later bounce weighs it by 0.
+TEST(ShadingTest, LightContributionStaysFinite) {
+    using namespace raymath;
+    const glm::vec3 p(0), n(0, 0, 1), d(0, 0, -1);
+    const glm::vec3 huge = lightContribution(p, n, d, glm::vec3(0.5f), glm::vec3(0.5f), 10.0f,
+                                             glm::vec3(0, 0, 1), glm::vec3(1e30f, 3e38f, 1), 3e38f);
+    const glm::vec3 close = lightContribution(p, n, d, glm::vec3(0.5f), glm::vec3(0), 10.0f,
+                                              glm::vec3(0, 0, 1e-20f), glm::vec3(1), 1.0f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_TRUE(std::isfinite(huge[c]) && huge[c] > 1e29f) << huge[c];
+        EXPECT_TRUE(std::isfinite(close[c]) && close[c] > 1e29f) << close[c];
+        EXPECT_EQ(0.0f * huge[c], 0.0f);
+    }
+}
+
 TEST(ShadingTest, FacingNormalOfTinyHugeAndCollinearTriangles) {
     using namespace raymath;
     const glm::vec3 d = glm::normalize(glm::vec3(0.1f, -0.2f, -1.0f));
