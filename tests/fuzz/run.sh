@@ -15,6 +15,13 @@ cmake --build build-fuzz -j"$(nproc)"
 
 status=0
 for name in obj json packed; do
+  # Every run first replays its whole corpus: past about a thousand inputs that alone would take
+  # the time given (long runs with GPURT_FUZZ_SECONDS collect that many), so start afresh from
+  # the seeds then.
+  if [ -d "build-fuzz/corpus/$name" ] &&
+     [ "$(find "build-fuzz/corpus/$name" -type f | wc -l)" -gt 1000 ]; then
+    rm -r "build-fuzz/corpus/$name"
+  fi
   mkdir -p "build-fuzz/corpus/$name" build-fuzz/artifacts
   log="build-fuzz/fuzz_$name.log"
   # One process, so that the time bound holds on a loaded machine; -timeout is per input.
