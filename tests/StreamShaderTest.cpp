@@ -126,7 +126,8 @@ TEST_F(ShaderCompile, GlslDirLoadsKernelsFromDisk) {
     fs::remove_all(dir);
 }
 
-// Every kernel under glsl/ as assembled (and its early-exit masked variant) passes glslangValidator.
+// Every kernel under glsl/ as assembled (with the tracer's define variants, and the early-exit
+// masked variant) passes glslangValidator. (The files alone are include fragments without #version.)
 TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
     ShaderLibrary::global().setDirectory({});  // the embedded sources
     const fs::path dir = makeTempDir("validate");
@@ -138,6 +139,12 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         const bool vertex = path.size() > 5 && path.substr(path.size() - 5) == ".vert";
         if (!fragment && !vertex) continue;
         std::vector<AssembledShader> variants{library.assemble(path)};
+        // The define variants the tracer builds (GpuPipeline).
+        if (path == "trace/trace.frag")
+            for (const char* defines : {"#define FROM_START\n#define TRACE_STEPS (1 << 30)\n", "#define ANY_HIT\n",
+                                        "#define FROM_START\n#define ANY_HIT\n", "#define TRACE_STEPS 16\n"})
+                variants.push_back(library.assemble(path, defines));
+        if (path == "trace/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {

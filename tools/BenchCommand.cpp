@@ -37,12 +37,8 @@ struct BenchOptions {
     bool json = false;
     int runs = 5;
     int threads = 0;
-    std::string kernel = "fused";
-    int traverseSteps = 0;
-    std::string mask;
-    float lambda = GridOptions{}.lambda;
-    bool lambdaGiven = false;
-    bool skip = true;
+    TracerCliOptions tracer;
+    GridCliOptions grid;
     CameraOptions camera;
     ContextOptions context;
 };
@@ -107,10 +103,7 @@ BenchResult benchGl(const BenchOptions& o, const BenchInput& in) {
     GLContext context = o.context.makeContext();
     r.renderer = glRenderer();
     r.threads = glThreads();
-    GpuTracerOptions options;
-    parseTraceKernel(o.kernel, options.kernel);
-    options.traverseSteps = o.traverseSteps;
-    if (!o.mask.empty()) parseMaskMode(o.mask, options.mask);
+    const GpuTracerOptions options = o.tracer.options();
     GpuTracer tracer(in.scene, in.grid, options);
     std::function<uint64_t()> traceOnce = [&] { return tracer.tracePrimary(in.camera); };
     if (in.shadow) {
@@ -199,9 +192,7 @@ nlohmann::json resultJson(const BenchResult& r, const BenchResult* embree) {
 }
 
 int runBench(const BenchOptions& o) {
-    MaskMode mask;
-    if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
-        throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
+    o.tracer.options();  // refuses a bad --mask before any work
     std::vector<std::string> backends = o.backends.empty() ? availableBackends() : o.backends;
     const std::vector<std::string> available = availableBackends();
     for (const std::string& b : backends)
@@ -215,17 +206,7 @@ int runBench(const BenchOptions& o) {
     const bool shadow = o.rays == "shadow";
 
     auto start = std::chrono::steady_clock::now();
-    // A packed scene's own grid unless --lambda asks for another (as gpurt render does).
-    std::optional<UniformGrid> built;
-    if (!loaded.grid || o.lambdaGiven) {
-        GridOptions gridOptions;
-        gridOptions.lambda = o.lambda;
-        gridOptions.skip = o.skip;
-        built = buildGrid(scene, gridOptions);
-    } else if (!o.skip) {
-        built = *loaded.grid;
-        built->skip.clear();
-    }
+    const std::optional<UniformGrid> built = o.grid.build(loaded);
     const UniformGrid& grid = built ? *built : *loaded.grid;
     const double gridMs = elapsedMs(start);
 
@@ -255,7 +236,7 @@ int runBench(const BenchOptions& o) {
         for (BenchResult& r : results)
             if (&r != &reference) r.agreement = agreement(r.hits, reference.hits, rays, shadow);
 
-    const uint64_t rayCount = uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));
+    const uint64_t rayCount = rays.rays();
     if (o.json) {
         nlohmann::json j;
         if (results.size() == 1) j = resultJson(results.front(), embree);
@@ -313,24 +294,11 @@ void addBenchCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--runs", o->runs, "Timed runs after the warm-up (the median is reported)")->check(CLI::Range(1, 1000));
     cmd->add_option("--threads", o->threads, "Threads of the cpu and embree backends (0: one per core)")
         ->check(CLI::Range(0, 1024));
-    cmd->add_option("--kernel", o->kernel, "gl trace kernels: fused (default) or split")
-        ->check(CLI::IsMember({"fused", "split"}));
-    cmd->add_option("--traverse-steps", o->traverseSteps,
-                    "gl: grid cells per trace pass (0 = default: whole traversal when fused, 16 when split)")
-        ->check(CLI::Range(0, 1 << 20));
-    cmd->add_option("--mask", o->mask, "gl masking mode: earlyz|stencil|exit (default: fastest)");
-    auto* lambda = cmd->add_option("--lambda", o->lambda,
-                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
-                                   "(a packed scene's own grid is used unless this is given)")
-                       ->check(CLI::Range(0.01f, 64.0f));
-    cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
+    o->tracer.add(*cmd);
+    o->grid.add(*cmd);
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
-    cmd->callback([&run, o, lambda] {
-        o->lambdaGiven = lambda->count() > 0;
-        run = [o] { return runBench(*o); };
-    });
+    cmd->callback([&run, o] { run = [o] { return runBench(*o); }; });
 }
 
 }  // namespace gpurt

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -99,6 +100,54 @@ CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int 
     if (!target.empty()) spec.target = rescalePoint(parseVec3("--target", target), scaleExponent);
     if (!up.empty()) spec.up = parseVec3("--up", up);
     return makeCamera(spec, imageSize.x, imageSize.y);
+}
+
+void GridCliOptions::add(CLI::App& cmd) {
+    lambdaOption = cmd.add_option("--lambda", lambda,
+                                  "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
+                                  "(a packed scene's own grid is used unless this is given)")
+                       ->check(CLI::Range(0.01f, 64.0f));
+    cmd.add_option("--skip", skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
+}
+
+std::optional<UniformGrid> GridCliOptions::build(const LoadedScene& loaded) const {
+    if (!loaded.grid || (lambdaOption && lambdaOption->count() > 0)) {
+        GridOptions options;
+        options.lambda = lambda;
+        options.skip = skip;
+        return buildGrid(loaded.scene, options);
+    }
+    if (skip) return std::nullopt;
+    UniformGrid grid = *loaded.grid;
+    grid.skip.clear();
+    return grid;
+}
+
+void TracerCliOptions::add(CLI::App& cmd) {
+    cmd.add_option("--kernel", kernel,
+                   "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
+                   "(the Purcell/Christen traverser and intersector pair)")
+        ->check(CLI::IsMember({"fused", "split"}));
+    cmd.add_option("--traverse-steps", traverseSteps,
+                   "Grid cells per trace pass (0 = default: whole traversal when fused, 16 when split; "
+                   "1 with split = the seed)")
+        ->check(CLI::Range(0, 1 << 20));
+    cmd.add_option("--mask", mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)")
+        ->check(kNotEmpty);
+    cmd.add_option("--wait-threshold", waitThreshold,
+                   "Split kernels: run the intersector once this fraction of live rays wait (0: every iteration)")
+        ->check(CLI::Range(0.0f, 1.0f));
+}
+
+GpuTracerOptions TracerCliOptions::options() const {
+    GpuTracerOptions options;
+    if (!mask.empty() && !parseMaskMode(mask, options.mask))
+        throw InputError("--mask: unknown mode '" + mask + "' (earlyz, stencil, exit)");
+    parseTraceKernel(kernel, options.kernel);
+    options.traverseSteps = traverseSteps;
+    options.waitThreshold = waitThreshold;
+    return options;
 }
 
 }  // namespace gpurt

@@ -4,7 +4,10 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/InputError.h"
+#include "raytrace/GpuTracer.h"
 #include "raytrace/Scene.h"
+#include "raytrace/SceneLoader.h"
+#include "raytrace/UniformGrid.h"
 #include "stream/GLContext.h"
 #include "stream/ShaderLibrary.h"
 
@@ -72,6 +75,32 @@ struct CameraOptions {
     // `scaleExponent`: the scene was rescaled by 2^-scaleExponent for rendering (SceneScale.h);
     // --eye and --target, given in the scene file's units, are rescaled alike.
     CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
+};
+
+// The grid options of render and bench: --lambda and --skip.
+struct GridCliOptions {
+    float lambda = GridOptions{}.lambda;
+    bool skip = true;
+    CLI::Option* lambdaOption = nullptr;
+
+    void add(CLI::App& cmd);
+    // The grid to trace: a packed scene's own unless --lambda asks for another (built from its
+    // triangles like any other scene's, so every route gives the same image for the same options),
+    // else a new one. std::nullopt: use loaded.grid as it is.
+    std::optional<UniformGrid> build(const LoadedScene& loaded) const;
+};
+
+// The GL trace loop's options of render and bench: --kernel, --traverse-steps, --mask and
+// --wait-threshold.
+struct TracerCliOptions {
+    std::string kernel = "fused";
+    int traverseSteps = 0;
+    std::string mask;
+    float waitThreshold = 0.0f;
+
+    void add(CLI::App& cmd);
+    // Throws InputError for an unknown --mask.
+    GpuTracerOptions options() const;
 };
 
 }  // namespace gpurt

@@ -32,13 +32,8 @@ struct RenderOptions {
     std::string backend = "gl";
     std::string stats;  // "", "text" or "json"
     bool statsGiven = false;
-    std::string mask;
-    std::string kernel = "fused";
-    int traverseSteps = 0;
-    float waitThreshold = 0.0f;
-    float lambda = GridOptions{}.lambda;
-    bool lambdaGiven = false;
-    bool skip = true;
+    TracerCliOptions tracer;
+    GridCliOptions grid;
     int bounces = -1;
     CameraOptions camera;
     ContextOptions context;
@@ -100,9 +95,7 @@ int runRender(const RenderOptions& o) {
     std::vector<std::filesystem::path> outputPaths = {o.output};
     for (const auto& [name, file] : aovs) outputPaths.push_back(file);
     checkOutputPaths(outputPaths);
-    MaskMode mask = MaskMode::None;
-    if (!o.mask.empty() && !parseMaskMode(o.mask, mask))
-        throw InputError("--mask: unknown mode '" + o.mask + "' (earlyz, stencil, exit)");
+    const GpuTracerOptions tracerOptions = o.tracer.options();
 
     LoadedScene loaded = loadScene(o.scene);
     // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
@@ -120,19 +113,7 @@ int runRender(const RenderOptions& o) {
     settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
 
     const auto start = std::chrono::steady_clock::now();
-    // A packed scene brings its grid; an explicit --lambda asks for a different one, built from
-    // the packed triangles like any other scene's (so every route gives the same image for the
-    // same options).
-    std::optional<UniformGrid> built;
-    if (!loaded.grid || o.lambdaGiven) {
-        GridOptions gridOptions;
-        gridOptions.lambda = o.lambda;
-        gridOptions.skip = o.skip;
-        built = buildGrid(scene, gridOptions);
-    } else if (!o.skip) {
-        built = *loaded.grid;
-        built->skip.clear();
-    }
+    const std::optional<UniformGrid> built = o.grid.build(loaded);
     const UniformGrid& grid = built ? *built : *loaded.grid;
     RenderOutput out;
     if (o.backend == "cpu") {
@@ -140,11 +121,6 @@ int runRender(const RenderOptions& o) {
     } else {
         GLContext context = o.context.makeContext();
         KernelStats::global().setTiming(o.statsGiven);
-        GpuTracerOptions tracerOptions;
-        tracerOptions.mask = mask;
-        tracerOptions.traverseSteps = o.traverseSteps;
-        parseTraceKernel(o.kernel, tracerOptions.kernel);
-        tracerOptions.waitThreshold = o.waitThreshold;
         GpuTracer tracer(scene, grid, tracerOptions);
         out = tracer.render(camera, settings);
     }
@@ -189,30 +165,12 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                       ->check(CLI::IsMember({"", "text", "json"}));
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
-    cmd->add_option("--mask", o->mask, "Masking mode of the trace loop: earlyz|stencil|exit (default: fastest)")
-        ->check(kNotEmpty);
-    cmd->add_option("--kernel", o->kernel,
-                    "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
-                    "(the Purcell/Christen traverser and intersector pair)")
-        ->check(CLI::IsMember({"fused", "split"}));
-    cmd->add_option("--traverse-steps", o->traverseSteps,
-                    "Grid cells per trace pass (0 = default: whole traversal when fused, 16 when split; "
-                    "1 with split = the seed)")
-        ->check(CLI::Range(0, 1 << 20));
-    cmd->add_option("--wait-threshold", o->waitThreshold,
-                    "Run the intersector once this fraction of live rays wait (0: every iteration)")
-        ->check(CLI::Range(0.0f, 1.0f));
-    auto* lambda = cmd->add_option("--lambda", o->lambda,
-                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
-                                   "(a packed scene's own grid is used unless this is given)")
-                       ->check(CLI::Range(0.01f, 64.0f));
-    cmd->add_option("--skip", o->skip, "Empty-space skipping over empty cells (proximity clouds): on (default) or off")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
+    o->tracer.add(*cmd);
+    o->grid.add(*cmd);
     o->camera.add(*cmd);
     addContextOptions(*cmd, o->context);
-    cmd->callback([&run, o, stats, lambda] {
+    cmd->callback([&run, o, stats] {
         o->statsGiven = stats->count() > 0;
-        o->lambdaGiven = lambda->count() > 0;
         run = [o] { return runRender(*o); };
     });
 }

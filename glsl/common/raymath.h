@@ -55,6 +55,14 @@ GPURT_FN vec2 intersectBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax) {
     return vec2(tNear, tFar);
 }
 
+// Where the segment o + t d, 0 <= t <= tLimit, enters the box (0 when it starts inside), or -1
+// when it misses the box (primary ray generation, Purcell 2002: rays that miss are rejected).
+GPURT_FN float boxEntry(vec3 o, vec3 d, float tLimit, vec3 boxMin, vec3 boxMax) {
+    vec2 box = intersectBox(o, d, boxMin, boxMax);
+    float tEnter = max(box.x, 0.0f);
+    return tEnter > min(box.y, tLimit) ? -1.0f : tEnter;
+}
+
 // Ray parameter at which the ray leaves cell index `cell` along one axis (3D-DDA). Computed from
 // the cell's boundary each time instead of accumulating tDelta (Amanatides & Woo 1987), so long
 // traversals do not drift.

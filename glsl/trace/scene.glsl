@@ -42,10 +42,6 @@ void fetchTriangle(int id, out vec3 v0, out vec3 e1, out vec3 e2, out int materi
     e2 = texelFetch(triangles, at + ivec2(2, 0), 0).xyz;
 }
 
-// The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX when the segment
-// [0, tLimit] misses the box (primary ray generation, Purcell 2002: rays that miss are rejected).
-float gridEntry(vec3 o, vec3 d, float tLimit) {
-    vec2 box = intersectBox(o, d, gridMin, gridMax);
-    float tEnter = max(box.x, 0.0f);
-    return tEnter > min(box.y, tLimit) ? GPURT_MISSED_BOX : tEnter;
-}
+// The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX (-1) when the
+// segment [0, tLimit] misses the box.
+float gridEntry(vec3 o, vec3 d, float tLimit) { return boxEntry(o, d, tLimit, gridMin, gridMax); }

@@ -47,9 +47,8 @@ TraceHit CpuTracer::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
     TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, RAY_INACTIVE};
 
     // Ray generation: clip against the grid's box.
-    const glm::vec2 box = intersectBox(o, d, grid_.min, grid_.max);
-    const float tEnter = std::max(box.x, 0.0f);
-    if (tEnter > std::min(box.y, tLimit)) return hit;
+    const float tEnter = boxEntry(o, d, tLimit, grid_.min, grid_.max);
+    if (tEnter < 0.0f) return hit;
 
     // Voxel precalculation.
     glm::ivec3 voxel;
@@ -111,7 +110,7 @@ uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
             if (h.prim >= 0) hits[i] = glm::vec4(h.t, h.u, h.v, float(h.prim));
         }
     });
-    return uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));
+    return rays.rays();
 }
 
 RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {

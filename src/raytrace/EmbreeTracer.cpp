@@ -162,7 +162,7 @@ uint64_t EmbreeTracer::trace(const RayStream& rays, bool anyHit, EmbreeMode mode
             tracePackets<16, RTCRayHit16>(handles_->scene, rays, anyHit, begin, end, hits);
         else traceSingle(handles_->scene, rays, anyHit, begin, end, hits);
     });
-    return uint64_t(std::count_if(rays.tLimit.begin(), rays.tLimit.end(), [](float t) { return t >= 0.0f; }));
+    return rays.rays();
 }
 
 }  // namespace gpurt

@@ -173,12 +173,8 @@ void GpuTracer::setRays(const RayStream& rays) {
     for (size_t i = 0; i < n; ++i) {
         const glm::vec3 o = rays.origin[i], d = rays.direction[i];
         const float tLimit = rays.tLimit[i];
-        float w = GPURT_NO_RAY;
-        if (tLimit >= 0.0f) {  // the grid entry, as gridEntry() in trace/scene.glsl
-            const glm::vec2 box = raymath::intersectBox(o, d, grid_.min, grid_.max);
-            const float tEnter = std::max(box.x, 0.0f);
-            w = tEnter > std::min(box.y, tLimit) ? GPURT_MISSED_BOX : tEnter;
-        }
+        // The grid entry, as gridEntry() in trace/scene.glsl (-1 is GPURT_MISSED_BOX).
+        const float w = tLimit >= 0.0f ? raymath::boxEntry(o, d, tLimit, grid_.min, grid_.max) : GPURT_NO_RAY;
         const float ray[8] = {o.x, o.y, o.z, tLimit, d.x, d.y, d.z, w};
         std::copy(ray, ray + 4, origin.begin() + std::ptrdiff_t(4 * i));
         std::copy(ray + 4, ray + 8, direction.begin() + std::ptrdiff_t(4 * i));

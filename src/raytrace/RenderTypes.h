@@ -42,6 +42,13 @@ struct RayStream {
     int width = 0, height = 0;
     std::vector<glm::vec3> origin, direction;  // direction normalised
     std::vector<float> tLimit;                 // < 0: no ray in this element
+
+    // The elements that carry a ray.
+    uint64_t rays() const {
+        uint64_t n = 0;
+        for (float t : tLimit) n += t >= 0.0f;
+        return n;
+    }
 };
 
 }  // namespace gpurt
