@@ -40,19 +40,15 @@ GPURT_FN vec3 cameraRayDirection(vec3 forward, vec3 right, vec3 upOrtho, float t
 // The parametric range [x, y] in which the ray o + t d lies inside the box; x > y when it misses.
 // Axis-parallel rays are handled without dividing by zero.
 GPURT_FN vec2 intersectBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax) {
-    float tNear = -GPURT_FAR;
-    float tFar = GPURT_FAR;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (o[a] < boxMin[a] || o[a] > boxMax[a]) return vec2(1.0f, 0.0f);
-        } else {
-            float t0 = (boxMin[a] - o[a]) / d[a];
-            float t1 = (boxMax[a] - o[a]) / d[a];
-            tNear = max(tNear, min(t0, t1));
-            tFar = min(tFar, max(t0, t1));
-        }
-    }
-    return vec2(tNear, tFar);
+    // Vector operations throughout (llvmpipe does not unroll a loop over the axes).
+    vec3 t0 = (boxMin - o) / d;
+    vec3 t1 = (boxMax - o) / d;
+    bvec3 parallel = equal(d, vec3(0.0f));
+    vec3 tNear = mix(min(t0, t1), vec3(-GPURT_FAR), parallel);
+    vec3 tFar = mix(max(t0, t1), vec3(GPURT_FAR), parallel);
+    bvec3 outside = bvec3(ivec3(parallel) * (ivec3(lessThan(o, boxMin)) + ivec3(greaterThan(o, boxMax))));
+    if (any(outside)) return vec2(1.0f, 0.0f);
+    return vec2(max(tNear.x, max(tNear.y, tNear.z)), min(tFar.x, min(tFar.y, tFar.z)));
 }
 
 // Where the segment o + t d, 0 <= t <= tLimit, enters the box (0 when it starts inside), or -1
@@ -72,13 +68,21 @@ GPURT_FN float ddaBoundary(float o, float d, float gridMin, float cellSize, int 
     return GPURT_FAR;
 }
 
+// ddaBoundary on all three axes at once, as vector operations (the same float operations per
+// axis): llvmpipe does not unroll a loop over the axes, and a loop costs far more there.
+GPURT_FN vec3 ddaBoundaries(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 cell) {
+    ivec3 next = cell + ivec3(greaterThan(d, vec3(0.0f)));
+    vec3 t = (gridMin + vec3(next) * cellSize - o) / d;
+    return mix(t, vec3(GPURT_FAR), equal(d, vec3(0.0f)));
+}
+
 // Voxel precalculation: the cell containing the point where the ray enters the grid (t = tEnter)
 // and the ray parameter of the next boundary along each axis.
 GPURT_FN void ddaSetup(vec3 o, vec3 d, float tEnter, vec3 gridMin, vec3 cellSize, ivec3 res,
                        GPURT_OUT(ivec3) voxel, GPURT_OUT(vec3) tMax) {
     vec3 p = o + tEnter * d;
     voxel = clamp(ivec3(floor((p - gridMin) / cellSize)), ivec3(0), res - ivec3(1));
-    for (int a = 0; a < 3; ++a) tMax[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], voxel[a]);
+    tMax = ddaBoundaries(o, d, gridMin, cellSize, voxel);
 }
 
 // The ray parameter where the ray leaves its current cell.
@@ -104,20 +108,19 @@ GPURT_FN bool ddaAdvance(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
                          GPURT_INOUT(ivec3) voxel, GPURT_INOUT(vec3) tMax) {
     ivec3 lo = max(voxel - ivec3(k - 1), ivec3(0));
     ivec3 hi = min(voxel + ivec3(k - 1), res - ivec3(1));
-    vec3 tCube;  // where the ray leaves the cube along each axis
-    for (int a = 0; a < 3; ++a)
-        tCube[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], d[a] > 0.0f ? hi[a] : lo[a]);
+    bvec3 forward = greaterThan(d, vec3(0.0f));
+    vec3 tCube = ddaBoundaries(o, d, gridMin, cellSize, mix(lo, hi, forward));  // leaving the cube
     int axis = (tCube.x <= tCube.y && tCube.x <= tCube.z) ? 0 : (tCube.y <= tCube.z ? 1 : 2);
     ivec3 next = voxel;
     if (k > 1) {
         vec3 p = o + tCube[axis] * d;
         next = clamp(ivec3(floor((p - gridMin) / cellSize)), lo, hi);
-        for (int a = 0; a < 3; ++a) next[a] = d[a] > 0.0f ? max(next[a], voxel[a]) : min(next[a], voxel[a]);
+        next = mix(min(next, voxel), max(next, voxel), forward);
     }
-    next[axis] = d[axis] > 0.0f ? hi[axis] + 1 : lo[axis] - 1;
+    next[axis] = forward[axis] ? hi[axis] + 1 : lo[axis] - 1;
     if (next[axis] < 0 || next[axis] >= res[axis]) return false;
     voxel = next;
-    for (int a = 0; a < 3; ++a) tMax[a] = ddaBoundary(o[a], d[a], gridMin[a], cellSize[a], voxel[a]);
+    tMax = ddaBoundaries(o, d, gridMin, cellSize, voxel);
     return true;
 }
 
@@ -128,19 +131,13 @@ GPURT_FN bool intersectTriangle(vec3 o, vec3 d, vec3 v0, vec3 e1, vec3 e2, GPURT
                                 GPURT_OUT(float) u, GPURT_OUT(float) v) {
     vec3 p = cross(d, e2);
     float det = dot(e1, p);
-    t = 0.0f;
-    u = 0.0f;
-    v = 0.0f;
-    if (det == 0.0f) return false;
     float invDet = 1.0f / det;
     vec3 s = o - v0;
     u = dot(s, p) * invDet;
-    if (u < 0.0f || u > 1.0f) return false;
     vec3 q = cross(s, e1);
     v = dot(d, q) * invDet;
-    if (v < 0.0f || u + v > 1.0f) return false;
     t = dot(e2, q) * invDet;
-    return true;
+    return det != 0.0f && u >= 0.0f && u <= 1.0f && v >= 0.0f && u + v <= 1.0f;
 }
 
 #endif

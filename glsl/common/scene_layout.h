@@ -5,7 +5,9 @@
 
 // Voxel index: RG32UI, one texel per grid cell c = x + nx * (y + ny * z), wrapped into rows of
 // this width: (start of the cell's list in the cell triangles, number of triangles) or, for an
-// empty cell, (skip distance of UniformGrid::skip, 0).
+// empty cell, (skip distance of UniformGrid::skip, 0). The GL holds the voxel index and the cell
+// triangles as buffer textures, the same texels row after row, so the kernels address them in
+// 1D (texel c here, 3k + i for list entry k); the rows are the layout of `gpurt pack --dump`.
 #define GPURT_INDEX_WIDTH 4096
 // Grid element lists ("cell triangles"): RGBA32F, the triangles of every cell's list in list
 // order, three texels each as in the triangle texture but with w = the triangle id:

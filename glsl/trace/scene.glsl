@@ -4,8 +4,8 @@
 #include "../common/raymath.h"
 #include "../common/stream.glsl"
 
-uniform usampler2D voxelIndex;  // (list start, count) per cell
-uniform sampler2D cellTriangles; // the cells' lists: v0 + id, e1, e2
+uniform usamplerBuffer voxelIndex;  // (list start, count) per cell
+uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
 uniform sampler2D triangles;    // v0 + material, e1, e2
 uniform sampler2D materials;
 
@@ -19,16 +19,16 @@ uniform int maxCellSteps;     // more cells than a ray can cross: RAY_OVERFLOW
 // (start, count) of the triangle list of cell v.
 uvec2 cellRange(ivec3 v) {
     uint c = uint(v.x + gridRes.x * (v.y + gridRes.y * v.z));
-    return texelFetch(voxelIndex, ivec2(c % uint(GPURT_INDEX_WIDTH), c / uint(GPURT_INDEX_WIDTH)), 0).xy;
+    return texelFetch(voxelIndex, int(c)).xy;
 }
 
 // Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.
 int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2) {
-    ivec2 at = ivec2(3u * (k % uint(GPURT_REFS_PER_ROW)), k / uint(GPURT_REFS_PER_ROW));
-    vec4 a = texelFetch(cellTriangles, at, 0);
+    int at = int(3u * k);
+    vec4 a = texelFetch(cellTriangles, at);
     v0 = a.xyz;
-    e1 = texelFetch(cellTriangles, at + ivec2(1, 0), 0).xyz;
-    e2 = texelFetch(cellTriangles, at + ivec2(2, 0), 0).xyz;
+    e1 = texelFetch(cellTriangles, at + 1).xyz;
+    e2 = texelFetch(cellTriangles, at + 2).xyz;
     return int(a.w);
 }
 

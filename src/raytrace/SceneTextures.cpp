@@ -23,8 +23,21 @@ void checkFits(const char* what, size_t width, size_t rows) {
                                std::to_string(maxSize));
 }
 
-GPUFloatArray upload(const TextureTexels& texels, GPUFormat format) {
-    GPUFloatArray array(texels.width, texels.rows, format, texels.name);
+// The tables the traversal gathers from most (the voxel index, the cell triangles) are buffer
+// textures: the same texels, row after row, addressed in 1D (cheaper on llvmpipe).
+void checkFitsBuffer(const char* what, size_t width, size_t rows) {
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (width * rows > size_t(maxTexels))
+        throw EnvironmentError(std::string("scene too large for this GL: the ") + what +
+                               " table needs " + std::to_string(width * rows) +
+                               " texels, GL_MAX_TEXTURE_BUFFER_SIZE is " +
+                               std::to_string(maxTexels));
+}
+
+GPUFloatArray upload(const TextureTexels& texels, GPUFormat format,
+                     GPUStorage storage = GPUStorage::Texture2D) {
+    GPUFloatArray array(texels.width, texels.rows, format, texels.name, storage);
     if (texels.isFloat)
         array.upload(texels.floats);
     else
@@ -34,13 +47,15 @@ GPUFloatArray upload(const TextureTexels& texels, GPUFormat format) {
 
 // Each texture's size is checked against the GL before its texels are laid out.
 GPUFloatArray makeVoxelIndex(const UniformGrid& grid) {
-    checkFits("voxel index", GPURT_INDEX_WIDTH, textureRowsFor(grid.cells(), GPURT_INDEX_WIDTH));
-    return upload(voxelIndexTexels(grid), GPUFormat::RG32UI);
+    checkFitsBuffer("voxel index", GPURT_INDEX_WIDTH,
+                    textureRowsFor(grid.cells(), GPURT_INDEX_WIDTH));
+    return upload(voxelIndexTexels(grid), GPUFormat::RG32UI, GPUStorage::Buffer);
 }
 
 GPUFloatArray makeCellTriangles(const Scene& scene, const UniformGrid& grid) {
-    checkFits("cell triangle", 3 * GPURT_REFS_PER_ROW, textureRowsFor(grid.cellTriangles.size(), GPURT_REFS_PER_ROW));
-    return upload(cellTriangleTexels(scene, grid), GPUFormat::RGBA32F);
+    checkFitsBuffer("cell triangle", 3 * GPURT_REFS_PER_ROW,
+                    textureRowsFor(grid.cellTriangles.size(), GPURT_REFS_PER_ROW));
+    return upload(cellTriangleTexels(scene, grid), GPUFormat::RGBA32F, GPUStorage::Buffer);
 }
 
 GPUFloatArray makeTriangles(const Scene& scene) {

@@ -56,52 +56,75 @@ GPUFormat floatFormat(int channels) {
 GPUFloatArray::GPUFloatArray(int width, int height, int channels, std::string name)
     : GPUFloatArray(width, height, floatFormat(channels), std::move(name)) {}
 
-GPUFloatArray::GPUFloatArray(int width, int height, GPUFormat format, std::string name)
-    : width_(width), height_(height), format_(format), name_(std::move(name)) {
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+GPUFloatArray::GPUFloatArray(int width, int height, GPUFormat format, std::string name,
+                             GPUStorage storage)
+    : width_(width), height_(height), format_(format), storage_(storage), name_(std::move(name)) {
     if (width <= 0 || height <= 0)
         throw UsageError("stream '" + name_ + "': size " + std::to_string(width) + "x" +
                          std::to_string(height) + " is empty");
-    if (width > maxSize || height > maxSize)
-        throw EnvironmentError("stream '" + name_ + "': " + std::to_string(width) + "x" +
-                               std::to_string(height) + " exceeds GL_MAX_TEXTURE_SIZE " +
-                               std::to_string(maxSize));
     while (glGetError() != GL_NO_ERROR) {
     }
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-    glTextureStorage2D(texture_, 1, info(format).internal, width, height);
-    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (storage == GPUStorage::Buffer) {
+        GLint maxTexels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+        if (elements() > size_t(maxTexels))
+            throw EnvironmentError("table '" + name_ + "': " + std::to_string(elements()) +
+                                   " elements exceed GL_MAX_TEXTURE_BUFFER_SIZE " +
+                                   std::to_string(maxTexels));
+        glCreateBuffers(1, &buffer_);
+        glNamedBufferData(buffer_, GLsizeiptr(elements() * size_t(channels()) * 4), nullptr,
+                          GL_STATIC_DRAW);
+        glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture_);
+        glTextureBuffer(texture_, info(format).internal, buffer_);
+    } else {
+        GLint maxSize = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+        if (width > maxSize || height > maxSize)
+            throw EnvironmentError("stream '" + name_ + "': " + std::to_string(width) + "x" +
+                                   std::to_string(height) + " exceeds GL_MAX_TEXTURE_SIZE " +
+                                   std::to_string(maxSize));
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+        glTextureStorage2D(texture_, 1, info(format).internal, width, height);
+        glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     glObjectLabel(GL_TEXTURE, texture_, GLsizei(name_.size()), name_.data());
     if (glGetError() == GL_OUT_OF_MEMORY) {
-        glDeleteTextures(1, &texture_);
-        texture_ = 0;
+        release();
         throw EnvironmentError("stream '" + name_ + "': out of GL memory for " +
                                std::to_string(width) + "x" + std::to_string(height));
     }
 }
 
-GPUFloatArray::~GPUFloatArray() {
+void GPUFloatArray::release() {
     if (texture_) glDeleteTextures(1, &texture_);
+    if (buffer_) glDeleteBuffers(1, &buffer_);
+    texture_ = 0;
+    buffer_ = 0;
 }
+
+GPUFloatArray::~GPUFloatArray() { release(); }
 
 GPUFloatArray::GPUFloatArray(GPUFloatArray&& other) noexcept
     : width_(other.width_),
       height_(other.height_),
       format_(other.format_),
+      storage_(other.storage_),
       texture_(std::exchange(other.texture_, 0)),
+      buffer_(std::exchange(other.buffer_, 0)),
       name_(std::move(other.name_)) {}
 
 GPUFloatArray& GPUFloatArray::operator=(GPUFloatArray&& other) noexcept {
     if (this != &other) {
-        if (texture_) glDeleteTextures(1, &texture_);
+        release();
         width_ = other.width_;
         height_ = other.height_;
         format_ = other.format_;
+        storage_ = other.storage_;
         texture_ = std::exchange(other.texture_, 0);
+        buffer_ = std::exchange(other.buffer_, 0);
         name_ = std::move(other.name_);
     }
     return *this;
@@ -118,8 +141,14 @@ void GPUFloatArray::uploadRaw(int y, int rows, GPUScalar scalar, const void* dat
                          " values does not fit rows " + std::to_string(y) + "+" +
                          std::to_string(rows));
     if (rows == 0) return;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(texture_, 0, 0, y, width_, rows, f.pixelFormat, f.type, data);
+    if (buffer_) {
+        const size_t rowBytes = size_t(width_) * size_t(f.channels) * 4;
+        glNamedBufferSubData(buffer_, GLintptr(size_t(y) * rowBytes),
+                             GLsizeiptr(size_t(rows) * rowBytes), data);
+    } else {
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(texture_, 0, 0, y, width_, rows, f.pixelFormat, f.type, data);
+    }
     GPURT_CHECK_GL("upload");
 }
 
@@ -144,8 +173,12 @@ void GPUFloatArray::downloadRaw(GPUScalar scalar, void* data, size_t bytes) cons
     if (scalar != f.scalar)
         throw UsageError("stream '" + name_ + "': downloading a " + scalarName(f.scalar) +
                          " array as " + scalarName(scalar));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(texture_, 0, f.pixelFormat, f.type, GLsizei(bytes), data);
+    if (buffer_) {
+        glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(bytes), data);
+    } else {
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glGetTextureImage(texture_, 0, f.pixelFormat, f.type, GLsizei(bytes), data);
+    }
     GPURT_CHECK_GL("download");
 }
 
@@ -167,25 +200,38 @@ std::vector<int32_t> GPUFloatArray::downloadInt() const {
 
 void GPUFloatArray::fill(float value) {
     const FormatInfo f = info(format_);
+    const auto clear = [&](GLenum type, const void* v) {
+        if (buffer_)
+            glClearNamedBufferData(buffer_, f.internal, f.pixelFormat, type, v);
+        else
+            glClearTexImage(texture_, 0, f.pixelFormat, type, v);
+    };
     if (f.scalar == GPUScalar::Float) {
         const float v[4] = {value, value, value, value};
-        glClearTexImage(texture_, 0, f.pixelFormat, GL_FLOAT, v);
+        clear(GL_FLOAT, v);
     } else if (f.scalar == GPUScalar::Uint) {
         const uint32_t u = uint32_t(value);
         const uint32_t v[4] = {u, u, u, u};
-        glClearTexImage(texture_, 0, f.pixelFormat, GL_UNSIGNED_INT, v);
+        clear(GL_UNSIGNED_INT, v);
     } else {
         const int32_t i = int32_t(value);
         const int32_t v[4] = {i, i, i, i};
-        glClearTexImage(texture_, 0, f.pixelFormat, GL_INT, v);
+        clear(GL_INT, v);
     }
     GPURT_CHECK_GL("fill");
 }
 
 void GPUFloatArray::copyFrom(const GPUFloatArray& source) {
-    if (source.width_ != width_ || source.height_ != height_ || source.format_ != format_)
+    if (source.width_ != width_ || source.height_ != height_ || source.format_ != format_ ||
+        source.storage_ != storage_)
         throw UsageError("stream '" + name_ + "': copy from '" + source.name_ +
-                         "' of another size or format");
+                         "' of another size, format or storage");
+    if (buffer_) {
+        glCopyNamedBufferSubData(source.buffer_, buffer_, 0, 0,
+                                 GLsizeiptr(elements() * size_t(channels()) * 4));
+        GPURT_CHECK_GL("copyFrom");
+        return;
+    }
     glCopyImageSubData(source.texture_, GL_TEXTURE_2D, 0, 0, 0, 0, texture_, GL_TEXTURE_2D, 0, 0, 0,
                        0, width_, height_, 1);
     GPURT_CHECK_GL("copyFrom");

@@ -2,6 +2,10 @@
 // A kernel reads it as a sampler (random access "gather", texelFetch) and writes it as a colour
 // attachment. Float channels by default; unsigned/signed integer formats hold exact indices (float
 // holds integers exactly only up to 2^24).
+//
+// GPUStorage::Buffer keeps the same W x H elements, row after row, in a buffer texture instead: a
+// read-only gather table (never an output) that kernels address in 1D, texelFetch(samplerBuffer,
+// x + W * y). On Mesa llvmpipe such a fetch costs far less than a 2D one (docs/PERFORMANCE.md).
 #pragma once
 
 #include "stream/GL.h"
@@ -17,6 +21,11 @@ enum class GPUFormat { R32F, RG32F, RGBA32F, R32UI, RG32UI, RGBA32UI, R32I, RG32
 
 enum class GPUScalar { Float, Uint, Int };
 
+enum class GPUStorage {
+    Texture2D,  // a 2D texture: a stream kernels read and write
+    Buffer,     // a buffer texture: a table kernels only read (GL_MAX_TEXTURE_BUFFER_SIZE elements)
+};
+
 int channelCount(GPUFormat format);
 GPUScalar scalarType(GPUFormat format);
 GPUFormat floatFormat(int channels);  // 1, 2 or 4 channels; throws UsageError otherwise
@@ -25,7 +34,8 @@ class GPUFloatArray {
   public:
     // A float array with `channels` (1, 2 or 4) channels.
     GPUFloatArray(int width, int height, int channels, std::string name = "stream");
-    GPUFloatArray(int width, int height, GPUFormat format, std::string name = "stream");
+    GPUFloatArray(int width, int height, GPUFormat format, std::string name = "stream",
+                  GPUStorage storage = GPUStorage::Texture2D);
     ~GPUFloatArray();
     GPUFloatArray(const GPUFloatArray&) = delete;
     GPUFloatArray& operator=(const GPUFloatArray&) = delete;
@@ -37,6 +47,7 @@ class GPUFloatArray {
     int channels() const { return channelCount(format_); }
     size_t elements() const { return size_t(width_) * size_t(height_); }
     GPUFormat format() const { return format_; }
+    GPUStorage storage() const { return storage_; }
     GLuint texture() const { return texture_; }
     const std::string& name() const { return name_; }
 
@@ -57,13 +68,16 @@ class GPUFloatArray {
     void copyFrom(const GPUFloatArray& source);
 
   private:
+    void release();
     void uploadRaw(int y, int rows, GPUScalar scalar, const void* data, size_t count);
     void downloadRaw(GPUScalar scalar, void* data, size_t bytes) const;
 
     int width_ = 0;
     int height_ = 0;
     GPUFormat format_ = GPUFormat::RGBA32F;
+    GPUStorage storage_ = GPUStorage::Texture2D;
     GLuint texture_ = 0;
+    GLuint buffer_ = 0;  // the buffer behind a GPUStorage::Buffer texture
     std::string name_;
 };
 

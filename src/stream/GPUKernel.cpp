@@ -53,6 +53,9 @@ GPUKernel& GPUKernel::addInput(const GPUPingPongArray& array, const std::string&
 }
 
 void GPUKernel::checkOutputSize(const GPUFloatArray& array) const {
+    if (array.storage() == GPUStorage::Buffer)
+        throw UsageError("kernel '" + name_ + "': '" + array.name() +
+                         "' is a buffer table, which kernels only read");
     if (int(outputs_.size()) >= kMaxOutputs)
         throw UsageError("kernel '" + name_ + "': more than " + std::to_string(kMaxOutputs) +
                          " outputs");
