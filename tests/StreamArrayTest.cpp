@@ -62,6 +62,31 @@ TEST_F(StreamArray, WrongSizesAndTypesAreRefused) {
     EXPECT_THROW(array.upload(std::vector<uint32_t>(16)), UsageError);
 }
 
+// A buffer table holds the same W x H elements, row after row, in a buffer texture.
+TEST_F(StreamArray, BufferTablesTransferFillAndCopyLikeTextures) {
+    GPUFloatArray table(37, 19, GPUFormat::RGBA32F, "table", GPUStorage::Buffer);
+    EXPECT_EQ(table.storage(), GPUStorage::Buffer);
+    const auto data = randomFloats(37 * 19 * 4, -1e6f, 1e6f, 21u);
+    table.upload(data);
+    EXPECT_EQ(table.download(), data);
+
+    GPUFloatArray words(5, 4, GPUFormat::RG32UI, "words", GPUStorage::Buffer);
+    std::vector<uint32_t> w(5 * 4 * 2);
+    for (size_t i = 0; i < w.size(); ++i) w[i] = 0xfffffff7u - uint32_t(i) * 65537u;
+    words.upload(w);
+    EXPECT_EQ(words.downloadUint(), w);
+    words.uploadRows(2, 1, std::vector<uint32_t>(5 * 2, 7u));
+    const auto rows = words.downloadUint();
+    for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i], i / 10 == 2 ? 7u : w[i]) << i;
+
+    GPUFloatArray a(8, 3, GPUFormat::R32F, "a", GPUStorage::Buffer), b(8, 3, GPUFormat::R32F, "b", GPUStorage::Buffer);
+    a.fill(-2.25f);
+    b.copyFrom(a);
+    for (float v : b.download()) EXPECT_EQ(v, -2.25f);
+    GPUFloatArray texture(8, 3, GPUFormat::R32F, "texture");
+    EXPECT_THROW(texture.copyFrom(a), UsageError);  // another storage
+}
+
 TEST_F(StreamArray, PingPongSwapsFrontAndBack) {
     GPUPingPongArray pp(4, 4, 1, "pp");
     const GLuint front = pp.front().texture();

@@ -224,6 +224,38 @@ TEST_F(StreamKernel, IntegerStreamsAreExact) {
     }
 }
 
+// Kernels gather from buffer tables with 1D indices (element x + W * y) and never write them.
+TEST_F(StreamKernel, BufferTablesAreGatheredIn1DAndNeverWritten) {
+    const int tw = 300, th = 7, w = 11, h = 5;  // the table has more texels than a row holds
+    const auto floats = randomFloats(size_t(tw * th) * 4, -1e3f, 1e3f, 31u);
+    std::vector<uint32_t> words(size_t(tw * th) * 2);
+    std::vector<int32_t> indices(size_t(w * h) * 4, 0);
+    std::mt19937 rng(5);
+    for (uint32_t& x : words) x = uint32_t(rng());
+    for (size_t i = 0; i < size_t(w * h); ++i) indices[i * 4] = int32_t(rng() % unsigned(tw * th));
+    GPUFloatArray floatTable(tw, th, GPUFormat::RGBA32F, "floats", GPUStorage::Buffer);
+    GPUFloatArray wordTable(tw, th, GPUFormat::RG32UI, "words", GPUStorage::Buffer);
+    GPUFloatArray idx(w, h, GPUFormat::RGBA32I), out(w, h, 4), outWords(w, h, GPUFormat::RGBA32UI);
+    floatTable.upload(floats);
+    wordTable.upload(words);
+    idx.upload(indices);
+    GPUKernel kernel("gatherTable", "test/gather_table.frag");
+    kernel.addInput(floatTable, "floats").addInput(wordTable, "words").addInput(idx, "indices");
+    kernel.addOutput(out).addOutput(outWords);
+    EXPECT_EQ(kernel.execute(), uint64_t(w * h));
+    const auto r = out.download();
+    const auto rw = outWords.downloadUint();
+    for (size_t i = 0; i < size_t(w * h); ++i) {
+        const size_t at = size_t(indices[i * 4]);
+        for (size_t c = 0; c < 4; ++c) ASSERT_EQ(r[i * 4 + c], floats[at * 4 + c]) << i;
+        ASSERT_EQ(rw[i * 4], words[at * 2]) << i;
+        ASSERT_EQ(rw[i * 4 + 1], words[at * 2 + 1]) << i;
+    }
+    GPUKernel writer("gatherTable", "test/gather_table.frag");
+    EXPECT_THROW(writer.addOutput(floatTable), UsageError);
+    EXPECT_THROW(writer.addInOut(floatTable, "floats"), UsageError);
+}
+
 TEST_F(StreamKernel, ConditionalRenderSkipsPassWhenConditionWroteNothing) {
     const int w = 16, h = 16;
     const auto values = randomFloats(size_t(w * h), 0.0f, 1.0f, 9);
