@@ -441,7 +441,10 @@ TEST_F(Cli, BenchPrimaryReportsEveryBackendOnTheSameRays) {
     }
     EXPECT_TRUE(names.count("gl") && names.count("cpu"));
     for (const auto& b : j["backends"])
-        if (b["backend"] == "gl") EXPECT_EQ(b["passes"]["trace"]["fragments"], 40 * 30);
+        if (b["backend"] == "gl") {  // one pass that generates its rays (trace.frag with CAMERA)
+            EXPECT_EQ(b["passes"]["traceCamera"]["fragments"], 40 * 30);
+            EXPECT_FALSE(b["passes"].contains("raygen"));
+        }
 }
 
 // Shadow rays: one per primary hit, counted independently from the prim AOV of a render.

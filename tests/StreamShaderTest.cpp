@@ -142,7 +142,8 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         // The define variants the tracer builds (GpuPipeline).
         if (path == "trace/trace.frag")
             for (const char* defines : {"#define FROM_START\n#define TRACE_STEPS (1 << 30)\n", "#define ANY_HIT\n",
-                                        "#define FROM_START\n#define ANY_HIT\n", "#define TRACE_STEPS 16\n"})
+                                        "#define FROM_START\n#define ANY_HIT\n", "#define TRACE_STEPS 16\n",
+                                        "#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
                 variants.push_back(library.assemble(path, defines));
         if (path == "trace/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked

@@ -93,6 +93,36 @@ TEST_F(TraceKernels, RaygenFollowsTheContractCamera) {
         }
 }
 
+// The one-pass primary trace (trace.frag with CAMERA) generates the rays raygen.frag writes and
+// gives the hits and cell counts of raygen followed by the fused trace, bit for bit; the camera
+// is inside the grid's box for some scenes and outside for others.
+TEST_F(TraceKernels, CameraTraceEqualsRaygenThenTrace) {
+    const Scene scene = randomTriangles(400, 3);
+    const UniformGrid grid = buildGrid(scene, GridOptions{});
+    SceneTextures textures(scene, grid);
+    const int w = 41, h = 29;
+    GpuPipeline p(w, h, textures, 1, MaskMode::EarlyExit);
+    for (const glm::vec3 eye : {glm::vec3(2.5f, 1.5f, 3.0f), glm::vec3(0.1f, 0.2f, -0.3f)}) {
+        CameraSpec spec;
+        spec.eye = eye;
+        spec.target = {0.1f, -0.2f, 0.05f};
+        spec.fovy = 60.0f;
+        p.setCamera(makeCamera(spec, w, h));
+        p.raygen.execute();
+        EXPECT_EQ(p.trace.execute(), uint64_t(w * h));
+        const auto hits = p.hit.download();
+        const auto cells = p.voxel.downloadInt();
+        p.hit.fill(-7.0f);
+        p.voxel.fill(-7.0f);
+        EXPECT_EQ(p.traceCamera.execute(), uint64_t(w * h));
+        EXPECT_EQ(p.hit.download(), hits);
+        EXPECT_EQ(p.voxel.downloadInt(), cells);
+        size_t hitCount = 0;
+        for (size_t i = 0; i < size_t(w * h); ++i) hitCount += hits[i * 4 + 3] >= 0.0f;
+        EXPECT_GT(hitCount, size_t(w * h / 10));  // the scene is in view
+    }
+}
+
 // Rays for the traversal tests: random ones from outside and inside the grid, axis-parallel
 // ones, ones starting exactly on cell boundaries, and a pinhole camera inside the grid.
 std::vector<std::pair<glm::vec3, glm::vec3>> testRays(const UniformGrid& g, int count, unsigned seed) {

@@ -4,16 +4,23 @@
 // the same cell-exit rule), so a ray needs no WAIT state and no second kernel. The split
 // traverse.frag / intersect.frag pair is the other end of the same range; docs/PERFORMANCE.md
 // measures both. With FROM_START the kernel also does the voxel precalculation and takes the
-// whole traversal in one pass (TRACE_STEPS is then unlimited). With ANY_HIT (shadow rays) the first triangle hit before the ray's limit ends
-// the ray: whether it is blocked is all a shadow ray asks.
+// whole traversal in one pass (TRACE_STEPS is then unlimited). With ANY_HIT (shadow rays) the first
+// triangle hit before the ray's limit ends the ray: whether it is blocked is all a shadow ray asks.
+// With CAMERA (and FROM_START) the kernel generates the camera's primary rays itself, as
+// raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
 #include "scene.glsl"
+#ifdef CAMERA
+#include "camera.glsl"
+#endif
 
 #ifndef TRACE_STEPS
 #define TRACE_STEPS 1
 #endif
 
+#ifndef CAMERA
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
+#endif
 #ifndef FROM_START
 uniform sampler2D ddaState;  // in place: (tMax, state)
 uniform isampler2D voxel;    // in place: (cell, cells visited)
@@ -30,23 +37,31 @@ layout(location = 2) out vec4 hitOut;  // (t, u, v, triangle | -1)
 #endif
 
 void main() {
+#ifdef CAMERA
+    vec3 o = eye;
+    vec3 d = primaryDirection();
+    float tLimit = GPURT_FAR;
+    float tEnter = gridEntry(o, d, tLimit);
+#else
     vec4 origin = readStream(rayOrigin);
     vec3 o = origin.xyz;
     float tLimit = origin.w;
     vec4 dir = readStream(rayDir);
     vec3 d = dir.xyz;
+    float tEnter = dir.w;
+#endif
 #ifdef FROM_START
     // The whole traversal in this pass, so the voxel precalculation (precalc.frag) is done here
     // and needs no pass of its own.
-    if (dir.w == GPURT_NO_RAY) discard;
-    if (dir.w == GPURT_MISSED_BOX) {
+    if (tEnter == GPURT_NO_RAY) discard;
+    if (tEnter == GPURT_MISSED_BOX) {
         voxelOut = ivec4(0);
         hitOut = vec4(GPURT_FAR, 0.0f, 0.0f, -1.0f);
         return;
     }
     ivec3 cell;
     vec3 tMax;
-    ddaSetup(o, d, dir.w, gridMin, cellSize, gridRes, cell, tMax);
+    ddaSetup(o, d, tEnter, gridMin, cellSize, gridRes, cell, tMax);
     int steps = 0;
 #else
     vec4 dda = readStream(ddaState);

@@ -24,8 +24,9 @@ struct GpuPipeline {
     GPUFloatArray surfacePoint, surfaceNormal, surfaceView, localColor, color, weight;
     GPUMask activeMask, waitMask;
     GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce;
-    // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays).
-    GPUKernel trace, traceAny;
+    // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
+    // the whole primary trace in one pass, generating its own rays (no ray streams; hits only).
+    GPUKernel trace, traceAny, traceCamera;
 
     // traverseSteps: cells per traverse pass of the split pair; fusedSteps: cells per pass of the
     // fused kernels, 0 for the whole traversal in one pass.
@@ -56,7 +57,8 @@ struct GpuPipeline {
           light("light", "trace/light.frag"),
           bounce("bounce", "trace/bounce.frag"),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
-          traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)) {
+          traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
+          traceCamera("traceCamera", "trace/trace.frag", {"FROM_START", "TRACE_STEPS (1 << 30)", "CAMERA"}) {
         for (GPUKernel* k : allKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
         precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
@@ -86,10 +88,11 @@ struct GpuPipeline {
                 k->addOutput(voxel).addOutput(hit);  // from the start: no mask, no ray state out
             }
         }
+        traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 10> allKernels() {
-        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &trace, &traceAny};
+    std::array<GPUKernel*, 11> allKernels() {
+        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &trace, &traceAny, &traceCamera};
     }
 
     // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
@@ -102,15 +105,16 @@ struct GpuPipeline {
         return defines;
     }
 
-    // The contract camera as the ray generator's uniforms.
+    // The contract camera as the uniforms of the kernels that generate primary rays.
     void setCamera(const CameraBasis& c) {
-        raygen.setUniform("eye", c.eye)
-            .setUniform("forward", c.forward)
-            .setUniform("right", c.right)
-            .setUniform("upOrtho", c.upOrtho)
-            .setUniform("tanHalf", c.tanHalf)
-            .setUniform("aspect", c.aspect)
-            .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
+        for (GPUKernel* k : {&raygen, &traceCamera})
+            k->setUniform("eye", c.eye)
+                .setUniform("forward", c.forward)
+                .setUniform("right", c.right)
+                .setUniform("upOrtho", c.upOrtho)
+                .setUniform("tanHalf", c.tanHalf)
+                .setUniform("aspect", c.aspect)
+                .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
     }
 
     // The ray states as mask values (glsl/common/raymath.h).

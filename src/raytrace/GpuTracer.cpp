@@ -160,8 +160,13 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
     GpuPipeline& p = pipeline(camera.width, camera.height);
     p.setCamera(camera);
-    p.raygen.dispatch();
-    const uint64_t rays = traceLoop(p, false);
+    uint64_t rays = 0;
+    if (options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0) {
+        rays = p.traceCamera.execute();  // one pass: the rays are generated in the trace kernel
+    } else {
+        p.raygen.dispatch();
+        rays = traceLoop(p, false);
+    }
     glFinish();
     return rays;
 }

@@ -56,8 +56,9 @@ class GpuTracer {
 
     const SceneTextures& textures() const { return textures_; }
 
-    // Tracing only (gpurt bench). tracePrimary generates the camera's rays (raygen) and traces
-    // them; setRays uploads rays and traceRays traces them (closest hit, or any hit for shadow
+    // Tracing only (gpurt bench). tracePrimary traces the camera's rays: with the default fused
+    // kernel in one pass that generates them itself (traceCamera), otherwise raygen and the trace
+    // loop; setRays uploads rays and traceRays traces them (closest hit, or any hit for shadow
     // rays). Both return the rays traced once the GL has finished. hits() reads the result:
     // (t, u, v, triangle | -1) per element.
     uint64_t tracePrimary(const CameraBasis& camera);

@@ -150,6 +150,7 @@ class GPUKernel {
     std::array<bool, 2> pending_{};
     std::array<bool, 2> timed_{};
     std::array<std::chrono::steady_clock::time_point, 2> dispatchedAt_{};
+    std::array<double, 2> passWallMs_{-1.0, -1.0};  // a software renderer's pass time, else -1
     int slot_ = 1;
     uint64_t lastCount_ = 0;
     int calls_ = 0;

@@ -10,14 +10,16 @@ namespace gpurt {
 struct PassStats {
     uint64_t calls = 0;
     uint64_t fragments = 0;  // summed over passes whose occlusion query was read
-    double gpuMs = 0.0;      // GL_TIME_ELAPSED, when timing is enabled
+    double gpuMs = 0.0;      // the passes' time, when timing is enabled
 };
 
 class KernelStats {
   public:
     static KernelStats& global();
 
-    // GPU timing wraps each pass in a GL_TIME_ELAPSED query (read with the pass's count).
+    // GPU timing wraps each pass in a GL_TIME_ELAPSED query (read with the pass's count); on a
+    // software renderer, whose "GPU" is the CPU, each pass is timed by the wall clock between
+    // two glFinish instead (llvmpipe's timer queries miss some passes).
     void setTiming(bool enabled) { timing_ = enabled; }
     bool timing() const { return timing_; }
 
