@@ -5,7 +5,8 @@ scenes from 36 to 871k triangles at 1024x1024, and on the bunny from 256x256 to 
     tools/bench-scaling.py [--gpurt build/gpurt] [--out docs/perf] [--runs 5] [--rays primary]
 
 Writes OUT/scaling-RAYS.json (every bench object), OUT/scaling-RAYS.png (two log-log plots) and
-prints the Markdown tables. The dragon comes from tools/fetch-dragon.sh (not committed).
+prints the Markdown tables. The dragon comes from tools/fetch-dragon.sh (not committed); the plot
+needs matplotlib (Debian: python3-matplotlib), checked before anything runs.
 """
 import argparse
 import json
@@ -67,6 +68,12 @@ def main():
     p.add_argument('--runs', type=int, default=5)
     p.add_argument('--rays', default='primary', choices=['primary', 'shadow'])
     a = p.parse_args()
+    try:  # checked before the benchmarks run, not after
+        import matplotlib  # noqa: F401
+    except ImportError:
+        print(f"{sys.argv[0]}: the plot needs matplotlib for {sys.executable} (Debian: apt-get "
+              f"install python3-matplotlib, then run /usr/bin/python3 {sys.argv[0]})", file=sys.stderr)
+        sys.exit(2)  # the environment, not the input
     dragon = subprocess.run([os.path.join(ROOT, 'tools', 'fetch-dragon.sh')], cwd=ROOT, check=True,
                             capture_output=True, text=True).stdout.strip()
     scenes = ['scenes/boxes.json', '../shared/models/teapot.obj', 'scenes/room.json', '../shared/models/bunny_lo.obj',
