@@ -218,6 +218,11 @@ TEST_F(JsonErrors, UnusableCamera) {
     expectRefused(render("fovy.json"), {path("fovy.json"), "/camera/fovy"});
 }
 
+TEST_F(CliErrors, UnknownOrMissingSubcommandNamesTheSubcommands) {
+    expectRefused("rendr scene.obj", {"unknown subcommand 'rendr'", "render", "pack", "bench", "info"});
+    expectRefused("", {"subcommand is required", "render", "pack", "bench", "info"});
+}
+
 TEST_F(CliErrors, SizeZero) {
     write("tri.obj", kTriangle);
     for (const char* size : {"0x16", "16x0", "0x0"})

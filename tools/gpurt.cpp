@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <string>
 
 int main(int argc, char** argv) {
     CLI::App app{"gpurt: a GPGPU ray tracer built from OpenGL stream kernels", "gpurt"};
@@ -18,6 +19,22 @@ int main(int argc, char** argv) {
     gpurt::addRenderCommand(app, run);
     gpurt::addBenchCommand(app, run);
     gpurt::addPackCommand(app, run);
+    std::string names;  // "render, pack, bench or info"
+    const auto subcommands = app.get_subcommands([](CLI::App*) { return true; });
+    for (size_t i = 0; i < subcommands.size(); ++i)
+        names += (i == 0 ? "" : i + 1 == subcommands.size() ? " or " : ", ") + subcommands[i]->get_name();
+    if (argc < 2) {
+        std::fprintf(stderr, "gpurt: a subcommand is required: %s (gpurt --help)\n", names.c_str());
+        return 1;
+    }
+    const std::string first = argv[1];
+    bool known = false;
+    for (const CLI::App* sub : subcommands) known = known || sub->check_name(first);
+    if (first.empty() || (first[0] != '-' && !known)) {
+        std::fprintf(stderr, "gpurt: unknown subcommand '%s': %s (gpurt --help)\n", first.c_str(),
+                     names.c_str());
+        return 1;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
