@@ -58,7 +58,7 @@ struct GpuPipeline {
           bounce("bounce", "trace/bounce.frag"),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
           traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
-          traceCamera("traceCamera", "trace/trace.frag", {"FROM_START", "TRACE_STEPS (1 << 30)", "CAMERA"}) {
+          traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
         for (GPUKernel* k : allKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
         precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
@@ -102,6 +102,13 @@ struct GpuPipeline {
         if (fusedSteps > 0) defines.push_back("TRACE_STEPS " + std::to_string(fusedSteps));
         else defines.insert(defines.end(), {"FROM_START", "TRACE_STEPS (1 << 30)"});
         if (anyHit) defines.push_back("ANY_HIT");
+        return defines;
+    }
+
+    // The one-pass trace (traceDefines with no step limit) that generates its own primary rays.
+    static std::vector<std::string> cameraTraceDefines() {
+        std::vector<std::string> defines = traceDefines(0, false);
+        defines.push_back("CAMERA");
         return defines;
     }
 

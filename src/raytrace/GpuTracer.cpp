@@ -27,6 +27,10 @@ bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
     return true;
 }
 
+bool GpuTracer::onePassTrace() const {
+    return options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0;
+}
+
 int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
@@ -59,8 +63,8 @@ uint64_t GpuTracer::traceLoop(GpuPipeline& p, bool anyHit) {
     const int maxCells = cellLimit();
     if (options_.kernel == TraceKernel::Fused) {
         GPUKernel& trace = anyHit ? p.traceAny : p.trace;
+        if (onePassTrace()) return trace.execute();  // from the start, whole traversal: one pass
         const int steps = options_.traverseSteps;
-        if (steps <= 0) return trace.execute();  // from the start, whole traversal: one pass
         const uint64_t rays = p.precalc.execute();
         whileLoop("trace", maxCells / steps + 2, [&] {
             if (const std::optional<uint64_t> active = p.activeMask.updateAndCount()) {
@@ -161,7 +165,7 @@ uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
     GpuPipeline& p = pipeline(camera.width, camera.height);
     p.setCamera(camera);
     uint64_t rays = 0;
-    if (options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0) {
+    if (onePassTrace()) {
         rays = p.traceCamera.execute();  // one pass: the rays are generated in the trace kernel
     } else {
         p.raygen.dispatch();

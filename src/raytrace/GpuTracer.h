@@ -72,6 +72,8 @@ class GpuTracer {
     GpuPipeline& pipeline(int width, int height);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     int cellLimit() const;  // options_.maxCellSteps or the grid's
+    // The fused kernel from the start with the whole traversal in one pass (the default).
+    bool onePassTrace() const;
 
     const Scene& scene_;
     const UniformGrid& grid_;
