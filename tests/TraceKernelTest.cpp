@@ -282,10 +282,10 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
         decodePackedScene(encodePackedScene(source, grid, "random"), "random.gpscene");
     const SceneTextures textures(packed.scene, *packed.grid);
     const std::vector<TextureTexels> cpu = sceneTextureTexels(source.scene, grid);
-    const GPUFloatArray* gpu[4] = {&textures.voxelIndex(), &textures.cellTriangles(),
-                                   &textures.triangles(), &textures.materials()};
+    const GPUFloatArray* gpu[5] = {&textures.voxelIndex(), &textures.cellTriangles(),
+                                   &textures.triangles(), &textures.materials(), &textures.emitters()};
     size_t bytes = 0;
-    for (size_t k = 0; k < 4; ++k) {
+    for (size_t k = 0; k < 5; ++k) {
         EXPECT_EQ(gpu[k]->name(), cpu[k].name);
         EXPECT_EQ(gpu[k]->width(), cpu[k].width) << cpu[k].name;
         EXPECT_EQ(gpu[k]->height(), cpu[k].rows) << cpu[k].name;

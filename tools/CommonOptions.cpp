@@ -20,6 +20,21 @@ bool parseFloat(const std::string& text, float& value) {
 }
 }  // namespace
 
+float parseFiniteFloat(const std::string& option, const std::string& text) {
+    float value = 0.0f;
+    if (!parseFloat(text, value)) throw InputError(option + ": '" + text + "' is not a finite number");
+    return value;
+}
+
+uint32_t parseCount(const std::string& option, const std::string& text, uint32_t lo, uint32_t hi) {
+    const bool digits = !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
+    const unsigned long long value = digits ? std::stoull(text) : 0;
+    if (!digits || value < lo || value > hi)
+        throw InputError(option + ": '" + text + "' is not an integer from " + std::to_string(lo) +
+                         " to " + std::to_string(hi));
+    return static_cast<uint32_t>(value);
+}
+
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     std::vector<std::string> parts;
     std::stringstream in(text);

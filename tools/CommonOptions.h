@@ -40,6 +40,10 @@ inline void addContextOptions(CLI::App& cmd, ContextOptions& options) {
         ->check(CLI::ExistingDirectory);
 }
 
+// A finite float; InputError naming the option otherwise.
+float parseFiniteFloat(const std::string& option, const std::string& text);
+// A decimal integer in [lo, hi]; InputError naming the option otherwise.
+uint32_t parseCount(const std::string& option, const std::string& text, uint32_t lo, uint32_t hi);
 // "x,y,z" -> vec3; InputError naming the option otherwise.
 glm::vec3 parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with 1 <= W, H <= 16384 and W * H <= 8192 * 8192.

@@ -6,6 +6,7 @@
 #include "raytrace/SceneLoader.h"
 
 #include "raytrace/AtomicFile.h"
+#include "raytrace/Colour.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/ImageIO.h"
@@ -35,6 +36,9 @@ struct RenderOptions {
     TracerCliOptions tracer;
     GridCliOptions grid;
     int bounces = -1;
+    std::string exposure = "0";
+    std::string spp = "1", seed = "0";
+    std::string tonemap = "aces";
     CameraOptions camera;
     ContextOptions context;
 };
@@ -87,14 +91,23 @@ int runRender(const RenderOptions& o) {
         const std::string name = a.substr(0, eq);
         if (eq == std::string::npos || eq + 1 == a.size())
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
-        if (name != "depth" && name != "prim" && name != "normal" && name != "steps")
-            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps)");
+        if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color")
+            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color)");
         if (aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         aovs[name] = a.substr(eq + 1);
     }
     std::vector<std::filesystem::path> outputPaths = {o.output};
     for (const auto& [name, file] : aovs) outputPaths.push_back(file);
     checkOutputPaths(outputPaths);
+    ColourSettings colour;
+    colour.exposure = parseFiniteFloat("--exposure", o.exposure);
+    if (std::abs(colour.exposure) > 64.0f)
+        throw InputError("--exposure: " + o.exposure + " is outside [-64, 64]");
+    parseToneMap(o.tonemap, colour.toneMap);
+    // The per-pixel sums take the same memory for any sample count; the bound keeps sample
+    // indices and counts exact in float (2^24).
+    const uint32_t samples = parseCount("--spp", o.spp, 1, 1u << 24);
+    const uint32_t seed = parseCount("--seed", o.seed, 0, UINT32_MAX);
     const GpuTracerOptions tracerOptions = o.tracer.options();
 
     LoadedScene loaded = loadScene(o.scene);
@@ -111,6 +124,8 @@ int runRender(const RenderOptions& o) {
     settings.width = size.x;
     settings.height = size.y;
     settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
+    settings.samples = samples;
+    settings.seed = seed;
 
     const auto start = std::chrono::steady_clock::now();
     const std::optional<UniformGrid> built = o.grid.build(loaded);
@@ -133,15 +148,16 @@ int runRender(const RenderOptions& o) {
                      grid.maxCellSteps());
 
     AtomicFileSet outputs;  // the PNG and the AOVs appear together or not at all
-    writePng(outputs, o.output, out.width, out.height, out.color);
+    writePng(outputs, o.output, out.width, out.height, toneMapImage(out.color, colour));
     for (const auto& [name, file] : aovs) {
         if (name == "depth") writePfm(outputs, file, out.width, out.height, 1, out.depth);
         if (name == "prim") writePfm(outputs, file, out.width, out.height, 1, out.prim);
         if (name == "steps") writePfm(outputs, file, out.width, out.height, 1, out.steps);
-        if (name == "normal") {
+        if (name == "normal" || name == "color") {
+            const std::vector<glm::vec3>& values = name == "normal" ? out.normal : out.color;
             std::vector<float> flat;
-            flat.reserve(out.normal.size() * 3);
-            for (const glm::vec3& n : out.normal) flat.insert(flat.end(), {n.x, n.y, n.z});
+            flat.reserve(values.size() * 3);
+            for (const glm::vec3& n : values) flat.insert(flat.end(), {n.x, n.y, n.z});
             writePfm(outputs, file, out.width, out.height, 3, flat);
         }
     }
@@ -157,7 +173,7 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto* cmd = app.add_subcommand("render", "Render a scene (.obj, .json or packed .gpscene) to a PNG");
     cmd->add_option("scene", o->scene, "Scene file")->required()->check(kNotEmpty);
     cmd->add_option("-o,--output", o->output, "Output PNG")->required()->check(kNotEmpty);
-    cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps=FILE");
+    cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps|color=FILE");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")
@@ -165,6 +181,13 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                       ->check(CLI::IsMember({"", "text", "json"}));
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
+    cmd->add_option("--spp", o->spp, "Samples per pixel, stratified over the pixel (default 1: the pixel centre)")
+        ->check(kNotEmpty);
+    cmd->add_option("--seed", o->seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
+    cmd->add_option("--exposure", o->exposure, "Exposure in EV: the linear colour is scaled by 2^EV (default 0)")
+        ->check(kNotEmpty);
+    cmd->add_option("--tonemap", o->tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")
+        ->check(CLI::IsMember({"aces", "reinhard", "clamp"}));
     o->tracer.add(*cmd);
     o->grid.add(*cmd);
     o->camera.add(*cmd);

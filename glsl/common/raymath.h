@@ -30,11 +30,19 @@ GPURT_FN vec3 contractNormalize(vec3 a) { return a / sqrt(dot(a, a)); }
 
 // The contract's primary ray through pixel (i, j), j counted from the top. `tanHalf` is
 // float(tan(fovy * pi / 360)) computed in double; `aspect` = float(W) / float(H).
+// cameraRayThrough: the same through any point (x, y) of the image plane, in pixels from the
+// top left corner (the centre of pixel (i, j) is (i + 0.5, j + 0.5)); for --spp samples.
+GPURT_FN vec3 cameraRayThrough(vec3 forward, vec3 right, vec3 upOrtho, float tanHalf,
+                               float aspect, float x, float y, float width, float height) {
+    float u = (x / width * 2.0f - 1.0f) * tanHalf * aspect;
+    float v = (1.0f - y / height * 2.0f) * tanHalf;
+    return contractNormalize(forward + u * right + v * upOrtho);
+}
+
 GPURT_FN vec3 cameraRayDirection(vec3 forward, vec3 right, vec3 upOrtho, float tanHalf,
                                  float aspect, float i, float j, float width, float height) {
-    float u = ((i + 0.5f) / width * 2.0f - 1.0f) * tanHalf * aspect;
-    float v = (1.0f - (j + 0.5f) / height * 2.0f) * tanHalf;
-    return contractNormalize(forward + u * right + v * upOrtho);
+    return cameraRayThrough(forward, right, upOrtho, tanHalf, aspect, i + 0.5f, j + 0.5f, width,
+                            height);
 }
 
 // The parametric range [x, y] in which the ray o + t d lies inside the box; x > y when it misses.

@@ -12,6 +12,13 @@
 //            product * background.
 // A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by the surface itself
 // and gets no shadow ray.
+//
+// Units: a white diffuse surface facing a point light of intensity I at distance r has radiance
+// I / r^2 (the light's radiant intensity is pi I: Lambert's BRDF kd / pi times pi I / r^2).
+// Emitters (area lights, MTL Ke) have radiance Le on both sides; each sample takes one point q of
+// all emitters, uniformly by area A, and lights p as a point light at q of intensity
+// Le |cos theta_q| A / pi would (emitterIntensity): the Monte Carlo estimate of the irradiance
+// integral of Le cos theta_p cos theta_q / r^2 over the emitters, times kd / pi.
 #ifndef GPURT_SHADING_H
 #define GPURT_SHADING_H
 
@@ -83,6 +90,35 @@ GPURT_FN vec3 ambientColor(vec3 kd) { return GPURT_AMBIENT * kd; }
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).
 GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) {
     return contractNormalize(mirrorDirection(d, n));
+}
+
+// The point at (u.x, u.y) in [0, 1)^2 of the triangle v0 + a e1 + b e2, uniform by area
+// (Shirley 1997: a = sqrt(u.x) (1 - u.y), b = sqrt(u.x) u.y).
+GPURT_FN vec3 emitterPoint(vec3 v0, vec3 e1, vec3 e2, vec2 u) {
+    float su = sqrt(u.x);
+    return v0 + e1 * (su * (1.0f - u.y)) + e2 * (su * u.y);
+}
+
+// u in [lo, hi) stretched back to [0, 1): after choosing the emitter by its share [lo, hi) of
+// the emitters' area, the same number picks the point, still stratified.
+GPURT_FN float remapToUnit(float u, float lo, float hi) {
+    return min((u - lo) / (hi - lo), 0.99999994f);
+}
+
+// The shadow ray from a hit towards the emitter point q: as shadowRay, ending rayOffset before
+// q so that the emitter's own triangle does not block it.
+GPURT_FN void emitterShadowRay(vec3 p, vec3 n, float eps, vec3 q, GPURT_OUT(vec3) origin,
+                               GPURT_OUT(vec3) dir, GPURT_OUT(float) tLimit) {
+    shadowRay(p, n, eps, q, origin, dir, tLimit);
+    tLimit = max(tLimit - eps, 0.0f);
+}
+
+// The intensity of the point light that stands for the emitter point q (edges e1, e2 of its
+// triangle) seen from p, with totalArea the area of all emitters (see the units above).
+GPURT_FN float emitterIntensity(vec3 p, vec3 q, vec3 e1, vec3 e2, float totalArea) {
+    vec3 l = contractNormalize(q - p);
+    vec3 nq = facingNormal(e1, e2, l);
+    return abs(dot(nq, l)) * totalArea * 0.31830988f;  // 1 / pi
 }
 
 #endif

@@ -1,5 +1,7 @@
 // The contract camera as uniforms (GpuPipeline::setCamera), for the kernels that generate primary
-// rays: one ray per pixel through the pixel centre (common/raymath.h cameraRayDirection).
+// rays: through the pixel centre (common/raymath.h cameraRayDirection), or through sample
+// `sampleIndex` of `sampleCount` of the pixel (common/sampling.h).
+#include "../common/sampling.h"
 uniform vec3 eye;
 uniform vec3 forward;
 uniform vec3 right;
@@ -7,10 +9,22 @@ uniform vec3 upOrtho;
 uniform float tanHalf;
 uniform float aspect;
 uniform vec2 imageSize;
+uniform uint sampleIndex;  // the sample of this pass
+uniform uint sampleCount;  // --spp (1: the pixel centre)
+uniform uint seed;         // --seed
 
 // The direction of this fragment's primary ray (stream row y = image row from the top).
 vec3 primaryDirection() {
     vec2 pixel = floor(gl_FragCoord.xy);
     return cameraRayDirection(forward, right, upOrtho, tanHalf, aspect, pixel.x, pixel.y,
                               imageSize.x, imageSize.y);
+}
+
+// The direction of this fragment's ray for sample sampleIndex of sampleCount (Camera.cpp
+// sampleDirection on the CPU).
+vec3 sampleDirection() {
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    vec2 offset = pixelSampleOffset(pixel.x, pixel.y, sampleIndex, sampleCount, seed);
+    return cameraRayThrough(forward, right, upOrtho, tanHalf, aspect, float(pixel.x) + offset.x,
+                            float(pixel.y) + offset.y, imageSize.x, imageSize.y);
 }

@@ -1,5 +1,6 @@
 // Adds one point light's diffuse and specular term to the local colour of each surface point
-// whose shadow ray found no occluder.
+// whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
+// took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
 #include "shading.glsl"
 
 uniform sampler2D surfacePoint;
@@ -7,17 +8,33 @@ uniform sampler2D surfaceNormal;
 uniform sampler2D surfaceView;
 uniform sampler2D hitState;    // the shadow rays' hits
 uniform sampler2D localState;  // in place
+#ifdef EMITTER
+uniform sampler2D lightSample;  // (q, emitting triangle | -1)
+#else
 uniform vec3 lightPosition;
 uniform vec3 lightColor;
 uniform float lightIntensity;
+#endif
 
 layout(location = 0) out vec4 localColor;
 
 void main() {
     vec4 s = readStream(surfacePoint);
     vec4 nm = readStream(surfaceNormal);
+#ifdef EMITTER
+    vec4 q = readStream(lightSample);
+    if (s.w < 0.0f || q.w < 0.0f || readStream(hitState).w >= 0.0f)
+        discard;  // no surface, emitter point behind it, or in shadow: the local colour stays
+    vec3 v0, e1, e2;
+    int emitterMaterial;
+    fetchTriangle(int(q.w), v0, e1, e2, emitterMaterial);
+    vec3 lightPosition = q.xyz;
+    vec3 lightColor = fetchEmission(emitterMaterial);
+    float lightIntensity = emitterIntensity(s.xyz, lightPosition, e1, e2, emitterArea);
+#else
     if (s.w < 0.0f || !lightInFront(s.xyz, nm.xyz, lightPosition) || readStream(hitState).w >= 0.0f)
         discard;  // no surface, light behind it, or in shadow: the local colour stays
+#endif
     vec3 kd, ks, reflectivity;
     float ns;
     fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);

@@ -8,6 +8,9 @@ uniform usamplerBuffer voxelIndex;  // (list start, count) per cell
 uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
 uniform sampler2D triangles;    // v0 + material, e1, e2
 uniform sampler2D materials;
+uniform samplerBuffer emitters;  // EmitterTable: (cdf, triangle id) per emitting triangle
+uniform int emitterCount;        // 0: no emitters
+uniform float emitterArea;       // their total area
 
 uniform vec3 gridMin;
 uniform vec3 gridMax;
@@ -45,3 +48,14 @@ void fetchTriangle(int id, out vec3 v0, out vec3 e1, out vec3 e2, out int materi
 // The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX (-1) when the
 // segment [0, tLimit] misses the box.
 float gridEntry(vec3 o, vec3 d, float tLimit) { return boxEntry(o, d, tLimit, gridMin, gridMax); }
+
+// The emitter table entry for u in [0, 1): the first k with u < cdf[k] (EmitterTable::pick).
+int pickEmitter(float u) {
+    int lo = 0, hi = emitterCount - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (u < texelFetch(emitters, mid).x) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}

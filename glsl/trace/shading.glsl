@@ -12,3 +12,6 @@ void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 refle
     ks = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).xyz;
     reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
 }
+
+// The radiance the material emits (area lights; 0 for most).
+vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }

@@ -1,25 +1,57 @@
 // Shadow ray generation for one point light: from each surface point that the light is in front
 // of, towards the light, limited to the distance to the light. Other elements carry no ray.
+// EMITTER: for the emitters (area lights) instead: each surface point takes its sample's point q
+// of the emitters, uniform by area (common/sampling.h, dimension GPURT_DIM_EMITTER + bounce; the
+// emitter by a binary search of the area table), stores it for the light pass, and aims the ray
+// at it.
 #include "shading.glsl"
+#include "../common/sampling.h"
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
+#ifdef EMITTER
+uniform uint sampleIndex;
+uniform uint sampleCount;
+uniform uint seed;
+uniform uint bounce;
+#else
 uniform vec3 lightPosition;
+#endif
 
 layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
 layout(location = 1) out vec4 rayDir;     // (d, tEnter | GPURT_MISSED_BOX | GPURT_NO_RAY)
+#ifdef EMITTER
+layout(location = 2) out vec4 lightSample;  // (q, emitting triangle | -1)
+#endif
 
 void main() {
     vec4 s = readStream(surfacePoint);
     vec3 n = readStream(surfaceNormal).xyz;
-    if (s.w < 0.0f || !lightInFront(s.xyz, n, lightPosition)) {
-        rayOrigin = vec4(0.0f);
-        rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
-        return;
-    }
+    rayOrigin = vec4(0.0f);
+    rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
+#ifdef EMITTER
+    lightSample = vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    if (s.w < 0.0f) return;
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + bounce));
+    int k = pickEmitter(u.x);
+    vec2 entry = texelFetch(emitters, k).xy;
+    float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;
+    vec3 v0, e1, e2;
+    int material;
+    fetchTriangle(int(entry.y), v0, e1, e2, material);
+    vec3 lightPosition = emitterPoint(v0, e1, e2, vec2(remapToUnit(u.x, lower, entry.x), u.y));
+    if (!lightInFront(s.xyz, n, lightPosition)) return;
+    lightSample = vec4(lightPosition, entry.y);
+    vec3 o, d;
+    float tLimit;
+    emitterShadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);
+#else
+    if (s.w < 0.0f || !lightInFront(s.xyz, n, lightPosition)) return;
     vec3 o, d;
     float tLimit;
     shadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);
+#endif
     rayOrigin = vec4(o, tLimit);
     rayDir = vec4(d, gridEntry(o, d, tLimit));
 }

@@ -1,6 +1,7 @@
 // Shading, step 1 of a bounce (Whitted 1980; Christen 2005, 5.5): turns the traced ray's hit into
 // a surface record (point, facing normal, material, view direction) and starts the local colour
-// with the ambient term. A path whose ray missed adds weight * background to the pixel and ends.
+// with the ambient term; an emitter that the ray hits adds weight * its radiance to the pixel. A
+// path whose ray missed adds weight * background to the pixel and ends.
 #include "shading.glsl"
 
 uniform sampler2D rayOrigin;
@@ -41,5 +42,6 @@ void main() {
     surfacePoint = vec4(o + h.x * d, h.w);
     surfaceNormal = vec4(facingNormal(e1, e2, d), float(material));
     surfaceView = vec4(d, 0.0f);
+    color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
     localColor = vec4(ambientColor(kd), 0.0f);
 }

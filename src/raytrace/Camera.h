@@ -26,4 +26,8 @@ CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy
 // Direction of the primary ray through pixel (i, j), j counted from the top row.
 glm::vec3 primaryDirection(const CameraBasis& camera, int i, int j);
 
+// Direction of the ray of sample s of n (--spp) through pixel (i, j) with --seed `seed`
+// (glsl/common/sampling.h): the pixel centre for n = 1.
+glm::vec3 sampleDirection(const CameraBasis& camera, int i, int j, uint32_t s, uint32_t n, uint32_t seed);
+
 }  // namespace gpurt

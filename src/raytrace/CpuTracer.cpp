@@ -27,7 +27,8 @@ CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
       grid_(grid),
       hitTolerance_(grid.hitTolerance()),
       rayOffset_(grid.rayOffset()),
-      maxSteps_(grid.maxCellSteps()) {
+      maxSteps_(grid.maxCellSteps()),
+      emitters_(buildEmitterTable(scene)) {
     triangles_.reserve(scene.triangles.size());
     for (const Triangle& t : scene.triangles)
         triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
@@ -126,21 +127,21 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     out.steps.assign(pixels, 0.0f);
 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
-    const int maxBounces = std::max(0, settings.maxBounces);
 
-    // One pixel: the primary ray, then up to maxBounces mirror rays; every hit is shaded with a
-    // shadow ray per light in front of it.
-    auto shadePixel = [&](int i, int j, RenderStats& stats) {
+    // One sample of a pixel: the primary ray d, then up to maxBounces mirror rays (< 0: the
+    // primary hit only, for the AOVs); every hit is shaded with a shadow ray per light in front of
+    // it. With readAovs, writes the pixel's AOVs. GpuTracer::traceSample is this as passes.
+    auto shadeSample = [&](int i, int j, uint32_t sample, uint32_t samples, glm::vec3 d,
+                           int maxBounces, bool readAovs, RenderStats& stats) {
         const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
         glm::vec3 o = camera.eye;
-        glm::vec3 d = primaryDirection(camera, i, j);
         glm::vec3 color(0.0f);
         glm::vec3 weight(1.0f);
         for (int bounce = 0;; ++bounce) {
             const TraceHit hit = trace(o, d, GPURT_FAR);
             if (bounce == 0) {
                 ++stats.primaryRays;
-                out.steps[pixel] = static_cast<float>(hit.steps);
+                if (readAovs) out.steps[pixel] = static_cast<float>(hit.steps);
             } else {
                 ++stats.secondaryRays;
             }
@@ -153,11 +154,13 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             const Material& material = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
             const glm::vec3 p = o + hit.t * d;
             const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
-            if (bounce == 0) {
+            color += weight * material.emission;
+            if (bounce == 0 && readAovs) {
                 out.depth[pixel] = hit.t;
                 out.prim[pixel] = static_cast<float>(hit.prim);
                 out.normal[pixel] = n;
             }
+            if (maxBounces < 0) break;
 
             glm::vec3 local = ambientColor(material.diffuse);
             for (const PointLight& light : lights) {
@@ -173,6 +176,27 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                                            material.shininess, light.position, light.color,
                                            light.intensity);
             }
+            if (!emitters_.empty()) {
+                // The sample's point of the emitters (shadowgen.frag EMITTER, light.frag EMITTER).
+                const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed,
+                                                                        GPURT_DIM_EMITTER + uint32_t(bounce)));
+                const size_t k = emitters_.pick(u.x);
+                const uint32_t id = emitters_.triangles[k];
+                const PreparedTriangle& e = triangles_[id];
+                const vec3 q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
+                if (lightInFront(p, n, q)) {
+                    glm::vec3 shadowOrigin, shadowDir;
+                    float shadowLimit;
+                    emitterShadowRay(p, n, rayOffset_, q, shadowOrigin, shadowDir, shadowLimit);
+                    const TraceHit blocker = traceAny(shadowOrigin, shadowDir, shadowLimit);
+                    ++stats.shadowRays;
+                    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+                    if (blocker.prim < 0)
+                        local += lightContribution(p, n, d, material.diffuse, material.specular, material.shininess, q,
+                                                   scene_.materials[scene_.materialIds[id]].emission,
+                                                   emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
+                }
+            }
             color += weight * local;
 
             if (bounce >= maxBounces) break;
@@ -181,7 +205,19 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             o = offsetOrigin(p, n, rayOffset_);
             d = reflectedDirection(d, n);
         }
-        out.color[pixel] = color;
+        return color;
+    };
+
+    // One pixel: the pixel-centre ray for the AOVs when there are several samples, then the
+    // samples, summed in order and divided by their number (as the GL accumulate pass sums).
+    const uint32_t samples = std::max(1u, settings.samples);
+    auto shadePixel = [&](int i, int j, RenderStats& stats) {
+        if (samples > 1) shadeSample(i, j, 0, 1, primaryDirection(camera, i, j), -1, true, stats);
+        glm::vec3 sum(0.0f);
+        for (uint32_t s = 0; s < samples; ++s)
+            sum += shadeSample(i, j, s, samples, sampleDirection(camera, i, j, s, samples, settings.seed),
+                               std::max(0, settings.maxBounces), samples == 1, stats);
+        out.color[size_t(j) * size_t(camera.width) + size_t(i)] = sum / float(samples);
     };
 
     // Rows are handed out one at a time: cost varies strongly across the image.

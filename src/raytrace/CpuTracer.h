@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "raytrace/Camera.h"
+#include "raytrace/EmitterTable.h"
 #include "raytrace/RenderTypes.h"
 #include "raytrace/Scene.h"
 #include "raytrace/UniformGrid.h"
@@ -57,6 +58,7 @@ class CpuTracer {
     float hitTolerance_;
     float rayOffset_;
     int maxSteps_;
+    EmitterTable emitters_;
 };
 
 }  // namespace gpurt

@@ -22,8 +22,13 @@ struct GpuPipeline {
     GPUFloatArray rayOrigin, rayDir, dda, voxel, hit;
     // Per-bounce surface records and the per-pixel accumulators of eq. 5.1.
     GPUFloatArray surfacePoint, surfaceNormal, surfaceView, localColor, color, weight;
+    // The sum of the samples so far of each pixel (--spp; the viewer's running mean).
+    GPUFloatArray sampleSum;
+    GPUFloatArray lightSample;  // the emitter point each surface point's shadow ray aims at
     GPUMask activeMask, waitMask;
-    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce;
+    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, accumulate;
+    // shadowgen and light for the emitters (area lights): one emitter point per sample.
+    GPUKernel emitterShadowgen, emitterLight;
     // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
     // the whole primary trace in one pass, generating its own rays (no ray streams; hits only).
     GPUKernel trace, traceAny, traceCamera;
@@ -45,6 +50,8 @@ struct GpuPipeline {
           localColor(w, h, 4, "localColor"),
           color(w, h, 4, "color"),
           weight(w, h, 4, "weight"),
+          sampleSum(w, h, 4, "sampleSum"),
+          lightSample(w, h, 4, "lightSample"),
           activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
           waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
           raygen("raygen", "trace/raygen.frag"),
@@ -56,6 +63,9 @@ struct GpuPipeline {
           shadowgen("shadowgen", "trace/shadowgen.frag"),
           light("light", "trace/light.frag"),
           bounce("bounce", "trace/bounce.frag"),
+          accumulate("accumulate", "trace/accumulate.frag"),
+          emitterShadowgen("emitterShadowgen", "trace/shadowgen.frag", {"EMITTER"}),
+          emitterLight("emitterLight", "trace/light.frag", {"EMITTER"}),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
           traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
           traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
@@ -79,6 +89,12 @@ struct GpuPipeline {
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
         bounce.addOutput(rayOrigin).addOutput(rayDir);
+        accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
+        emitterShadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        emitterShadowgen.addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
+        emitterLight.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
+        emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
         for (GPUKernel* k : {&trace, &traceAny}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
             if (fusedSteps > 0) {
@@ -91,8 +107,9 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 11> allKernels() {
-        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &trace, &traceAny, &traceCamera};
+    std::array<GPUKernel*, 14> allKernels() {
+        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce,
+                &accumulate, &emitterShadowgen, &emitterLight, &trace, &traceAny, &traceCamera};
     }
 
     // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
@@ -112,8 +129,10 @@ struct GpuPipeline {
         return defines;
     }
 
-    // The contract camera as the uniforms of the kernels that generate primary rays.
+    // The contract camera as the uniforms of the kernels that generate primary rays (raygen's
+    // through the pixel centres until setSample).
     void setCamera(const CameraBasis& c) {
+        setSample(0, 1, 0);
         for (GPUKernel* k : {&raygen, &traceCamera})
             k->setUniform("eye", c.eye)
                 .setUniform("forward", c.forward)
@@ -122,6 +141,12 @@ struct GpuPipeline {
                 .setUniform("tanHalf", c.tanHalf)
                 .setUniform("aspect", c.aspect)
                 .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
+    }
+
+    // The sample that raygen's rays go through: sample s of n (n = 1: the pixel centre).
+    void setSample(uint32_t s, uint32_t n, uint32_t seed) {
+        for (GPUKernel* k : {&raygen, &emitterShadowgen})
+            k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
     }
 
     // The ray states as mask values (glsl/common/raymath.h).

@@ -102,63 +102,92 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 }
 }  // namespace
 
+// The sample loop (--spp), each sample a run of the Whitted chain: raygen through the sample's
+// point of each pixel, then per bounce the trace loop, the surface pass, a shadow trace and light
+// pass per light, and the bounce pass that spawns the mirror rays; the accumulate pass adds the
+// sample's colour to the pixels' sums. The AOVs come from the pixel-centre rays: the first and only
+// sample's when spp = 1, else a primary trace and surface pass of their own before the samples.
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     GpuPipeline& p = pipeline(camera.width, camera.height);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.height;
-    const size_t pixels = size_t(camera.width) * size_t(camera.height);
 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
-    const int maxBounces = std::max(0, settings.maxBounces);
+    const uint32_t samples = std::max(1u, settings.samples);
+    p.surface.setUniform("background", scene_.background);
+    p.setCamera(camera);
+    if (samples > 1) traceSample(p, lights, -1, true, out);  // pixel centres: the AOVs only
+    p.sampleSum.fill(0.0f);
+    for (uint32_t s = 0; s < samples; ++s) {
+        p.setSample(s, samples, settings.seed);
+        traceSample(p, lights, std::max(0, settings.maxBounces), samples == 1, out);
+        p.accumulate.dispatch();
+    }
+    out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
+    for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
+    flushStats();
+    out.stats.totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+// One sample of every pixel through the chain into p.color, from the rays of raygen's current
+// sample, with up to maxBounces mirror bounces (< 0: only the primary trace and surface pass, for
+// the AOVs). With readAovs, reads the primary AOVs into `out`; the rays traced count in out.stats.
+void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
+                            bool readAovs, RenderOutput& out) {
+    const size_t pixels = size_t(p.width) * size_t(p.height);
+    RenderStats& stats = out.stats;
+    RenderOutput* aovs = readAovs ? &out : nullptr;
     p.color.fill(0.0f);
     p.weight.fill(1.0f);  // every pixel starts a path of weight 1
-    p.surface.setUniform("background", scene_.background);
-
-    p.setCamera(camera);
     p.raygen.dispatch();
-    for (int b = 0; b <= maxBounces; ++b) {
+    for (int b = 0; b <= std::max(0, maxBounces); ++b) {
         const uint64_t rays = traceLoop(p, false);
-        (b == 0 ? out.stats.primaryRays : out.stats.secondaryRays) += rays;
+        (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
         if (b > 0 && rays == 0) break;  // no mirror ray left: nothing more to shade (the count ends the loop)
-        if (b == 0) {
+        if (b == 0 && aovs) {
             // The primary AOVs, before shadow rays reuse the ray streams.
             const auto hits = p.hit.download();
             const auto cells = p.voxel.downloadInt();
-            out.depth.resize(pixels);
-            out.prim.resize(pixels);
-            out.steps.resize(pixels);
+            aovs->depth.resize(pixels);
+            aovs->prim.resize(pixels);
+            aovs->steps.resize(pixels);
             for (size_t i = 0; i < pixels; ++i) {
                 const bool isHit = hits[i * 4 + 3] >= 0.0f;
-                out.depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
-                out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
-                out.steps[i] = float(cells[i * 4 + 3]);
+                aovs->depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
+                aovs->prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
+                aovs->steps[i] = float(cells[i * 4 + 3]);
                 // Overflow, counted for primary rays (their cell counts are read back anyway):
                 // with the grid's limit, reaching it is the only way to visit that many cells.
-                if (cells[i * 4 + 3] >= cellLimit()) ++out.stats.overflowRays;
+                if (cells[i * 4 + 3] >= cellLimit()) ++stats.overflowRays;
             }
         }
         p.surface.dispatch();
-        if (b == 0) out.normal = toVectors<glm::vec3>(p.surfaceNormal.download(), 4);
+        if (b == 0 && aovs) {
+            aovs->normal = toVectors<glm::vec3>(p.surfaceNormal.download(), 4);
+            for (size_t i = 0; i < pixels; ++i)
+                if (aovs->prim[i] < 0.0f) aovs->normal[i] = glm::vec3(0.0f);
+        }
+        if (maxBounces < 0) return;
         for (const PointLight& l : lights) {
             p.shadowgen.setUniform("lightPosition", l.position).dispatch();
-            out.stats.shadowRays += traceLoop(p, true);
+            stats.shadowRays += traceLoop(p, true);
             p.light.setUniform("lightPosition", l.position)
                 .setUniform("lightColor", l.color)
                 .setUniform("lightIntensity", l.intensity)
                 .dispatch();
         }
+        if (!textures_.emitterTable().empty()) {
+            p.emitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();
+            stats.shadowRays += traceLoop(p, true);
+            p.emitterLight.dispatch();
+        }
         p.bounce.setUniform("lastBounce", b == maxBounces ? 1 : 0).dispatch();
         if (b == maxBounces) break;
     }
-    for (size_t i = 0; i < pixels; ++i)
-        if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
-    out.color = toVectors<glm::vec3>(p.color.download(), 4);
-    flushStats();
-    out.stats.totalMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return out;
 }
 
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {

@@ -51,7 +51,8 @@ class GpuTracer {
     GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options = {});
     ~GpuTracer();
 
-    // The whole image: colour and the primary AOVs.
+    // The whole image: colour (the mean of settings.samples samples a pixel) and the primary AOVs
+    // (pixel centres).
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings);
 
     const SceneTextures& textures() const { return textures_; }
@@ -71,6 +72,8 @@ class GpuTracer {
   private:
     GpuPipeline& pipeline(int width, int height);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
+    void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
+                     bool readAovs, RenderOutput& out);
     int cellLimit() const;  // options_.maxCellSteps or the grid's
     // The fused kernel from the start with the whole traversal in one pass (the default).
     bool onePassTrace() const;

@@ -17,6 +17,7 @@
 #include <png.h>
 
 #include "raytrace/AtomicFile.h"
+#include "raytrace/Colour.h"
 #include "raytrace/InputError.h"
 
 namespace gpurt {
@@ -85,8 +86,7 @@ uint32_t byteSwap(uint32_t x) {
 
 unsigned char linearToSrgb8(float linear) {
     float c = std::isnan(linear) ? 0.0f : std::clamp(linear, 0.0f, 1.0f);
-    c = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-    return static_cast<unsigned char>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
+    return static_cast<unsigned char>(std::lround(std::clamp(encodeSrgb(c), 0.0f, 1.0f) * 255.0f));
 }
 
 void writePng(const std::filesystem::path& path, int width, int height,

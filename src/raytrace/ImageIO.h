@@ -11,7 +11,8 @@ namespace gpurt {
 
 class AtomicFileSet;
 
-// 8-bit sRGB RGB PNG from linear colour (clamped to [0, 1], sRGB transfer, rounded); row 0 of
+// 8-bit sRGB RGB PNG from display-linear colour (clamped to [0, 1], sRGB transfer, rounded;
+// toneMapImage in raytrace/Colour.h makes it from the linear radiance); row 0 of
 // `linearTopFirst` is the top row. Throws InputError("<path>: ...") when it cannot be written.
 void writePng(const std::filesystem::path& path, int width, int height,
               const std::vector<glm::vec3>& linearTopFirst);

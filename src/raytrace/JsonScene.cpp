@@ -435,7 +435,7 @@ class SceneReader {
     }
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
-        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity"});
+        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -447,6 +447,8 @@ class SceneReader {
             material.diffuse = color(*diffuse, at / "diffuse");
         if (const json* specular = find(value, "specular"))
             material.specular = color(*specular, at / "specular");
+        if (const json* emission = find(value, "emission"))
+            material.emission = color(*emission, at / "emission");
         if (const json* shininess = find(value, "shininess"))
             material.shininess =
                 static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));

@@ -313,6 +313,8 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Ks";
         else if (bad(m.shininess))
             what = "Ns";
+        else if (bad(m.emission[0]) || bad(m.emission[1]) || bad(m.emission[2]))
+            what = "Ke";
         if (what.empty()) return {};
         return library + ": material " + quote(m.name) + ": " + what +
                " must be finite and not negative";
@@ -407,6 +409,7 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         material.diffuse = toVec3(m.diffuse);
         material.specular = toVec3(m.specular);
         material.shininess = static_cast<float>(m.shininess);
+        material.emission = toVec3(m.emission);
         // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
         if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
         // A mirror reflects at most all light (a JSON scene's range): Ks above 1 with a

@@ -17,7 +17,7 @@
 namespace gpurt {
 
 // The format version this gpurt writes and the only one it reads.
-inline constexpr uint32_t kPackedSceneVersion = 1;
+inline constexpr uint32_t kPackedSceneVersion = 2;  // 2: materials carry their emission
 // Bytes before the section table, and bytes per section table entry.
 inline constexpr size_t kPackedHeaderBytes = 32;
 inline constexpr size_t kPackedSectionEntryBytes = 24;

@@ -1,4 +1,4 @@
-// The ray math of glsl/common/raymath.h for C++: the same source, compiled with GLM's GLSL-like
+// The ray math of glsl/common/raymath.h (and the sampling of sampling.h) for C++: the same source, compiled with GLM's GLSL-like
 // types, so that the CPU backend and the kernels evaluate identical float operations.
 #pragma once
 
@@ -7,4 +7,5 @@
 namespace gpurt::raymath {
 using namespace glm;
 #include "../../glsl/common/raymath.h"
+#include "../../glsl/common/sampling.h"
 }  // namespace gpurt::raymath

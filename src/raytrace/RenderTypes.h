@@ -15,6 +15,9 @@ struct RenderSettings {
     // Mirror reflections after the primary hit (callers copy Scene::maxBounces here).
     int maxBounces = 3;
     int threads = 0;  // CPU backend: 0 = all cores
+    // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
+    uint32_t samples = 1;
+    uint32_t seed = 0;
 };
 
 struct RenderStats {
@@ -28,7 +31,7 @@ struct RenderStats {
 // The image and the contract's AOVs, all row-major with row 0 = the TOP row of the image.
 struct RenderOutput {
     int width = 0, height = 0;
-    std::vector<glm::vec3> color;  // linear RGB
+    std::vector<glm::vec3> color;  // linear RGB: the mean of the pixel's samples
     // t of the first hit along the normalised primary ray; +inf on a miss.
     std::vector<float> depth;
     std::vector<float> prim;        // triangle index of the first hit; -1 on a miss

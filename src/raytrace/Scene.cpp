@@ -28,6 +28,8 @@ Bounds Scene::bounds() const {
 
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye) {
     if (!scene.lights.empty()) return scene.lights;
+    for (uint32_t m : scene.materialIds)
+        if (scene.materials[m].emits()) return {};  // lit by its emitters
     PointLight headlight;
     headlight.position = eye;
     headlight.color = glm::vec3(1.0f);

@@ -20,6 +20,10 @@ struct Material {
     float shininess = 16.0f;
     glm::vec3 reflectivity{0.0f};
     std::string name = "default";
+    // Radiance emitted from both sides (MTL Ke, JSON emission): its triangles are area lights.
+    glm::vec3 emission{0.0f};
+
+    bool emits() const { return emission != glm::vec3(0.0f); }
 };
 
 struct PointLight {
@@ -67,7 +71,8 @@ struct Scene {
     Bounds bounds() const;
 };
 
-// The lights a renderer uses: the scene's, or, when it has none, one headlight at the camera eye
+// The lights a renderer uses: the scene's point lights, or, when it has no light of any kind (no
+// point light and no emitting triangle), one headlight at the camera eye
 // with colour 1 and intensity |eye - centre|^2 of the scene's box, so that its 1/d^2 falloff gives
 // about 1 at the centre of the scene. Both backends call this, so they light identically.
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye);

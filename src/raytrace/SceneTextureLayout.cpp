@@ -89,7 +89,8 @@ TextureTexels materialTexels(const Scene& scene) {
         const Material& mat = scene.materials[m];
         const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
                                                    vec4(mat.specular, 0.0f),
-                                                   vec4(mat.reflectivity, 0.0f)};
+                                                   vec4(mat.reflectivity, 0.0f),
+                                                   vec4(mat.emission, 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =
@@ -98,12 +99,25 @@ TextureTexels materialTexels(const Scene& scene) {
     return materials;
 }
 
+TextureTexels emitterTexels(const EmitterTable& emitters) {
+    const size_t n = std::max<size_t>(1, emitters.triangles.size());
+    TextureTexels table = emptyTexture("emitters", n, 1, 2, true);
+    table.floats[0] = 1.0f;
+    table.floats[1] = -1.0f;
+    for (size_t k = 0; k < emitters.triangles.size(); ++k) {
+        table.floats[2 * k] = emitters.cdf[k];
+        table.floats[2 * k + 1] = float(emitters.triangles[k]);  // exact: ids are below 2^24
+    }
+    return table;
+}
+
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid) {
     std::vector<TextureTexels> all;
     all.push_back(voxelIndexTexels(grid));
     all.push_back(cellTriangleTexels(scene, grid));
     all.push_back(triangleTexels(scene));
     all.push_back(materialTexels(scene));
+    all.push_back(emitterTexels(buildEmitterTable(scene)));
     return all;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "raytrace/EmitterTable.h"
 #include "raytrace/Scene.h"
 #include "raytrace/UniformGrid.h"
 
@@ -44,10 +45,14 @@ TextureTexels voxelIndexTexels(const UniformGrid& grid);
 TextureTexels cellTriangleTexels(const Scene& scene, const UniformGrid& grid);
 // RGBA32F, three texels a triangle: (v0, material id), (v1 - v0, 0), (v2 - v0, 0).
 TextureTexels triangleTexels(const Scene& scene);
-// RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0) per material.
+// RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0), (emission, 0) per
+// material.
 TextureTexels materialTexels(const Scene& scene);
+// RG32F, one row: (cumulative area share, triangle id) per entry of the emitter table; (1, -1)
+// when it is empty.
+TextureTexels emitterTexels(const EmitterTable& emitters);
 
-// The four, in the order SceneTextures binds them.
+// The five, in the order SceneTextures binds them.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
 
 }  // namespace gpurt

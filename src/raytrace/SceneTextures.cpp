@@ -73,6 +73,11 @@ GPUFloatArray makeMaterials(const Scene& scene) {
     return upload(materialTexels(scene), GPUFormat::RGBA32F);
 }
 
+GPUFloatArray makeEmitters(const EmitterTable& emitters) {
+    checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
+    return upload(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
+}
+
 }  // namespace
 
 SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
@@ -80,13 +85,18 @@ SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
       voxelIndex_(makeVoxelIndex(grid)),
       triangles_(makeTriangles(scene)),
       cellTriangles_(makeCellTriangles(scene, grid)),
-      materials_(makeMaterials(scene)) {}
+      materials_(makeMaterials(scene)),
+      emitterTable_(buildEmitterTable(scene)),
+      emitters_(makeEmitters(emitterTable_)) {}
 
 void SceneTextures::bind(GPUKernel& kernel) const {
     kernel.addInput(voxelIndex_, "voxelIndex")
         .addInput(cellTriangles_, "cellTriangles")
         .addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
+        .addInput(emitters_, "emitters")
+        .setUniform("emitterCount", int(emitterTable_.triangles.size()))
+        .setUniform("emitterArea", emitterTable_.totalArea)
         .setUniform("gridMin", grid_.min)
         .setUniform("gridMax", grid_.max)
         .setUniform("cellSize", grid_.cellSize)
@@ -98,7 +108,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
-    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_);
+    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(emitters_);
 }
 
 }  // namespace gpurt

@@ -4,6 +4,7 @@
 // ids (carried as floats in the hit stream) are checked against 2^24.
 #pragma once
 
+#include "raytrace/EmitterTable.h"
 #include "raytrace/Scene.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/GPUFloatArray.h"
@@ -17,13 +18,15 @@ class SceneTextures {
     SceneTextures(const Scene& scene, const UniformGrid& grid);
 
     // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellTriangles, triangles,
-    // materials) and sets the grid uniforms.
+    // materials, emitters) and sets the grid and emitter uniforms.
     void bind(GPUKernel& kernel) const;
 
     const GPUFloatArray& voxelIndex() const { return voxelIndex_; }
     const GPUFloatArray& triangles() const { return triangles_; }
     const GPUFloatArray& cellTriangles() const { return cellTriangles_; }
     const GPUFloatArray& materials() const { return materials_; }
+    const GPUFloatArray& emitters() const { return emitters_; }
+    const EmitterTable& emitterTable() const { return emitterTable_; }
     size_t bytes() const;
 
   private:
@@ -32,6 +35,8 @@ class SceneTextures {
     GPUFloatArray triangles_;
     GPUFloatArray cellTriangles_;
     GPUFloatArray materials_;
+    EmitterTable emitterTable_;
+    GPUFloatArray emitters_;
 };
 
 }  // namespace gpurt

@@ -248,7 +248,7 @@ TEST_F(PackedSceneTest, RoundTripOfAnEmptyScene) {
 
 TEST_F(PackedSceneTest, HeaderFollowsTheDocumentedLayout) {
     EXPECT_EQ(std::string(bytes_.begin(), bytes_.begin() + 8), "GPRTSCN1");
-    EXPECT_EQ(get32(bytes_, 8), 1u);
+    EXPECT_EQ(get32(bytes_, 8), 2u);
     EXPECT_EQ(get64(bytes_, 16), bytes_.size());
     EXPECT_EQ(get32(bytes_, 12), uint32_t(crc32(0L, bytes_.data() + 16, uInt(bytes_.size() - 16))));
     // Triangles: u64 count, 9 floats a triangle, then one u32 material id a triangle.
@@ -394,9 +394,12 @@ TEST_F(PackedSceneTest, RefusesAFlippedByteByItsChecksum) {
 
 TEST_F(PackedSceneTest, RefusesAnUnknownVersionAndSaysWhichItKnows) {
     Bytes b = bytes_;
-    put32(b, 8, 2);
+    put32(b, 8, 3);
     reseal(b);
-    EXPECT_REFUSED(b, "unknown packed format version 2 (this gpurt reads version 1)");
+    EXPECT_REFUSED(b, "unknown packed format version 3 (this gpurt reads version 2)");
+    put32(b, 8, 1);  // version 1 had no emission in its materials
+    reseal(b);
+    EXPECT_REFUSED(b, "unknown packed format version 1 (this gpurt reads version 2)");
     put32(b, 8, 0xffffffffu);
     EXPECT_REFUSED(b, "version 4294967295");
 }
@@ -450,7 +453,7 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
     const Entry mats = section(bytes_, "MATS");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, mats.offset, uint64_t(1) << 40); }),
                    "materials");
-    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, mats.offset + 8 + 40, 0x7fffffffu); }),
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, mats.offset + 8 + 52, 0x7fffffffu); }),
                    "runs past");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, section(b, "LGTS").offset, 1000); }),
                    "do not fit");

@@ -100,11 +100,12 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
     EXPECT_EQ(materials.rows, 1);
     for (size_t m = 0; m < 3; ++m) {
         const Material& mat = scene.materials[m];
-        const float expected[12] = {
+        const float expected[16] = {
             mat.diffuse.x,      mat.diffuse.y,      mat.diffuse.z,      mat.shininess,
             mat.specular.x,     mat.specular.y,     mat.specular.z,     0.0f,
-            mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f};
-        for (int k = 0; k < 12; ++k) EXPECT_EQ(materials.floats[m * 12 + size_t(k)], expected[k]);
+            mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f,
+            mat.emission.x,     mat.emission.y,     mat.emission.z,     0.0f};
+        for (int k = 0; k < 16; ++k) EXPECT_EQ(materials.floats[m * 16 + size_t(k)], expected[k]);
     }
 
     // Sizes as SceneTextures allocates them: texels x channels x 4 bytes.
@@ -112,11 +113,38 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
     EXPECT_EQ(triangles.bytes(), size_t(3 * GPURT_TRIANGLES_PER_ROW) * 3 * 4 * 4);
 }
 
+// The emitter table: the emitting triangles of non-zero area, by id, with the cumulative share
+// of their areas (computed here from the triangles' areas), as the GL table.
+TEST(SceneTextureLayoutTest, EmitterTableSharesAreTheAreas) {
+    Scene scene;
+    scene.materials = {Material{}, Material{}};
+    scene.materials[1].emission = vec3(2.0f);
+    // Areas 0.5, (emitting) 2, (emitting, zero area) 0, (emitting) 0.5 * 3 * 2 = 3.
+    scene.triangles = {{vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)},
+                       {vec3(0), vec3(2, 0, 0), vec3(0, 2, 0)},
+                       {vec3(0), vec3(1, 0, 0), vec3(2, 0, 0)},
+                       {vec3(0), vec3(0, 3, 0), vec3(0, 0, 2)}};
+    scene.materialIds = {0, 1, 1, 1};
+    const EmitterTable table = buildEmitterTable(scene);
+    ASSERT_EQ(table.triangles, (std::vector<uint32_t>{1, 3}));
+    EXPECT_FLOAT_EQ(table.totalArea, 5.0f);
+    EXPECT_FLOAT_EQ(table.cdf[0], 0.4f);
+    EXPECT_EQ(table.cdf[1], 1.0f);
+    EXPECT_EQ(table.pick(0.0f), 0u);
+    EXPECT_EQ(table.pick(0.39f), 0u);
+    EXPECT_EQ(table.pick(0.4f), 1u);
+    EXPECT_EQ(table.pick(0.99999994f), 1u);
+    const TextureTexels texels = emitterTexels(table);
+    EXPECT_EQ(std::string(texels.formatName()), "RG32F");
+    EXPECT_EQ(texels.floats, (std::vector<float>{table.cdf[0], 1.0f, 1.0f, 3.0f}));
+    EXPECT_EQ(emitterTexels(EmitterTable{}).floats, (std::vector<float>{1.0f, -1.0f}));
+}
+
 TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
     Scene empty;
     empty.materials.push_back(Material{});
     const std::vector<TextureTexels> all = sceneTextureTexels(empty, buildGrid(empty, {}));
-    ASSERT_EQ(all.size(), 4u);
+    ASSERT_EQ(all.size(), 5u);
     for (const TextureTexels& t : all) {
         EXPECT_EQ(t.rows, 1) << t.name;
         EXPECT_EQ(t.isFloat ? t.floats.size() : t.uints.size(), t.texels() * size_t(t.channels))

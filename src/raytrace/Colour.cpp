@@ -1,0 +1,48 @@
+#include "raytrace/Colour.h"
+
+#include <cmath>
+
+#include "raytrace/RayMath.h"
+
+namespace gpurt::raymath {
+#include "../../glsl/common/colour.h"
+}  // namespace gpurt::raymath
+
+namespace gpurt {
+
+const char* toneMapName(ToneMap mode) {
+    switch (mode) {
+        case ToneMap::Clamp: return "clamp";
+        case ToneMap::Reinhard: return "reinhard";
+        case ToneMap::Aces: return "aces";
+    }
+    return "aces";
+}
+
+bool parseToneMap(const std::string& text, ToneMap& mode) {
+    for (ToneMap m : {ToneMap::Clamp, ToneMap::Reinhard, ToneMap::Aces})
+        if (text == toneMapName(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
+float encodeSrgb(float displayLinear) { return raymath::srgbEncode(displayLinear); }
+
+std::vector<glm::vec3> toneMapImage(const std::vector<glm::vec3>& linear, const ColourSettings& settings) {
+    const float scale = static_cast<float>(std::exp2(double(settings.exposure)));
+    const int mode = settings.toneMap == ToneMap::Aces       ? GPURT_TONEMAP_ACES
+                     : settings.toneMap == ToneMap::Reinhard ? GPURT_TONEMAP_REINHARD
+                                                             : GPURT_TONEMAP_CLAMP;
+    std::vector<glm::vec3> display(linear.size());
+    for (size_t k = 0; k < linear.size(); ++k) {
+        glm::vec3 c = linear[k];
+        for (int i = 0; i < 3; ++i)
+            if (std::isnan(c[i])) c[i] = 0.0f;
+        display[k] = raymath::toneMap(c, scale, mode);
+    }
+    return display;
+}
+
+}  // namespace gpurt
