@@ -276,16 +276,19 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     source.scene = randomTriangles(1500, 9);
     source.scene.materials.push_back(
         Material{{0.1f, 0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}, 7.0f, {0.25f, 0.5f, 0.75f}, "m"});
+    source.scene.materials.back().emission = {1.0f, 2.0f, 3.0f};  // every other triangle emits
     for (size_t t = 0; t < source.scene.materialIds.size(); t += 2) source.scene.materialIds[t] = 1;
+    for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // vertex normals, in the packed file too
+        source.scene.normals.push_back({glm::vec3(float(t), 1, 0), glm::vec3(0, float(t), 1), glm::vec3(1, 0, float(t))});
     const UniformGrid grid = buildGrid(source.scene, {});
     const LoadedScene packed =
         decodePackedScene(encodePackedScene(source, grid, "random"), "random.gpscene");
     const SceneTextures textures(packed.scene, *packed.grid);
     const std::vector<TextureTexels> cpu = sceneTextureTexels(source.scene, grid);
-    const GPUFloatArray* gpu[5] = {&textures.voxelIndex(), &textures.cellTriangles(),
-                                   &textures.triangles(), &textures.materials(), &textures.emitters()};
+    const GPUFloatArray* gpu[6] = {&textures.voxelIndex(), &textures.cellTriangles(), &textures.triangles(),
+                                   &textures.materials(), &textures.vertexNormals(), &textures.emitters()};
     size_t bytes = 0;
-    for (size_t k = 0; k < 5; ++k) {
+    for (size_t k = 0; k < 6; ++k) {
         EXPECT_EQ(gpu[k]->name(), cpu[k].name);
         EXPECT_EQ(gpu[k]->width(), cpu[k].width) << cpu[k].name;
         EXPECT_EQ(gpu[k]->height(), cpu[k].rows) << cpu[k].name;

@@ -11,6 +11,7 @@
 #include "raytrace/GpuTracer.h"
 #include "raytrace/ImageIO.h"
 #include "raytrace/SceneScale.h"
+#include "raytrace/SmoothNormals.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/KernelStats.h"
 
@@ -39,6 +40,7 @@ struct RenderOptions {
     std::string exposure = "0";
     std::string spp = "1", seed = "0";
     std::string tonemap = "aces";
+    std::string smooth = "60";
     CameraOptions camera;
     ContextOptions context;
 };
@@ -108,9 +110,16 @@ int runRender(const RenderOptions& o) {
     // indices and counts exact in float (2^24).
     const uint32_t samples = parseCount("--spp", o.spp, 1, 1u << 24);
     const uint32_t seed = parseCount("--seed", o.seed, 0, UINT32_MAX);
+    float crease = -1.0f;  // --smooth off
+    if (o.smooth != "off") {
+        crease = parseFiniteFloat("--smooth", o.smooth);
+        if (crease < 0.0f || crease > 180.0f)
+            throw InputError("--smooth: " + o.smooth + " is not a crease angle from 0 to 180 degrees or 'off'");
+    }
     const GpuTracerOptions tracerOptions = o.tracer.options();
 
     LoadedScene loaded = loadScene(o.scene);
+    smoothNormals(loaded.scene, crease);
     // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
     // a power of two, which gives the same image (SceneScale.h); depths are scaled back below.
     const int scaleExponent = renderScaleExponent(loaded.scene);
@@ -184,6 +193,9 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--spp", o->spp, "Samples per pixel, stratified over the pixel (default 1: the pixel centre)")
         ->check(kNotEmpty);
     cmd->add_option("--seed", o->seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
+    cmd->add_option("--smooth", o->smooth,
+                    "Smooth shading: crease angle in degrees for meshes without normals (default 60), or off (faceted)")
+        ->check(kNotEmpty);
     cmd->add_option("--exposure", o->exposure, "Exposure in EV: the linear colour is scaled by 2^EV (default 0)")
         ->check(kNotEmpty);
     cmd->add_option("--tonemap", o->tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")

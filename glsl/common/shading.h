@@ -45,6 +45,17 @@ GPURT_FN vec3 facingNormal(vec3 e1, vec3 e2, vec3 d) {
     return n;
 }
 
+// The shading normal at barycentrics (u, v) (weights of vertices 1 and 2) from the vertex normals
+// n0, n1, n2, turned to the side of the facing geometric normal ng; ng itself when the triangle
+// has no vertex normals (all zero) or they cancel. Light and mirror directions use it; ray offsets,
+// "light in front" tests and the normal AOV keep ng.
+GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng) {
+    vec3 s = n0 * (1.0f - u - v) + n1 * u + n2 * v;
+    if (!(dot(s, s) > 1e-12f)) return ng;
+    s = contractNormalize(s);
+    return dot(s, ng) < 0.0f ? -s : s;
+}
+
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
 // languages evaluate the same operations.
 GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }
@@ -90,6 +101,13 @@ GPURT_FN vec3 ambientColor(vec3 kd) { return GPURT_AMBIENT * kd; }
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).
 GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) {
     return contractNormalize(mirrorDirection(d, n));
+}
+
+// The mirror ray about the shading normal ns, or about the geometric normal ng where the former
+// would point into the surface (a smooth normal far from the facet's, at grazing angles).
+GPURT_FN vec3 shadingReflection(vec3 d, vec3 ns, vec3 ng) {
+    vec3 r = reflectedDirection(d, ns);
+    return dot(r, ng) > 0.0f ? r : reflectedDirection(d, ng);
 }
 
 // The point at (u.x, u.y) in [0, 1)^2 of the triangle v0 + a e1 + b e2, uniform by area

@@ -6,6 +6,7 @@
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
 uniform sampler2D surfaceView;
+uniform sampler2D surfaceShading;
 uniform sampler2D localColor;
 uniform sampler2D colorState;   // in place
 uniform sampler2D weightState;  // in place
@@ -33,7 +34,7 @@ void main() {
     vec3 next = w.xyz * reflectivity;
     if (next == vec3(0.0f)) return;
     vec3 o = offsetOrigin(s.xyz, nm.xyz, rayOffset);
-    vec3 d = reflectedDirection(readStream(surfaceView).xyz, nm.xyz);
+    vec3 d = shadingReflection(readStream(surfaceView).xyz, readStream(surfaceShading).xyz, nm.xyz);
     weight = vec4(next, 1.0f);
     rayOrigin = vec4(o, GPURT_FAR);
     rayDir = vec4(d, gridEntry(o, d, GPURT_FAR));

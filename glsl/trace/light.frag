@@ -6,6 +6,7 @@
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
 uniform sampler2D surfaceView;
+uniform sampler2D surfaceShading;
 uniform sampler2D hitState;    // the shadow rays' hits
 uniform sampler2D localState;  // in place
 #ifdef EMITTER
@@ -38,7 +39,7 @@ void main() {
     vec3 kd, ks, reflectivity;
     float ns;
     fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
-    vec3 add = lightContribution(s.xyz, nm.xyz, readStream(surfaceView).xyz, kd, ks, ns,
+    vec3 add = lightContribution(s.xyz, readStream(surfaceShading).xyz, readStream(surfaceView).xyz, kd, ks, ns,
                                  lightPosition, lightColor, lightIntensity);
     localColor = vec4(readStream(localState).xyz + add, 0.0f);
 }

@@ -8,6 +8,8 @@ uniform usamplerBuffer voxelIndex;  // (list start, count) per cell
 uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
 uniform sampler2D triangles;    // v0 + material, e1, e2
 uniform sampler2D materials;
+uniform sampler2D vertexNormals;  // per triangle n0, n1, n2 as the triangles' texels
+uniform int hasVertexNormals;     // 0: every triangle is faceted
 uniform samplerBuffer emitters;  // EmitterTable: (cdf, triangle id) per emitting triangle
 uniform int emitterCount;        // 0: no emitters
 uniform float emitterArea;       // their total area
@@ -59,3 +61,4 @@ int pickEmitter(float u) {
     }
     return lo;
 }
+

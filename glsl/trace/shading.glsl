@@ -15,3 +15,13 @@ void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 refle
 
 // The radiance the material emits (area lights; 0 for most).
 vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
+
+// The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).
+vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
+    if (hasVertexNormals == 0) return ng;
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec3 n0 = texelFetch(vertexNormals, at, 0).xyz;
+    vec3 n1 = texelFetch(vertexNormals, at + ivec2(1, 0), 0).xyz;
+    vec3 n2 = texelFetch(vertexNormals, at + ivec2(2, 0), 0).xyz;
+    return shadingNormal(n0, n1, n2, u, v, ng);
+}

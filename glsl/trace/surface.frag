@@ -16,6 +16,7 @@ layout(location = 1) out vec4 surfacePoint;   // (p, triangle | -1 when this pat
 layout(location = 2) out vec4 surfaceNormal;  // (n facing the ray, material)
 layout(location = 3) out vec4 surfaceView;    // (ray direction, 0)
 layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
+layout(location = 5) out vec4 surfaceShading; // (shading normal, 0): smooth, facing as the normal
 
 void main() {
     vec4 w = readStream(weight);
@@ -26,6 +27,7 @@ void main() {
     surfaceNormal = vec4(0.0f);
     surfaceView = vec4(0.0f);
     localColor = vec4(0.0f);
+    surfaceShading = vec4(0.0f);
     if (w.w == 0.0f) return;  // path ended at an earlier bounce
     if (h.w < 0.0f) {
         color = vec4(c.xyz + w.xyz * background, 0.0f);
@@ -40,7 +42,9 @@ void main() {
     float ns;
     fetchMaterial(material, kd, ks, ns, reflectivity);
     surfacePoint = vec4(o + h.x * d, h.w);
-    surfaceNormal = vec4(facingNormal(e1, e2, d), float(material));
+    vec3 ng = facingNormal(e1, e2, d);
+    surfaceNormal = vec4(ng, float(material));
+    surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), 0.0f);
     surfaceView = vec4(d, 0.0f);
     color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
     localColor = vec4(ambientColor(kd), 0.0f);

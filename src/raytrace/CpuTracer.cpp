@@ -154,6 +154,11 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             const Material& material = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
             const glm::vec3 p = o + hit.t * d;
             const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
+            glm::vec3 ns = n;  // the shading normal (surface.frag)
+            if (!scene_.normals.empty()) {
+                const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
+                ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, n);
+            }
             color += weight * material.emission;
             if (bounce == 0 && readAovs) {
                 out.depth[pixel] = hit.t;
@@ -172,7 +177,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 ++stats.shadowRays;
                 if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
                 if (blocker.prim >= 0) continue;
-                local += lightContribution(p, n, d, material.diffuse, material.specular,
+                local += lightContribution(p, ns, d, material.diffuse, material.specular,
                                            material.shininess, light.position, light.color,
                                            light.intensity);
             }
@@ -192,7 +197,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                     ++stats.shadowRays;
                     if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
                     if (blocker.prim < 0)
-                        local += lightContribution(p, n, d, material.diffuse, material.specular, material.shininess, q,
+                        local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
                                                    scene_.materials[scene_.materialIds[id]].emission,
                                                    emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
                 }
@@ -203,7 +208,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             weight *= material.reflectivity;
             if (weight == glm::vec3(0.0f)) break;
             o = offsetOrigin(p, n, rayOffset_);
-            d = reflectedDirection(d, n);
+            d = shadingReflection(d, ns, n);
         }
         return color;
     };

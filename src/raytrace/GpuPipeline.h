@@ -21,7 +21,7 @@ struct GpuPipeline {
     // Ray streams, rewritten for every trace (primary, shadow, mirror).
     GPUFloatArray rayOrigin, rayDir, dda, voxel, hit;
     // Per-bounce surface records and the per-pixel accumulators of eq. 5.1.
-    GPUFloatArray surfacePoint, surfaceNormal, surfaceView, localColor, color, weight;
+    GPUFloatArray surfacePoint, surfaceNormal, surfaceView, surfaceShading, localColor, color, weight;
     // The sum of the samples so far of each pixel (--spp; the viewer's running mean).
     GPUFloatArray sampleSum;
     GPUFloatArray lightSample;  // the emitter point each surface point's shadow ray aims at
@@ -47,6 +47,7 @@ struct GpuPipeline {
           surfacePoint(w, h, 4, "surfacePoint"),
           surfaceNormal(w, h, 4, "surfaceNormal"),
           surfaceView(w, h, 4, "surfaceView"),
+          surfaceShading(w, h, 4, "surfaceShading"),
           localColor(w, h, 4, "localColor"),
           color(w, h, 4, "color"),
           weight(w, h, 4, "weight"),
@@ -81,12 +82,15 @@ struct GpuPipeline {
         surface.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
         surface.addInput(weight, "weight").addInOut(color, "colorState");
         surface.addOutput(surfacePoint).addOutput(surfaceNormal).addOutput(surfaceView).addOutput(localColor);
+        surface.addOutput(surfaceShading);
         shadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         shadowgen.addOutput(rayOrigin).addOutput(rayDir);
         light.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         light.addInput(surfaceView, "surfaceView").addInput(hit, "hitState").addInOut(localColor, "localState");
+        light.addInput(surfaceShading, "surfaceShading");
         bounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
+        bounce.addInput(surfaceShading, "surfaceShading");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
         bounce.addOutput(rayOrigin).addOutput(rayDir);
         accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
@@ -95,6 +99,7 @@ struct GpuPipeline {
         emitterLight.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
         emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
+        emitterLight.addInput(surfaceShading, "surfaceShading");
         for (GPUKernel* k : {&trace, &traceAny}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
             if (fusedSteps > 0) {

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -366,7 +367,22 @@ class SceneReader {
         }
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
+        // Vertex normals go through the inverse transpose of the transform's linear part.
+        if (!obj.normals.empty() || !scene.normals.empty()) scene.normals.resize(scene.triangles.size());
+        const glm::dmat3 normalMatrix = transform ? glm::inverseTranspose(glm::dmat3(*transform)) : glm::dmat3(1.0);
         for (size_t k = 0; k < obj.triangles.size(); ++k) {
+            if (!obj.normals.empty()) {
+                TriangleNormals n = obj.normals[k];
+                if (transform && n.given())
+                    for (glm::vec3* v : {&n.n0, &n.n1, &n.n2}) {
+                        const glm::dvec3 m = normalMatrix * glm::dvec3(*v);
+                        const double len = glm::length(m);
+                        *v = len > 0.0 && std::isfinite(len) ? glm::vec3(m / len) : glm::vec3(0.0f);
+                    }
+                scene.normals.push_back(n);
+            } else if (!scene.normals.empty()) {
+                scene.normals.push_back(TriangleNormals{});
+            }
             Triangle triangle = obj.triangles[k];
             if (transform) {
                 triangle.v0 = transformPoint(*transform, triangle.v0, at / "transform", k);

@@ -444,15 +444,30 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
                 const int index = shape.mesh.indices[first + i].vertex_index;
                 return scan.positions[static_cast<size_t>(index)];
             };
+            // The face's vertex normals (v//vn, v/vt/vn), if every vertex has one.
+            auto normal = [&](size_t i) {
+                const int index = shape.mesh.indices[first + i].normal_index;
+                return index >= 0 && 3 * size_t(index) + 2 < attrib.normals.size()
+                           ? toVec3(&attrib.normals[3 * size_t(index)])
+                           : glm::vec3(0.0f);
+            };
+            bool hasNormals = true;
+            for (uint32_t i = 0; i < n && hasNormals; ++i)
+                hasNormals = shape.mesh.indices[first + i].normal_index >= 0;
             const glm::vec3 v0 = vertex(0);
             for (uint32_t i = 1; i + 1 < n; ++i) {
                 scene.triangles.push_back({v0, vertex(i), vertex(i + 1)});
                 scene.materialIds.push_back(material);
+                if (hasNormals) {
+                    scene.normals.resize(scene.triangles.size());
+                    scene.normals.back() = {normal(0), normal(i), normal(i + 1)};
+                }
             }
             first += n;
         }
     }
     if (scene.materials.empty()) scene.materials.push_back(Material{});
+    if (!scene.normals.empty()) scene.normals.resize(scene.triangles.size());
     return scene;
 }
 

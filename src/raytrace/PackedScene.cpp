@@ -35,9 +35,12 @@ constexpr char kRender[] = "RNDR";
 constexpr char kGrid[] = "GRID";
 constexpr char kCellStart[] = "CELL";
 constexpr char kCellList[] = "LIST";
-// In the order the writer stores them; all but the camera are required.
+constexpr char kNormals[] = "NRML";
+// In the order the writer stores them; all but the camera and the normals are required.
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,  kBackground,
-                                         kRender,    kGrid,      kCellStart, kCellList};
+                                         kRender,    kGrid,      kCellStart, kCellList, kNormals};
+constexpr bool optionalSection(std::string_view tag) { return tag == kCamera || tag == kNormals; }
+constexpr size_t kNormalsBytes = 9 * 4;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 13 * 4 + 4;  // thirteen floats and the name's length
@@ -377,6 +380,21 @@ class SectionDecoder {
         }
     }
 
+    // One entry per triangle (read after the triangles).
+    void normals(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = count(in, s, kNormalsBytes, true, kMaxTextureTriangles, "normals");
+        if (n != scene.triangles.size())
+            fail("section " + s.tag + ": " + std::to_string(n) + " normals for " +
+                 std::to_string(scene.triangles.size()) + " triangles");
+        scene.normals.resize(size_t(n));
+        for (TriangleNormals& t : scene.normals) {
+            t.n0 = in.vec3();
+            t.n1 = in.vec3();
+            t.n2 = in.vec3();
+        }
+    }
+
     void fixedSize(const Section& s, uint64_t bytes) const {
         if (s.size != bytes)
             fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
@@ -481,7 +499,7 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
     out.u64(0);  // file size, patched last
     std::vector<const char*> tags;
     for (const char* tag : kSectionOrder)
-        if (tag != kCamera || scene.camera) tags.push_back(tag);
+        if ((tag != kCamera || scene.camera) && (tag != kNormals || !scene.normals.empty())) tags.push_back(tag);
     out.u32(static_cast<uint32_t>(tags.size()));
     out.u32(0);
     const size_t table = out.size();
@@ -546,6 +564,13 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
             for (uint32_t v : grid.cellStart) out.u32(v);
         } else if (tag == kCellList) {
             for (uint32_t v : grid.cellTriangles) out.u32(v);
+        } else if (tag == kNormals) {
+            out.u64(scene.normals.size());
+            for (const TriangleNormals& n : scene.normals) {
+                out.vec3(n.n0);
+                out.vec3(n.n1);
+                out.vec3(n.n2);
+            }
         }
         const size_t entry = table + k * kPackedSectionEntryBytes;
         out.patch64(entry + 8, start);
@@ -639,7 +664,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
         *slot = s;
     }
     for (size_t k = 0; k < std::size(kSectionOrder); ++k)
-        if (!sections[k] && kSectionOrder[k] != kCamera)
+        if (!sections[k] && !optionalSection(kSectionOrder[k]))
             fail(std::string("section ") + kSectionOrder[k] + " is missing");
 
     // The sections, each sized by its counts before anything is allocated.
@@ -655,6 +680,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     decoder.grid(**slotOf(kGrid), grid);
     decoder.cellStart(**slotOf(kCellStart), grid);
     decoder.cellList(**slotOf(kCellList), grid);
+    if (*slotOf(kNormals)) decoder.normals(**slotOf(kNormals), loaded.scene);
 
     validateScene(name, loaded, grid);
     // The skip distances are derived from cellStart (computeSkip) rather than stored.

@@ -44,6 +44,14 @@ struct Triangle {
     glm::vec3 v0, v1, v2;
 };
 
+// The shading normals at a triangle's vertices (OBJ vn, or made by smoothNormals). All zero: the
+// triangle has none (it is shaded with its geometric normal until smoothNormals gives it some).
+struct TriangleNormals {
+    glm::vec3 n0{0.0f}, n1{0.0f}, n2{0.0f};
+
+    bool given() const { return n0 != glm::vec3(0.0f) || n1 != glm::vec3(0.0f) || n2 != glm::vec3(0.0f); }
+};
+
 // Axis-aligned box; starts empty (min = +inf, max = -inf) so that extend() needs no special case.
 struct Bounds {
     glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -59,6 +67,8 @@ struct Scene {
     // Contract numbering: the k-th triangle of the OBJ, polygons as fans (v0, vi, vi+1).
     std::vector<Triangle> triangles;
     std::vector<uint32_t> materialIds;  // one per triangle, index into materials
+    // Empty (faceted), or one per triangle: the file's vertex normals, then smoothNormals'.
+    std::vector<TriangleNormals> normals;
     // Never empty (index 0 = the default material when the OBJ has none).
     std::vector<Material> materials;
     // May be empty: renderers then add a headlight (lightsOrHeadlight).
@@ -73,8 +83,8 @@ struct Scene {
 
 // The lights a renderer uses: the scene's point lights, or, when it has no light of any kind (no
 // point light and no emitting triangle), one headlight at the camera eye
-// with colour 1 and intensity |eye - centre|^2 of the scene's box, so that its 1/d^2 falloff gives
-// about 1 at the centre of the scene. Both backends call this, so they light identically.
+// with colour 1 and intensity |eye - centre|^2 / 2 of the scene's box, so that its 1/d^2 falloff
+// gives 1/2 at the centre of the scene. Both backends call this, so they light identically.
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye);
 
 }  // namespace gpurt

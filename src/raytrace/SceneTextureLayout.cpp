@@ -99,6 +99,19 @@ TextureTexels materialTexels(const Scene& scene) {
     return materials;
 }
 
+TextureTexels vertexNormalTexels(const Scene& scene) {
+    const size_t n = scene.normals.size();
+    TextureTexels normals = emptyTexture("vertexNormals", n == 0 ? 3 : 3 * GPURT_TRIANGLES_PER_ROW,
+                                         textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
+    for (size_t t = 0; t < n; ++t) {
+        const TriangleNormals& v = scene.normals[t];
+        const vec3 corner[3] = {v.n0, v.n1, v.n2};
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) normals.floats[t * 12 + size_t(4 * k + c)] = corner[k][c];
+    }
+    return normals;
+}
+
 TextureTexels emitterTexels(const EmitterTable& emitters) {
     const size_t n = std::max<size_t>(1, emitters.triangles.size());
     TextureTexels table = emptyTexture("emitters", n, 1, 2, true);
@@ -117,6 +130,7 @@ std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformG
     all.push_back(cellTriangleTexels(scene, grid));
     all.push_back(triangleTexels(scene));
     all.push_back(materialTexels(scene));
+    all.push_back(vertexNormalTexels(scene));
     all.push_back(emitterTexels(buildEmitterTable(scene)));
     return all;
 }

@@ -48,11 +48,14 @@ TextureTexels triangleTexels(const Scene& scene);
 // RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0), (emission, 0) per
 // material.
 TextureTexels materialTexels(const Scene& scene);
+// RGBA32F, as the triangle texture: (n0, 0), (n1, 0), (n2, 0) per triangle of scene.normals;
+// one triangle of zeros when it is empty.
+TextureTexels vertexNormalTexels(const Scene& scene);
 // RG32F, one row: (cumulative area share, triangle id) per entry of the emitter table; (1, -1)
 // when it is empty.
 TextureTexels emitterTexels(const EmitterTable& emitters);
 
-// The five, in the order SceneTextures binds them.
+// The six, in the order SceneTextures binds them.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
 
 }  // namespace gpurt

@@ -73,6 +73,11 @@ GPUFloatArray makeMaterials(const Scene& scene) {
     return upload(materialTexels(scene), GPUFormat::RGBA32F);
 }
 
+GPUFloatArray makeVertexNormals(const Scene& scene) {
+    checkFits("vertex normal", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(scene.normals.size(), GPURT_TRIANGLES_PER_ROW));
+    return upload(vertexNormalTexels(scene), GPUFormat::RGBA32F);
+}
+
 GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
     return upload(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
@@ -86,6 +91,8 @@ SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
       triangles_(makeTriangles(scene)),
       cellTriangles_(makeCellTriangles(scene, grid)),
       materials_(makeMaterials(scene)),
+      vertexNormals_(makeVertexNormals(scene)),
+      hasVertexNormals_(!scene.normals.empty()),
       emitterTable_(buildEmitterTable(scene)),
       emitters_(makeEmitters(emitterTable_)) {}
 
@@ -94,6 +101,8 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(cellTriangles_, "cellTriangles")
         .addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
+        .addInput(vertexNormals_, "vertexNormals")
+        .setUniform("hasVertexNormals", hasVertexNormals_ ? 1 : 0)
         .addInput(emitters_, "emitters")
         .setUniform("emitterCount", int(emitterTable_.triangles.size()))
         .setUniform("emitterArea", emitterTable_.totalArea)
@@ -108,7 +117,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
-    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(emitters_);
+    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_);
 }
 
 }  // namespace gpurt

@@ -25,6 +25,7 @@ class SceneTextures {
     const GPUFloatArray& triangles() const { return triangles_; }
     const GPUFloatArray& cellTriangles() const { return cellTriangles_; }
     const GPUFloatArray& materials() const { return materials_; }
+    const GPUFloatArray& vertexNormals() const { return vertexNormals_; }
     const GPUFloatArray& emitters() const { return emitters_; }
     const EmitterTable& emitterTable() const { return emitterTable_; }
     size_t bytes() const;
@@ -35,6 +36,8 @@ class SceneTextures {
     GPUFloatArray triangles_;
     GPUFloatArray cellTriangles_;
     GPUFloatArray materials_;
+    GPUFloatArray vertexNormals_;
+    bool hasVertexNormals_;
     EmitterTable emitterTable_;
     GPUFloatArray emitters_;
 };

@@ -144,7 +144,7 @@ TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
     Scene empty;
     empty.materials.push_back(Material{});
     const std::vector<TextureTexels> all = sceneTextureTexels(empty, buildGrid(empty, {}));
-    ASSERT_EQ(all.size(), 5u);
+    ASSERT_EQ(all.size(), 6u);
     for (const TextureTexels& t : all) {
         EXPECT_EQ(t.rows, 1) << t.name;
         EXPECT_EQ(t.isFloat ? t.floats.size() : t.uints.size(), t.texels() * size_t(t.channels))

@@ -146,8 +146,8 @@ TEST(ShadingTest, LightBehindTheSurfaceGetsNoShadowRay) {
 TEST(ShadingTest, HeadlightWhenTheSceneHasNoLights) {
     const Scene scene = floorScene(material(kd, ks, 8.0f));
     const RenderOutput out = renderCentre(scene);
-    // Light at the eye (0, 0, 2); the box centre is the origin, so intensity 4 over distance^2 4.
-    expectColor(out.color[0], 0.1 * kd + (kd + ks));
+    // Light at the eye (0, 0, 2); the box centre is the origin, so intensity 4 / 2 over distance^2 4.
+    expectColor(out.color[0], 0.1 * kd + 0.5 * (kd + ks));
 }
 
 TEST(ShadingTest, MirrorAddsWeightedBackgroundOnAMiss) {
