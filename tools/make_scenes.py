@@ -6,6 +6,8 @@ from geometry generated here, so that every shipped asset can be regenerated and
   B  room.json     "cubes distributed in a room": 2,064 triangles (a closed room and 171 cubes)
   C  highlow.json  "high and low polygon objects": a 60,000-triangle torus beside a tetrahedron, a
                    mirror cube and an octahedron on a floor (60,026 triangles)
+  D  cornell.json  the classic Cornell box with an area light (MTL Ke), a glass sphere (illum 7,
+                   Ni 1.5, exact vertex normals) and a mirror block
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 tools/make_scenes.py
@@ -54,6 +56,11 @@ class ObjWriter:
         self.lines.append("v %s %s %s" % (fmt(p[0]), fmt(p[1]), fmt(p[2])))
         self.vertex_count += 1
         return self.vertex_count  # OBJ indices start at 1
+
+    def normal(self, n):
+        self.lines.append("vn %s %s %s" % (fmt(n[0]), fmt(n[1]), fmt(n[2])))
+        self.normal_count = getattr(self, "normal_count", 0) + 1
+        return self.normal_count
 
     def use(self, material):
         if material != self.material:
@@ -293,9 +300,90 @@ def scene_c():
     return sum(counts.values())
 
 
+def add_quad(obj, corners):
+    """A quad as two triangles (v0, v1, v2), (v0, v2, v3); wound as given."""
+    index = [obj.vertex(c) for c in corners]
+    obj.face(index)
+
+
+def add_sphere(obj, center, radius, segments, rings):
+    """A UV sphere wound outward, with its exact unit normals as vn."""
+    rows = []
+    for r in range(rings + 1):
+        theta = math.pi * r / rings
+        row = []
+        for k in range(segments):
+            phi = 2 * math.pi * k / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi))
+            v = obj.vertex(tuple(center[i] + radius * n[i] for i in range(3)))
+            vn = obj.normal(n)
+            row.append((v, vn))
+        rows.append(row)
+    for r in range(rings):
+        for k in range(segments):
+            a, b = rows[r][k], rows[r][(k + 1) % segments]
+            c, d = rows[r + 1][(k + 1) % segments], rows[r + 1][k]
+            ref = lambda p: "%d//%d" % p
+            if r > 0:
+                obj.lines.append("f %s %s %s" % (ref(a), ref(b), ref(c)))
+                obj.triangles += 1
+            if r < rings - 1:
+                obj.lines.append("f %s %s %s" % (ref(a), ref(c), ref(d)))
+                obj.triangles += 1
+
+
+def scene_d():
+    """The Cornell box (Goral et al. 1984; the Cornell measurements' layout, 555 units a side) lit
+    by its ceiling light, with a glass sphere and a mirror block."""
+    obj = ObjWriter('Scene D "Cornell box": area light, glass sphere, mirror block', "cornell.mtl")
+    w = 555.0
+    obj.use("white")
+    add_quad(obj, [(0, 0, 0), (0, 0, w), (w, 0, w), (w, 0, 0)])  # floor, facing up
+    add_quad(obj, [(0, w, 0), (w, w, 0), (w, w, w), (0, w, w)])  # ceiling, facing down
+    add_quad(obj, [(0, 0, w), (0, w, w), (w, w, w), (w, 0, w)])  # back wall, facing -z
+    # The camera looks along +z from z < 0, so +x is on its left: red there, green at x = 0.
+    obj.use("red")
+    add_quad(obj, [(w, 0, 0), (w, 0, w), (w, w, w), (w, w, 0)])  # left wall (x = 555), facing -x
+    obj.use("green")
+    add_quad(obj, [(0, 0, 0), (0, w, 0), (0, w, w), (0, 0, w)])  # right wall (x = 0), facing +x
+    obj.use("light")
+    y = w - 0.5
+    add_quad(obj, [(213, y, 227), (343, y, 227), (343, y, 332), (213, y, 332)])  # facing down
+    obj.use("mirror")
+    add_box(obj, (368.0, 165.0, 372.0), (82.5, 165.0, 82.5), -17.0)
+    obj.use("glass")
+    add_sphere(obj, (185.0, 100.0, 170.0), 100.0, 48, 24)
+    obj.save("cornell.obj")
+    lines = mtl('Scene D "Cornell box"', [
+        ("white", (0.725, 0.71, 0.68), (0, 0, 0), 1, 1),
+        ("red", (0.63, 0.065, 0.05), (0, 0, 0), 1, 1),
+        ("green", (0.14, 0.45, 0.091), (0, 0, 0), 1, 1),
+        ("light", (0.78, 0.78, 0.78), (0, 0, 0), 1, 1),
+        ("mirror", (0.02, 0.02, 0.02), (0.9, 0.9, 0.9), 1000, 3),  # illum 3: Ks is the reflectivity
+        ("glass", (0, 0, 0), (0, 0, 0), 1, 7),  # illum 7: glass, index Ni, filter Tf
+    ]).split("\n")
+    out = []
+    for line in lines:
+        out.append(line)
+        if line == "newmtl light":
+            pass
+        if line == "illum 1" and out[-5] == "newmtl light":
+            out.append("Ke 34 26 16")
+        if line == "illum 7":
+            out += ["Ni 1.5", "Tf 0.98 0.98 0.98"]
+    write("cornell.mtl", "\n".join(out))
+    write("cornell.json", to_json({
+        "meshes": [{"file": "cornell.obj"}],
+        "camera": {"eye": [278.0, 273.0, -800.0], "target": [278.0, 273.0, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 39.0},
+        "background": [0.0, 0.0, 0.0],
+        "render": {"size": [512, 512], "max_bounces": 6},
+    }) + "\n")
+    return obj.triangles
+
+
 def main():
     os.makedirs(SCENES, exist_ok=True)
-    for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c)):
+    for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

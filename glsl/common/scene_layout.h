@@ -16,9 +16,9 @@
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024
-// Materials: RGBA32F, four texels each on one row: (diffuse, shininess), (specular, 0),
-// (reflectivity, 0), (emission, 0).
-#define GPURT_MATERIAL_TEXELS 4
+// Materials: RGBA32F, five texels each on one row: (diffuse, shininess), (specular, 0),
+// (reflectivity, 0), (emission, 0), (transmission filter, index of refraction | 0).
+#define GPURT_MATERIAL_TEXELS 5
 // Emitters (EmitterTable): RG32F buffer texture, one texel per emitting triangle: (cumulative
 // area share, triangle id); one texel (1, -1) when the scene has none.
 

@@ -110,6 +110,83 @@ GPURT_FN vec3 shadingReflection(vec3 d, vec3 ns, vec3 ng) {
     return dot(r, ng) > 0.0f ? r : reflectedDirection(d, ng);
 }
 
+// The ray tree (Whitted 1980): each pixel sample's tree holds at most GPURT_TREE_RAYS rays;
+// children weighing less than GPURT_MIN_WEIGHT (their largest channel) are not traced (Hall &
+// Greenberg 1983, adaptive tree depth); a pixel's stack of pending second children holds at most
+// min(bounces, GPURT_STACK_SLOTS) rays (a child that finds it full is dropped).
+#define GPURT_TREE_RAYS 64
+#define GPURT_MIN_WEIGHT 1e-4f
+#define GPURT_STACK_SLOTS 8
+
+// Whether the ray d meets the side of the triangle (edges e1, e2) its winding faces: the outside
+// of a dielectric's closed surface.
+GPURT_FN bool frontFace(vec3 e1, vec3 e2, vec3 d) { return dot(cross(e1, e2), d) < 0.0f; }
+
+// The exact Fresnel reflectance of unpolarised light at a smooth dielectric boundary, for the
+// cosine cosI of the angle of incidence and eta = n_transmitted / n_incident: the mean of the
+// s- and p-polarised reflectances (Born & Wolf; pbrt-v3 FrDielectric). 1 beyond the critical
+// angle (total internal reflection).
+GPURT_FN float fresnelDielectric(float cosI, float eta) {
+    float sin2T = (1.0f - cosI * cosI) / (eta * eta);
+    if (sin2T >= 1.0f) return 1.0f;
+    float cosT = sqrt(1.0f - sin2T);
+    float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
+    float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
+// The refracted direction of d through a boundary with normal n facing d (cosI = -dot(d, n))
+// by Snell's law, eta = n_transmitted / n_incident; the caller has excluded total internal
+// reflection (fresnelDielectric < 1).
+GPURT_FN vec3 refractedDirection(vec3 d, vec3 n, float eta, float cosI) {
+    float sin2T = (1.0f - cosI * cosI) / (eta * eta);
+    float cosT = sqrt(max(0.0f, 1.0f - sin2T));
+    return contractNormalize(d / eta + (cosI / eta - cosT) * n);
+}
+
+// The rays a hit spawns, from the pixel's ray of direction d and weight w at a surface with
+// facing geometric normal ng and shading normal ns. A dielectric (ior > 0; entering when
+// `entering`): the refracted ray of weight w (1 - F) tf and the reflected ray of weight w F,
+// or only the reflected ray, of weight w, where there is no refraction (total internal
+// reflection, or a refracted ray that the shading normal would send out on the facing side). A
+// mirror: the reflected ray of weight w reflectivity. A is the ray the pixel continues with (the
+// refracted one where there is one; sideA -1: it leaves on the far side of the surface), B the
+// second, pushed on the pixel's stack. Returns how many (0, 1 or 2).
+GPURT_FN int hitChildren(vec3 d, vec3 ng, vec3 ns, bool entering, vec3 reflectivity, float ior,
+                         vec3 tf, vec3 w, GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA,
+                         GPURT_OUT(float) sideA, GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {
+    vec3 r = shadingReflection(d, ns, ng);
+    dirA = r;
+    weightA = w * reflectivity;
+    sideA = 1.0f;
+    dirB = r;
+    weightB = vec3(0.0f);
+    if (ior > 0.0f) {
+        float eta = entering ? ior : 1.0f / ior;
+        float cosI = clamp(-dot(d, ns), 0.0f, 1.0f);
+        float f = fresnelDielectric(cosI, eta);
+        weightA = w;  // no refraction: all of it is reflected
+        if (f < 1.0f) {
+            vec3 t = refractedDirection(d, ns, eta, cosI);
+            if (dot(t, ng) < 0.0f) {
+                dirA = t;
+                weightA = w * ((1.0f - f) * tf);
+                sideA = -1.0f;
+                weightB = w * f;
+            }
+        }
+    }
+    bool a = max(weightA.x, max(weightA.y, weightA.z)) >= GPURT_MIN_WEIGHT;
+    bool b = max(weightB.x, max(weightB.y, weightB.z)) >= GPURT_MIN_WEIGHT;
+    if (!a && b) {  // only the reflection is worth tracing: it continues the pixel's ray
+        dirA = dirB;
+        weightA = weightB;
+        sideA = 1.0f;
+        return 1;
+    }
+    return a ? (b ? 2 : 1) : 0;
+}
+
 // The point at (u.x, u.y) in [0, 1)^2 of the triangle v0 + a e1 + b e2, uniform by area
 // (Shirley 1997: a = sqrt(u.x) (1 - u.y), b = sqrt(u.x) u.y).
 GPURT_FN vec3 emitterPoint(vec3 v0, vec3 e1, vec3 e2, vec2 u) {

@@ -1,6 +1,12 @@
-// Shading, last step of a bounce (Christen 2005, eq. 5.1): colour += weight * local colour; then,
-// unless this was the last bounce, weight *= reflectivity and a mirror ray leaves the surface.
-// Paths with zero weight, no hit or no bounce left end here.
+// Shading, last step of a round of the ray tree (Whitted 1980; Christen 2005, eq. 5.1):
+// colour += weight * local colour; then the pixel's next ray. The hit's children (common/shading.h
+// hitChildren: the reflected and refracted rays of glass, the mirror ray) are spawned while the
+// ray's depth is below `maxBounces` and the tree has rays left: the first continues as the pixel's
+// ray, the second is pushed on the pixel's stack. A ray without children hands over to the top of
+// the stack (its depth and weight with it); with the stack empty the pixel's tree is done. One ray
+// per pixel per round, so the passes stay image-sized and the rounds end when the trace counts no
+// ray (GpuTracer::traceSample). The stack is the one store outside the pixel's own element: slot s
+// of pixel (x, y) is element (x, y + s H) of the stack images, written only by that pixel.
 #include "shading.glsl"
 
 uniform sampler2D surfacePoint;
@@ -10,32 +16,75 @@ uniform sampler2D surfaceShading;
 uniform sampler2D localColor;
 uniform sampler2D colorState;   // in place
 uniform sampler2D weightState;  // in place
-uniform int lastBounce;
+uniform sampler2D pathStateIn;  // in place
+layout(rgba32f) uniform image2D stackOrigin;  // (o, depth)
+layout(rgba32f) uniform image2D stackDir;     // (d, 0)
+layout(rgba32f) uniform image2D stackWeight;  // (weight, 0)
+uniform int maxBounces;
+uniform int stackSlots;
 
 layout(location = 0) out vec4 color;
-layout(location = 1) out vec4 weight;     // (product of reflectivities, alive)
-layout(location = 2) out vec4 rayOrigin;  // the mirror ray
+layout(location = 1) out vec4 weight;     // (weight of the pixel's ray, alive)
+layout(location = 2) out vec4 rayOrigin;  // the pixel's next ray
 layout(location = 3) out vec4 rayDir;
+layout(location = 4) out vec4 pathState;  // (depth, stack height, rays of the tree after the first, 0)
 
 void main() {
     vec4 s = readStream(surfacePoint);
     vec4 w = readStream(weightState);
+    vec4 ps = readStream(pathStateIn);
     color = readStream(colorState);
     weight = vec4(w.xyz, 0.0f);
+    pathState = ps;
     rayOrigin = vec4(0.0f);
     rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
-    if (s.w < 0.0f) return;  // no hit: the path ended (a miss was shaded by the surface pass)
-    color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
-    if (lastBounce != 0) return;
-    vec4 nm = readStream(surfaceNormal);
-    vec3 kd, ks, reflectivity;
-    float ns;
-    fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
-    vec3 next = w.xyz * reflectivity;
-    if (next == vec3(0.0f)) return;
-    vec3 o = offsetOrigin(s.xyz, nm.xyz, rayOffset);
-    vec3 d = shadingReflection(readStream(surfaceView).xyz, readStream(surfaceShading).xyz, nm.xyz);
-    weight = vec4(next, 1.0f);
-    rayOrigin = vec4(o, GPURT_FAR);
-    rayDir = vec4(d, gridEntry(o, d, GPURT_FAR));
+    if (w.w == 0.0f) return;  // the pixel's tree was done before this round
+    int depth = int(ps.x), height = int(ps.y), rays = int(ps.z) + 1;
+    int children = 0;
+    vec3 dirA, weightA, dirB, weightB;
+    float sideA;
+    int imageHeight = textureSize(colorState, 0).y;
+    if (s.w >= 0.0f) {  // a miss was shaded by the surface pass; a hit adds its local colour
+        color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
+        if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
+            vec4 nm = readStream(surfaceNormal);
+            vec3 d = readStream(surfaceView).xyz;
+            vec3 v0, e1, e2;
+            int material;
+            fetchTriangle(int(s.w), v0, e1, e2, material);
+            vec3 kd, ks, reflectivity, tf;
+            float ns, ior;
+            fetchMaterial(material, kd, ks, ns, reflectivity);
+            fetchDielectric(material, tf, ior);
+            children = hitChildren(d, nm.xyz, readStream(surfaceShading).xyz, frontFace(e1, e2, d),
+                                   reflectivity, ior, tf, w.xyz, dirA, weightA, sideA, dirB, weightB);
+            vec3 o = offsetOrigin(s.xyz, sideA * nm.xyz, rayOffset);
+            if (children > 0) {
+                weight = vec4(weightA, 1.0f);
+                rayOrigin = vec4(o, GPURT_FAR);
+                rayDir = vec4(dirA, gridEntry(o, dirA, GPURT_FAR));
+                depth += 1;
+                rays += 1;
+            }
+            if (children == 2 && rays < GPURT_TREE_RAYS && height < stackSlots) {
+                ivec2 at = streamIndex() + ivec2(0, height * imageHeight);
+                imageStore(stackOrigin, at, vec4(offsetOrigin(s.xyz, nm.xyz, rayOffset), float(depth)));
+                imageStore(stackDir, at, vec4(dirB, 0.0f));
+                imageStore(stackWeight, at, vec4(weightB, 0.0f));
+                height += 1;
+                rays += 1;
+            }
+        }
+    }
+    if (children == 0 && height > 0) {  // the pending ray on top of the stack
+        height -= 1;
+        ivec2 at = streamIndex() + ivec2(0, height * imageHeight);
+        vec4 o = imageLoad(stackOrigin, at);
+        vec3 d = imageLoad(stackDir, at).xyz;
+        weight = vec4(imageLoad(stackWeight, at).xyz, 1.0f);
+        rayOrigin = vec4(o.xyz, GPURT_FAR);
+        rayDir = vec4(d, gridEntry(o.xyz, d, GPURT_FAR));
+        depth = int(o.w);
+    }
+    pathState = vec4(float(depth), float(height), float(rays - 1), 0.0f);
 }

@@ -13,6 +13,14 @@ void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 refle
     reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
 }
 
+// The dielectric part of material m: transmission tf Tf and index of refraction (0: not a
+// dielectric).
+void fetchDielectric(int m, out vec3 tf, out float ior) {
+    vec4 t = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 4, 0), 0);
+    tf = t.xyz;
+    ior = t.w;
+}
+
 // The radiance the material emits (area lights; 0 for most).
 vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
 

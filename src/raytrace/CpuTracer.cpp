@@ -128,16 +128,25 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
 
-    // One sample of a pixel: the primary ray d, then up to maxBounces mirror rays (< 0: the
-    // primary hit only, for the AOVs); every hit is shaded with a shadow ray per light in front of
-    // it. With readAovs, writes the pixel's AOVs. GpuTracer::traceSample is this as passes.
+    // One sample of a pixel: the ray tree of the primary ray d (< 0: the primary hit only, for
+    // the AOVs), depth first with a stack of pending rays exactly as the GL rounds take it
+    // (bounce.frag), so that the colour sums in the same order; every hit is shaded
+    // with a shadow ray per light in front of it and one to the emitters. With readAovs, writes
+    // the pixel's AOVs. GpuTracer::traceSample is this as passes.
+    const int stackSlots = std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
     auto shadeSample = [&](int i, int j, uint32_t sample, uint32_t samples, glm::vec3 d,
                            int maxBounces, bool readAovs, RenderStats& stats) {
         const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
         glm::vec3 o = camera.eye;
         glm::vec3 color(0.0f);
         glm::vec3 weight(1.0f);
-        for (int bounce = 0;; ++bounce) {
+        struct Pending {
+            glm::vec3 o, d, weight;
+            int depth;
+        };
+        Pending stack[GPURT_STACK_SLOTS];
+        int height = 0, depth = 0, rays = 1;
+        for (int bounce = 0;; ++bounce) {  // the ray's place in the tree's order: its GL round
             const TraceHit hit = trace(o, d, GPURT_FAR);
             if (bounce == 0) {
                 ++stats.primaryRays;
@@ -146,10 +155,10 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 ++stats.secondaryRays;
             }
             if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
+            int children = 0;
             if (hit.prim < 0) {
                 color += weight * scene_.background;
-                break;
-            }
+            } else {
             const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
             const Material& material = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
             const glm::vec3 p = o + hit.t * d;
@@ -204,11 +213,34 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             }
             color += weight * local;
 
-            if (bounce >= maxBounces) break;
-            weight *= material.reflectivity;
-            if (weight == glm::vec3(0.0f)) break;
-            o = offsetOrigin(p, n, rayOffset_);
-            d = shadingReflection(d, ns, n);
+            if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
+                vec3 dirA, weightA, dirB, weightB;
+                float sideA;
+                children = hitChildren(d, n, ns, frontFace(tri.e1, tri.e2, d), material.reflectivity,
+                                       material.ior, material.transmission, weight, dirA, weightA, sideA,
+                                       dirB, weightB);
+                if (children > 0) {
+                    const vec3 next = offsetOrigin(p, sideA * n, rayOffset_);
+                    depth += 1;
+                    rays += 1;
+                    if (children == 2 && rays < GPURT_TREE_RAYS && height < stackSlots) {
+                        stack[height++] = {offsetOrigin(p, n, rayOffset_), dirB, weightB, depth};
+                        rays += 1;
+                    }
+                    o = next;
+                    d = dirA;
+                    weight = weightA;
+                }
+            }
+            }
+            if (children == 0) {  // the pending ray on top of the stack, or the tree is done
+                if (height == 0) break;
+                const Pending& top = stack[--height];
+                o = top.o;
+                d = top.d;
+                weight = top.weight;
+                depth = top.depth;
+            }
         }
         return color;
     };

@@ -25,6 +25,11 @@ struct GpuPipeline {
     // The sum of the samples so far of each pixel (--spp; the viewer's running mean).
     GPUFloatArray sampleSum;
     GPUFloatArray lightSample;  // the emitter point each surface point's shadow ray aims at
+    // The ray tree (bounce.frag): each pixel's depth, stack height and ray count, and its stack
+    // of pending rays, `stackSlots` slots of image size one above the other.
+    GPUFloatArray pathState;
+    int stackSlots;
+    GPUFloatArray stackOrigin, stackDir, stackWeight;
     GPUMask activeMask, waitMask;
     GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
@@ -34,9 +39,10 @@ struct GpuPipeline {
     GPUKernel trace, traceAny, traceCamera;
 
     // traverseSteps: cells per traverse pass of the split pair; fusedSteps: cells per pass of the
-    // fused kernels, 0 for the whole traversal in one pass.
+    // fused kernels, 0 for the whole traversal in one pass. stackSlots: rays a pixel's stack can
+    // hold (0 where nothing spawns two rays: a scene without glass).
     GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
-                int fusedSteps = 0)
+                int fusedSteps = 0, int slots = 0)
         : width(w),
           height(h),
           rayOrigin(w, h, 4, "rayOrigin"),
@@ -53,6 +59,11 @@ struct GpuPipeline {
           weight(w, h, 4, "weight"),
           sampleSum(w, h, 4, "sampleSum"),
           lightSample(w, h, 4, "lightSample"),
+          pathState(w, h, 4, "pathState"),
+          stackSlots(slots),
+          stackOrigin(w, h * std::max(1, slots), 4, "stackOrigin"),
+          stackDir(w, h * std::max(1, slots), 4, "stackDir"),
+          stackWeight(w, h * std::max(1, slots), 4, "stackWeight"),
           activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
           waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
           raygen("raygen", "trace/raygen.frag"),
@@ -92,7 +103,9 @@ struct GpuPipeline {
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInput(surfaceShading, "surfaceShading");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
-        bounce.addOutput(rayOrigin).addOutput(rayDir);
+        bounce.addOutput(rayOrigin).addOutput(rayDir).addInOut(pathState, "pathStateIn");
+        bounce.addImage(stackOrigin, "stackOrigin").addImage(stackDir, "stackDir").addImage(stackWeight, "stackWeight");
+        bounce.setUniform("stackSlots", slots);
         accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
         emitterShadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         emitterShadowgen.addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);

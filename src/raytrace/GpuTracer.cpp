@@ -5,6 +5,10 @@
 
 #include "../../glsl/common/scene_layout.h"
 
+namespace gpurt::raymath {
+#include "../../glsl/common/shading.h"
+}  // namespace gpurt::raymath
+
 #include "stream/GPUKernel.h"
 #include "stream/KernelChain.h"
 #include "stream/StreamErrors.h"
@@ -14,7 +18,9 @@
 namespace gpurt {
 
 GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options)
-    : scene_(scene), grid_(grid), options_(options), textures_(scene, grid) {}
+    : scene_(scene), grid_(grid), options_(options), textures_(scene, grid) {
+    for (uint32_t m : scene.materialIds) hasDielectric_ = hasDielectric_ || scene.materials[m].ior > 0.0f;
+}
 
 GpuTracer::~GpuTracer() = default;
 
@@ -35,12 +41,13 @@ int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height) {
-    if (!pipeline_ || pipeline_->width != width || pipeline_->height != height) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots) {
+    if (!pipeline_ || pipeline_->width != width || pipeline_->height != height ||
+        pipeline_->stackSlots != stackSlots) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         const int steps = options_.traverseSteps;
-        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps);
+        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps, stackSlots);
         if (options_.maxCellSteps > 0)
             for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
     }
@@ -109,7 +116,8 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 // sample's when spp = 1, else a primary trace and surface pass of their own before the samples.
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
-    GpuPipeline& p = pipeline(camera.width, camera.height);
+    const int maxBounces = std::max(0, settings.maxBounces);
+    GpuPipeline& p = pipeline(camera.width, camera.height, hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.height;
@@ -122,7 +130,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     p.sampleSum.fill(0.0f);
     for (uint32_t s = 0; s < samples; ++s) {
         p.setSample(s, samples, settings.seed);
-        traceSample(p, lights, std::max(0, settings.maxBounces), samples == 1, out);
+        traceSample(p, lights, maxBounces, samples == 1, out);
         p.accumulate.dispatch();
     }
     out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
@@ -142,12 +150,15 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
     RenderStats& stats = out.stats;
     RenderOutput* aovs = readAovs ? &out : nullptr;
     p.color.fill(0.0f);
-    p.weight.fill(1.0f);  // every pixel starts a path of weight 1
+    p.weight.fill(1.0f);  // every pixel starts a tree with one ray of weight 1
+    p.pathState.fill(0.0f);
     p.raygen.dispatch();
-    for (int b = 0; b <= std::max(0, maxBounces); ++b) {
+    p.bounce.setUniform("maxBounces", std::max(0, maxBounces));
+    // Each round traces one ray of each pixel's tree; a tree has at most GPURT_TREE_RAYS rays.
+    for (int b = 0; b < GPURT_TREE_RAYS; ++b) {
         const uint64_t rays = traceLoop(p, false);
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
-        if (b > 0 && rays == 0) break;  // no mirror ray left: nothing more to shade (the count ends the loop)
+        if (b > 0 && rays == 0) break;  // every tree is done (the count ends the loop)
         if (b == 0 && aovs) {
             // The primary AOVs, before shadow rays reuse the ray streams.
             const auto hits = p.hit.download();
@@ -181,12 +192,12 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
                 .dispatch();
         }
         if (!textures_.emitterTable().empty()) {
-            p.emitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();
+            p.emitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();  // the round's dimension
             stats.shadowRays += traceLoop(p, true);
             p.emitterLight.dispatch();
         }
-        p.bounce.setUniform("lastBounce", b == maxBounces ? 1 : 0).dispatch();
-        if (b == maxBounces) break;
+        p.bounce.dispatch();
+        if (maxBounces == 0) break;  // no ray spawns: the round's count is not needed
     }
 }
 

@@ -70,7 +70,7 @@ class GpuTracer {
     void flushStats();
 
   private:
-    GpuPipeline& pipeline(int width, int height);
+    GpuPipeline& pipeline(int width, int height, int stackSlots = 0);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
@@ -83,6 +83,7 @@ class GpuTracer {
     GpuTracerOptions options_;
     SceneTextures textures_;
     std::unique_ptr<GpuPipeline> pipeline_;
+    bool hasDielectric_ = false;  // some triangle is glass: the ray tree needs its stacks
 };
 
 }  // namespace gpurt

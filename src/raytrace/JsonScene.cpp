@@ -451,7 +451,7 @@ class SceneReader {
     }
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
-        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission"});
+        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -465,6 +465,17 @@ class SceneReader {
             material.specular = color(*specular, at / "specular");
         if (const json* emission = find(value, "emission"))
             material.emission = color(*emission, at / "emission");
+        if (const json* ior = find(value, "ior")) {
+            const double eta = numberAtLeast(*ior, at / "ior", 0.0);
+            if (!(eta > 0.0)) fail(at / "ior", "must be > 0, got " + formatNumber(eta));
+            material.ior = static_cast<float>(eta);
+        }
+        if (const json* transmission = find(value, "transmission")) {
+            material.transmission = color(*transmission, at / "transmission");
+            for (int i = 0; i < 3; ++i)
+                if (material.transmission[i] > 1.0f)
+                    fail(at / "transmission" / i, "must be <= 1, got " + formatNumber(material.transmission[i]));
+        }
         if (const json* shininess = find(value, "shininess"))
             material.shininess =
                 static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));

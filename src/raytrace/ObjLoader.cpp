@@ -6,6 +6,7 @@
 // exponents.
 #include "raytrace/ObjLoader.h"
 
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <climits>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -272,6 +274,9 @@ bool isReadableKind(const std::filesystem::file_status& status) {
 
 // Opens material libraries next to the OBJ file and remembers which could not be opened (the
 // stock MaterialFileReader splits its folder at ':' and only reports failures as text).
+// MTL illumination models 4, 6 and 7: glass (refraction).
+bool isDielectric(int illum) { return illum == 4 || illum == 6 || illum == 7; }
+
 class MtlReader : public tinyobj::MaterialReader {
   public:
     explicit MtlReader(std::filesystem::path folder) : folder_(std::move(folder)) {}
@@ -291,7 +296,11 @@ class MtlReader : public tinyobj::MaterialReader {
             return loaded_[name] = false;
         }
         const size_t first = materials->size();
-        tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        std::ostringstream text;
+        text << in.rdbuf();
+        noteGivenKeys(text.str());
+        std::istringstream library(text.str());
+        tinyobj::LoadMtl(matMap, materials, &library, warn, err);
         for (size_t m = first; m < materials->size() && invalid.empty(); ++m)
             invalid = checkMaterial((*materials)[m], path.string());
         return loaded_[name] = true;
@@ -303,7 +312,27 @@ class MtlReader : public tinyobj::MaterialReader {
 
     std::vector<std::string> missing;
 
+    // Materials (by name) whose library gives Tf (or Kt) and Ni: tinyobjloader's defaults (Tf 0,
+    // Ni 1) cannot be told from values a file gives.
+    std::set<std::string> givenFilter, givenIndex;
+
   private:
+    void noteGivenKeys(const std::string& text) {
+        std::istringstream lines(text);
+        std::string line, current;
+        while (std::getline(lines, line)) {
+            std::istringstream words(line);
+            std::string key;
+            words >> key;
+            if (key == "newmtl") {
+                std::getline(words >> std::ws, current);
+                while (!current.empty() && std::isspace(static_cast<unsigned char>(current.back()))) current.pop_back();
+            }
+            if (key == "Tf" || key == "Kt") givenFilter.insert(current);
+            if (key == "Ni") givenIndex.insert(current);
+        }
+    }
+
     static std::string checkMaterial(const tinyobj::material_t& m, const std::string& library) {
         auto bad = [](float x) { return !std::isfinite(x) || x < 0.0f; };
         std::string what;
@@ -315,6 +344,10 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Ns";
         else if (bad(m.emission[0]) || bad(m.emission[1]) || bad(m.emission[2]))
             what = "Ke";
+        else if (bad(m.transmittance[0]) || bad(m.transmittance[1]) || bad(m.transmittance[2]))
+            what = "Tf";
+        else if (bad(m.ior) || (isDielectric(m.illum) && m.ior == 0.0f))
+            what = "Ni";
         if (what.empty()) return {};
         return library + ": material " + quote(m.name) + ": " + what +
                " must be finite and not negative";
@@ -410,6 +443,16 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         material.specular = toVec3(m.specular);
         material.shininess = static_cast<float>(m.shininess);
         material.emission = toVec3(m.emission);
+        // MTL illumination models 4, 6 and 7 are glass: refraction with index Ni (1.5, common
+        // glass, when the library gives none) and the filter Tf (1 1 1 when it gives none).
+        if (isDielectric(m.illum)) {
+            material.ior = mtlReader.givenIndex.count(m.name) ? static_cast<float>(m.ior) : 1.5f;
+            material.transmission = mtlReader.givenFilter.count(m.name) ? toVec3(m.transmittance) : glm::vec3(1.0f);
+            if (glm::any(glm::greaterThan(material.transmission, glm::vec3(1.0f)))) {
+                material.transmission = glm::min(material.transmission, glm::vec3(1.0f));
+                std::cerr << name << ": warning: material '" << m.name << "': Tf above 1, clamped to 1\n";
+            }
+        }
         // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
         if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
         // A mirror reflects at most all light (a JSON scene's range): Ks above 1 with a

@@ -43,7 +43,7 @@ constexpr bool optionalSection(std::string_view tag) { return tag == kCamera || 
 constexpr size_t kNormalsBytes = 9 * 4;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
-constexpr size_t kMaterialMinBytes = 13 * 4 + 4;  // thirteen floats and the name's length
+constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 constexpr size_t kLightBytes = 7 * 4;
 constexpr size_t kCameraBytes = 10 * 4;
 constexpr size_t kBackgroundBytes = 3 * 4;
@@ -199,14 +199,16 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         if (!isFinite(mat.diffuse) || !isFinite(mat.specular) || !std::isfinite(mat.shininess) ||
-            !isFinite(mat.reflectivity) || !isFinite(mat.emission))
+            !isFinite(mat.reflectivity) || !isFinite(mat.emission) || !std::isfinite(mat.ior) ||
+            !isFinite(mat.transmission))
             fail("material " + std::to_string(m) + ": values are not finite");
         // The ranges a JSON scene allows (docs/SCENE_FORMAT.md): the shading relies on them.
         if (!nonNegative(mat.diffuse) || !nonNegative(mat.specular) || !(mat.shininess >= 0.0f) ||
             !nonNegative(mat.reflectivity) || glm::any(glm::greaterThan(mat.reflectivity, glm::vec3(1.0f))) ||
-            !nonNegative(mat.emission))
+            !nonNegative(mat.emission) || !(mat.ior >= 0.0f) || !nonNegative(mat.transmission) ||
+            glm::any(glm::greaterThan(mat.transmission, glm::vec3(1.0f))))
             fail("material " + std::to_string(m) +
-                 ": colours, emission and shininess must be >= 0 and reflectivity in [0, 1]");
+                 ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
     }
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
@@ -356,6 +358,8 @@ class SectionDecoder {
             mat.shininess = in.f32();
             mat.reflectivity = in.vec3();
             mat.emission = in.vec3();
+            mat.ior = in.f32();
+            mat.transmission = in.vec3();
             const uint32_t length = in.u32();
             const size_t padded = (size_t(length) + 3) / 4 * 4;
             if (length > in.remaining() || padded > in.remaining())
@@ -530,6 +534,8 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
                 out.f32(m.shininess);
                 out.vec3(m.reflectivity);
                 out.vec3(m.emission);
+                out.f32(m.ior);
+                out.vec3(m.transmission);
                 if (m.name.size() > UINT32_MAX)
                     throw InputError(name + ": a material name is too long");
                 out.u32(static_cast<uint32_t>(m.name.size()));

@@ -22,6 +22,11 @@ struct Material {
     std::string name = "default";
     // Radiance emitted from both sides (MTL Ke, JSON emission): its triangles are area lights.
     glm::vec3 emission{0.0f};
+    // A dielectric (glass) when ior > 0: Fresnel reflection and refraction with this index of
+    // refraction (MTL illum 4, 6, 7 with Ni; JSON ior), the refracted ray filtered by
+    // transmission (Tf). reflectivity is then unused.
+    float ior = 0.0f;
+    glm::vec3 transmission{1.0f};
 
     bool emits() const { return emission != glm::vec3(0.0f); }
 };

@@ -90,7 +90,8 @@ TextureTexels materialTexels(const Scene& scene) {
         const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
                                                    vec4(mat.specular, 0.0f),
                                                    vec4(mat.reflectivity, 0.0f),
-                                                   vec4(mat.emission, 0.0f)};
+                                                   vec4(mat.emission, 0.0f),
+                                                   vec4(mat.transmission, mat.ior)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

@@ -244,4 +244,6 @@ GPUPingPongArray::GPUPingPongArray(int width, int height, GPUFormat format, cons
     : buffers_{GPUFloatArray(width, height, format, name + "[0]"),
                GPUFloatArray(width, height, format, name + "[1]")} {}
 
+GLenum GPUFloatArray::internalFormat() const { return info(format_).internal; }
+
 }  // namespace gpurt

@@ -47,6 +47,7 @@ class GPUFloatArray {
     int channels() const { return channelCount(format_); }
     size_t elements() const { return size_t(width_) * size_t(height_); }
     GPUFormat format() const { return format_; }
+    GLenum internalFormat() const;  // GL_RGBA32F, ...: for binding as an image
     GPUStorage storage() const { return storage_; }
     GLuint texture() const { return texture_; }
     const std::string& name() const { return name_; }

@@ -94,6 +94,12 @@ GPUKernel& GPUKernel::addInOut(GPUFloatArray& array, const std::string& samplerN
     return *this;
 }
 
+GPUKernel& GPUKernel::addImage(GPUFloatArray& array, const std::string& imageName) {
+    images_.emplace_back(&array, imageName);
+    program_.reset();  // the image unit uniforms are set when the program is built
+    return *this;
+}
+
 GPUKernel& GPUKernel::setPreserveUnwritten(bool preserve) {
     preserveUnwritten_ = preserve;
     return *this;
@@ -131,6 +137,8 @@ void GPUKernel::build() {
     builtFor_ = mode;
     for (size_t i = 0; i < inputs_.size(); ++i)
         glProgramUniform1i(program_->id(), program_->uniformLocation(inputs_[i].sampler), GLint(i));
+    for (size_t i = 0; i < images_.size(); ++i)
+        glProgramUniform1i(program_->id(), program_->uniformLocation(images_[i].second), GLint(i));
     if (mode == MaskMode::EarlyExit)
         glProgramUniform1i(program_->id(), program_->uniformLocation("gpu_maskState"),
                            GLint(inputs_.size()));
@@ -245,6 +253,9 @@ void GPUKernel::dispatch() {
     bindFramebuffer();
     for (size_t i = 0; i < inputs_.size(); ++i)
         glBindTextureUnit(GLuint(i), inputs_[i].stream.current().texture());
+    for (size_t i = 0; i < images_.size(); ++i)
+        glBindImageTexture(GLuint(i), images_[i].first->texture(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                           images_[i].first->internalFormat());
     const MaskMode mode = mask_ ? mask_->mode() : MaskMode::None;
     if (mode == MaskMode::EarlyExit) {
         glBindTextureUnit(GLuint(inputs_.size()), mask_->state().texture());
@@ -293,6 +304,9 @@ void GPUKernel::dispatch() {
         wallTiming ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()
                    : -1.0;
 
+    if (!images_.empty())  // later passes read the stores by fetches, loads or as render targets
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                        GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glDepthMask(GL_TRUE);
     glStencilMask(0xff);
     for (Stream& out : outputs_)

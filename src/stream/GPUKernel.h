@@ -58,6 +58,12 @@ class GPUKernel {
     // each fragment reads only its own texel, once, after a glTextureBarrier (ARB_texture_barrier).
     GPUKernel& addInOut(GPUFloatArray& array, const std::string& samplerName);
     GPUKernel& setPreserveUnwritten(bool preserve);
+    // A per-element store (GLSL image `imageName`, read and written with imageLoad/imageStore)
+    // beside the outputs, of any size: a fragment may write elements other than its own, such as
+    // its own slots of a stack laid out in rows of slots. The kernel must keep every element
+    // written by at most one fragment of a pass (so the result does not depend on the order in
+    // which fragments run). Passes that follow see the writes (memory barrier after each pass).
+    GPUKernel& addImage(GPUFloatArray& array, const std::string& imageName);
 
     // Restricts passes to the mask's active elements (nullptr: no mask). With `updateEachPass`,
     // EarlyZ/Stencil masks run their mask pass before each pass of this kernel.
@@ -126,6 +132,7 @@ class GPUKernel {
     MaskMode builtFor_ = MaskMode::None;
     std::vector<Input> inputs_;
     std::vector<Stream> outputs_;
+    std::vector<std::pair<GPUFloatArray*, std::string>> images_;
     bool inPlace_ = false;
     bool preserveUnwritten_ = true;
     GPUMask* mask_ = nullptr;

@@ -453,7 +453,7 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
     const Entry mats = section(bytes_, "MATS");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, mats.offset, uint64_t(1) << 40); }),
                    "materials");
-    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, mats.offset + 8 + 52, 0x7fffffffu); }),
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, mats.offset + 8 + 68, 0x7fffffffu); }),
                    "runs past");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, section(b, "LGTS").offset, 1000); }),
                    "do not fit");

@@ -100,12 +100,13 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
     EXPECT_EQ(materials.rows, 1);
     for (size_t m = 0; m < 3; ++m) {
         const Material& mat = scene.materials[m];
-        const float expected[16] = {
+        const float expected[20] = {
             mat.diffuse.x,      mat.diffuse.y,      mat.diffuse.z,      mat.shininess,
             mat.specular.x,     mat.specular.y,     mat.specular.z,     0.0f,
             mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f,
-            mat.emission.x,     mat.emission.y,     mat.emission.z,     0.0f};
-        for (int k = 0; k < 16; ++k) EXPECT_EQ(materials.floats[m * 16 + size_t(k)], expected[k]);
+            mat.emission.x,     mat.emission.y,     mat.emission.z,     0.0f,
+            mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior};
+        for (int k = 0; k < 20; ++k) EXPECT_EQ(materials.floats[m * 20 + size_t(k)], expected[k]);
     }
 
     // Sizes as SceneTextures allocates them: texels x channels x 4 bytes.
