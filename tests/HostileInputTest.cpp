@@ -382,5 +382,45 @@ TEST_F(OutputFiles, RepeatedRendersAreBitIdentical) {
     }
 }
 
+// The pictures' materials: an emission, index of refraction or filter that is negative or not
+// finite is refused naming the library and material (a glass of index 0 too); an ordinary
+// material may carry Ni 0, as exporters write it.
+TEST_F(ObjErrors, MaterialLibraryWithUnusableLightOrGlass) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"Ke -1 0 0", "Ke"}, {"Ke 1e39 1 1", "Ke"}, {"illum 7\nNi -1.5", "Ni"}, {"illum 4\nNi 0", "Ni"},
+        {"Ni 1e39", "Ni"},   {"illum 6\nTf 1 -0.5 1", "Tf"}, {"Tf 1e39 1 1", "Tf"}};
+    for (const auto& [line, key] : cases) {
+        write("bad.mtl", std::string("newmtl good\nKd 1 0 0\nNi 0\nnewmtl shiny\n") + line + "\n");
+        write("scene.obj", "mtllib bad.mtl\nusemtl good\n" + kTriangle);
+        expectRefused(render("scene.obj"),
+                      {path("bad.mtl") + ": material 'shiny': ", std::string(key) + " must be"});
+    }
+}
+
+TEST_F(JsonErrors, UnusableLightAndGlassValuesNameTheJsonPointer) {
+    write("tri.obj", kTriangle);
+    const std::pair<const char*, const char*> cases[] = {
+        {R"({"emission": [1, -1, 0]})", "/meshes/0/material/emission/1"},
+        {R"({"ior": 0})", "/meshes/0/material/ior"},
+        {R"({"ior": -1.5})", "/meshes/0/material/ior"},
+        {R"({"ior": 1.5, "transmission": [1, 2, 1]})", "/meshes/0/material/transmission/1"},
+        {R"({"transmission": [1, 1]})", "/meshes/0/material/transmission"}};
+    for (const auto& [material, pointer] : cases) {
+        write("glass.json", std::string(R"({"meshes": [{"file": "tri.obj", "material": )") + material + "}]}");
+        expectRefused(render("glass.json"), {path("glass.json"), pointer});
+    }
+}
+
+TEST_F(CliErrors, SamplesExposureToneMapAndSmoothing) {
+    write("tri.obj", kTriangle);
+    for (const char* options :
+         {"--spp 0", "--spp -1", "--spp 1.5", "--spp 16777217", "--spp 99999999999", "--spp ''", "--seed -1",
+          "--seed 4294967296", "--exposure nan", "--exposure inf", "--exposure 65", "--exposure 1x",
+          "--tonemap filmic", "--smooth -1", "--smooth 181", "--smooth nan", "--smooth on"}) {
+        const std::string option(options, std::string(options).find(' '));
+        expectRefused(render("tri.obj", options), {option});
+    }
+}
+
 }  // namespace
 }  // namespace gpurt::test
