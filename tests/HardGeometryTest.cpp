@@ -3,6 +3,7 @@
 // independent expectation: Embree on the same rays, a formula, or the same scene at unit size.
 // The scenes are generated here into a scratch folder.
 #include "CliRunner.h"
+#include "PngPixels.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -248,19 +249,6 @@ class HardGeometry : public GpurtTest {
   private:
     int renders_ = 0;
 };
-
-// Pixels of an 8-bit RGB PNG (libpng's simplified API).
-std::vector<unsigned char> pngPixels(const std::string& bytes, int& width, int& height) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) return {};
-    image.format = PNG_FORMAT_RGB;
-    std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(image));
-    if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return {};
-    width = int(image.width);
-    height = int(image.height);
-    return pixels;
-}
 
 // The contract's ray through pixel i of a view where it meets the plane z = zPlane: t and the
 // point, computed in double from the float ray (an independent evaluation of the hit).

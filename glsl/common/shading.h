@@ -8,8 +8,10 @@
 // eq. 5.1), with l the unit vector to the light and n the normal facing the ray:
 //   local = 0.1 kd + sum over lights in front of the surface and not in shadow of
 //           (kd max(0, n.l) + ks max(0, reflect(-l, n).(-d))^ns) * colour * intensity / dist^2
-//   colour = sum over bounces of (product of reflectivities so far) * local; a miss adds
-//            product * background.
+//   colour = sum over the rays of the pixel's ray tree of weight * (emission + local); a miss
+//            adds weight * background. A ray's weight is the product of the mirror
+//            reflectivities, Fresnel reflectances and transmissions along its branch
+//            (hitChildren); n in the lighting terms is the shading normal (shadingNormal).
 // A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by the surface itself
 // and gets no shadow ray.
 //

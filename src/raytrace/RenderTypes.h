@@ -12,7 +12,8 @@ namespace gpurt {
 struct RenderSettings {
     // The image size is the camera's (CameraBasis); these are kept for callers.
     int width = 512, height = 512;
-    // Mirror reflections after the primary hit (callers copy Scene::maxBounces here).
+    // Levels of the ray tree after the primary hit (mirror, glass; callers copy
+    // Scene::maxBounces here).
     int maxBounces = 3;
     int threads = 0;  // CPU backend: 0 = all cores
     // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
