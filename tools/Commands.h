@@ -12,5 +12,6 @@ void addInfoCommand(CLI::App& app, std::function<int()>& run);
 void addRenderCommand(CLI::App& app, std::function<int()>& run);
 void addBenchCommand(CLI::App& app, std::function<int()>& run);
 void addPackCommand(CLI::App& app, std::function<int()>& run);
+void addViewCommand(CLI::App& app, std::function<int()>& run);
 
 }  // namespace gpurt

@@ -96,6 +96,11 @@ glm::ivec2 CameraOptions::imageSize(std::optional<glm::ivec2> sceneSize) const {
 }
 
 CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int scaleExponent) const {
+    const CameraSpec s = spec(scene, imageSize, scaleExponent);
+    return makeCamera(s, imageSize.x, imageSize.y);
+}
+
+CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int scaleExponent) const {
     CameraSpec spec;
     if (!fovy.empty()) {
         float f = 0.0f;
@@ -114,7 +119,7 @@ CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int 
     if (!eye.empty()) spec.eye = rescalePoint(parseVec3("--eye", eye), scaleExponent);
     if (!target.empty()) spec.target = rescalePoint(parseVec3("--target", target), scaleExponent);
     if (!up.empty()) spec.up = parseVec3("--up", up);
-    return makeCamera(spec, imageSize.x, imageSize.y);
+    return spec;
 }
 
 void GridCliOptions::add(CLI::App& cmd) {
@@ -163,6 +168,38 @@ GpuTracerOptions TracerCliOptions::options() const {
     options.traverseSteps = traverseSteps;
     options.waitThreshold = waitThreshold;
     return options;
+}
+
+void PictureCliOptions::add(CLI::App& cmd) {
+    sppOption = cmd.add_option("--spp", spp, "Samples per pixel, stratified over the pixel (default 1: the pixel centre)")
+                    ->check(kNotEmpty);
+    cmd.add_option("--seed", seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
+    cmd.add_option("--smooth", smooth,
+                   "Smooth shading: crease angle in degrees for meshes without normals (default 60), or off (faceted)")
+        ->check(kNotEmpty);
+    cmd.add_option("--exposure", exposure, "Exposure in EV: the linear colour is scaled by 2^EV (default 0)")
+        ->check(kNotEmpty);
+    cmd.add_option("--tonemap", tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")
+        ->check(CLI::IsMember({"aces", "reinhard", "clamp"}));
+}
+
+PictureCliOptions::Values PictureCliOptions::values() const {
+    Values v;
+    v.colour.exposure = parseFiniteFloat("--exposure", exposure);
+    if (std::abs(v.colour.exposure) > 64.0f)
+        throw InputError("--exposure: " + exposure + " is outside [-64, 64]");
+    parseToneMap(tonemap, v.colour.toneMap);
+    // The per-pixel sums take the same memory for any sample count; the bound keeps sample
+    // indices and counts exact in float (2^24).
+    v.samples = parseCount("--spp", spp, 1, 1u << 24);
+    v.seed = parseCount("--seed", seed, 0, UINT32_MAX);
+    v.crease = -1.0f;  // --smooth off
+    if (smooth != "off") {
+        v.crease = parseFiniteFloat("--smooth", smooth);
+        if (v.crease < 0.0f || v.crease > 180.0f)
+            throw InputError("--smooth: " + smooth + " is not a crease angle from 0 to 180 degrees or 'off'");
+    }
+    return v;
 }
 
 }  // namespace gpurt

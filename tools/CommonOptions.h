@@ -3,6 +3,7 @@
 #pragma once
 
 #include "raytrace/Camera.h"
+#include "raytrace/Colour.h"
 #include "raytrace/InputError.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/Scene.h"
@@ -79,6 +80,23 @@ struct CameraOptions {
     // `scaleExponent`: the scene was rescaled by 2^-scaleExponent for rendering (SceneScale.h);
     // --eye and --target, given in the scene file's units, are rescaled alike.
     CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
+    // The same before it is made a basis (unchecked; makeCamera checks it).
+    CameraSpec spec(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
+};
+
+// The picture options of render and view: --spp, --seed, --exposure, --tonemap, --smooth.
+struct PictureCliOptions {
+    std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60";
+    CLI::Option* sppOption = nullptr;
+
+    void add(CLI::App& cmd);
+    // The parsed values; InputError naming the option otherwise.
+    struct Values {
+        uint32_t samples = 1, seed = 0;
+        float crease = 60.0f;  // --smooth; < 0: off
+        ColourSettings colour;
+    };
+    Values values() const;
 };
 
 // The grid options of render and bench: --lambda and --skip.

@@ -37,10 +37,7 @@ struct RenderOptions {
     TracerCliOptions tracer;
     GridCliOptions grid;
     int bounces = -1;
-    std::string exposure = "0";
-    std::string spp = "1", seed = "0";
-    std::string tonemap = "aces";
-    std::string smooth = "60";
+    PictureCliOptions picture;
     CameraOptions camera;
     ContextOptions context;
 };
@@ -101,25 +98,12 @@ int runRender(const RenderOptions& o) {
     std::vector<std::filesystem::path> outputPaths = {o.output};
     for (const auto& [name, file] : aovs) outputPaths.push_back(file);
     checkOutputPaths(outputPaths);
-    ColourSettings colour;
-    colour.exposure = parseFiniteFloat("--exposure", o.exposure);
-    if (std::abs(colour.exposure) > 64.0f)
-        throw InputError("--exposure: " + o.exposure + " is outside [-64, 64]");
-    parseToneMap(o.tonemap, colour.toneMap);
-    // The per-pixel sums take the same memory for any sample count; the bound keeps sample
-    // indices and counts exact in float (2^24).
-    const uint32_t samples = parseCount("--spp", o.spp, 1, 1u << 24);
-    const uint32_t seed = parseCount("--seed", o.seed, 0, UINT32_MAX);
-    float crease = -1.0f;  // --smooth off
-    if (o.smooth != "off") {
-        crease = parseFiniteFloat("--smooth", o.smooth);
-        if (crease < 0.0f || crease > 180.0f)
-            throw InputError("--smooth: " + o.smooth + " is not a crease angle from 0 to 180 degrees or 'off'");
-    }
+    const PictureCliOptions::Values picture = o.picture.values();
+    const ColourSettings& colour = picture.colour;
     const GpuTracerOptions tracerOptions = o.tracer.options();
 
     LoadedScene loaded = loadScene(o.scene);
-    smoothNormals(loaded.scene, crease);
+    smoothNormals(loaded.scene, picture.crease);
     // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
     // a power of two, which gives the same image (SceneScale.h); depths are scaled back below.
     const int scaleExponent = renderScaleExponent(loaded.scene);
@@ -133,8 +117,8 @@ int runRender(const RenderOptions& o) {
     settings.width = size.x;
     settings.height = size.y;
     settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
-    settings.samples = samples;
-    settings.seed = seed;
+    settings.samples = picture.samples;
+    settings.seed = picture.seed;
 
     const auto start = std::chrono::steady_clock::now();
     const std::optional<UniformGrid> built = o.grid.build(loaded);
@@ -190,16 +174,7 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                       ->check(CLI::IsMember({"", "text", "json"}));
     cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
         ->check(CLI::Range(0, 64));
-    cmd->add_option("--spp", o->spp, "Samples per pixel, stratified over the pixel (default 1: the pixel centre)")
-        ->check(kNotEmpty);
-    cmd->add_option("--seed", o->seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
-    cmd->add_option("--smooth", o->smooth,
-                    "Smooth shading: crease angle in degrees for meshes without normals (default 60), or off (faceted)")
-        ->check(kNotEmpty);
-    cmd->add_option("--exposure", o->exposure, "Exposure in EV: the linear colour is scaled by 2^EV (default 0)")
-        ->check(kNotEmpty);
-    cmd->add_option("--tonemap", o->tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")
-        ->check(CLI::IsMember({"aces", "reinhard", "clamp"}));
+    o->picture.add(*cmd);
     o->tracer.add(*cmd);
     o->grid.add(*cmd);
     o->camera.add(*cmd);

@@ -48,16 +48,18 @@ void main() {
         color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
         if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
             vec4 nm = readStream(surfaceNormal);
-            vec3 d = readStream(surfaceView).xyz;
-            vec3 v0, e1, e2;
-            int material;
-            fetchTriangle(int(s.w), v0, e1, e2, material);
             vec3 kd, ks, reflectivity, tf;
             float ns, ior;
-            fetchMaterial(material, kd, ks, ns, reflectivity);
-            fetchDielectric(material, tf, ior);
-            children = hitChildren(d, nm.xyz, readStream(surfaceShading).xyz, frontFace(e1, e2, d),
-                                   reflectivity, ior, tf, w.xyz, dirA, weightA, sideA, dirB, weightB);
+            fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
+            fetchDielectric(int(nm.w), tf, ior);
+            if (ior > 0.0f || reflectivity != vec3(0.0f)) {  // only mirrors and glass have children
+                vec3 d = readStream(surfaceView).xyz;
+                vec3 v0, e1, e2;
+                int material;
+                fetchTriangle(int(s.w), v0, e1, e2, material);
+                children = hitChildren(d, nm.xyz, readStream(surfaceShading).xyz, frontFace(e1, e2, d),
+                                       reflectivity, ior, tf, w.xyz, dirA, weightA, sideA, dirB, weightB);
+            }
             vec3 o = offsetOrigin(s.xyz, sideA * nm.xyz, rayOffset);
             if (children > 0) {
                 weight = vec4(weightA, 1.0f);

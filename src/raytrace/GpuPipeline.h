@@ -28,6 +28,9 @@ struct GpuPipeline {
     // The ray tree (bounce.frag): each pixel's depth, stack height and ray count, and its stack
     // of pending rays, `stackSlots` slots of image size one above the other.
     GPUFloatArray pathState;
+    // The pixel-centre AOVs kept for a viewer's display modes while the samples reuse the ray and
+    // surface streams: the primary hits, cell counts and facing normals.
+    GPUFloatArray aovHit, aovCells, aovNormal;
     int stackSlots;
     GPUFloatArray stackOrigin, stackDir, stackWeight;
     GPUMask activeMask, waitMask;
@@ -60,6 +63,9 @@ struct GpuPipeline {
           sampleSum(w, h, 4, "sampleSum"),
           lightSample(w, h, 4, "lightSample"),
           pathState(w, h, 4, "pathState"),
+          aovHit(w, h, 4, "aovHit"),
+          aovCells(w, h, GPUFormat::RGBA32I, "aovCells"),
+          aovNormal(w, h, 4, "aovNormal"),
           stackSlots(slots),
           stackOrigin(w, h * std::max(1, slots), 4, "stackOrigin"),
           stackDir(w, h * std::max(1, slots), 4, "stackDir"),

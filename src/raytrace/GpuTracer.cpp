@@ -19,7 +19,10 @@ namespace gpurt {
 
 GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options)
     : scene_(scene), grid_(grid), options_(options), textures_(scene, grid) {
-    for (uint32_t m : scene.materialIds) hasDielectric_ = hasDielectric_ || scene.materials[m].ior > 0.0f;
+    for (uint32_t m : scene.materialIds) {
+        hasDielectric_ = hasDielectric_ || scene.materials[m].ior > 0.0f;
+        hasSecondary_ = hasSecondary_ || scene.materials[m].ior > 0.0f || scene.materials[m].reflectivity != glm::vec3(0.0f);
+    }
 }
 
 GpuTracer::~GpuTracer() = default;
@@ -197,8 +200,30 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
             p.emitterLight.dispatch();
         }
         p.bounce.dispatch();
-        if (maxBounces == 0) break;  // no ray spawns: the round's count is not needed
+        if (maxBounces == 0 || !hasSecondary_) break;  // no ray spawns: the next round would trace none
     }
+}
+
+GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
+    const int maxBounces = std::max(0, settings.maxBounces);
+    GpuPipeline& p = pipeline(camera.width, camera.height, hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0);
+    progressive_.settings = settings;
+    progressive_.lights = lightsOrHeadlight(scene_, camera.eye);
+    p.surface.setUniform("background", scene_.background);
+    p.setCamera(camera);
+    traceSample(p, progressive_.lights, -1, false, progressive_.output);  // pixel centres
+    p.aovHit.copyFrom(p.hit);
+    p.aovCells.copyFrom(p.voxel);
+    p.aovNormal.copyFrom(p.surfaceNormal);
+    p.sampleSum.fill(0.0f);
+    return p;
+}
+
+void GpuTracer::addSample(uint32_t s, uint32_t n) {
+    GpuPipeline& p = *pipeline_;
+    p.setSample(s, n, progressive_.settings.seed);
+    traceSample(p, progressive_.lights, std::max(0, progressive_.settings.maxBounces), false, progressive_.output);
+    p.accumulate.dispatch();
 }
 
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {

@@ -57,6 +57,14 @@ class GpuTracer {
 
     const SceneTextures& textures() const { return textures_; }
 
+    // Progressive rendering (gpurt view): beginProgressive traces the camera's pixel centres and
+    // keeps their AOVs in the pipeline's aov streams, and clears the sample sums; each addSample
+    // adds sample s of n of every pixel to the pipeline's sampleSum (as render does). Nothing is
+    // read back. The rays traced so far count in progressiveStats().
+    GpuPipeline& beginProgressive(const CameraBasis& camera, const RenderSettings& settings);
+    void addSample(uint32_t s, uint32_t n);
+    const RenderStats& progressiveStats() const { return progressive_.output.stats; }
+
     // Tracing only (gpurt bench). tracePrimary traces the camera's rays: with the default fused
     // kernel in one pass that generates them itself (traceCamera), otherwise raygen and the trace
     // loop; setRays uploads rays and traceRays traces them (closest hit, or any hit for shadow
@@ -84,6 +92,12 @@ class GpuTracer {
     SceneTextures textures_;
     std::unique_ptr<GpuPipeline> pipeline_;
     bool hasDielectric_ = false;  // some triangle is glass: the ray tree needs its stacks
+    bool hasSecondary_ = false;   // some triangle is a mirror or glass: rays spawn
+    struct Progressive {
+        RenderSettings settings;
+        std::vector<PointLight> lights;
+        RenderOutput output;  // only its stats are used
+    } progressive_;
 };
 
 }  // namespace gpurt

@@ -119,6 +119,21 @@ void writePng(AtomicFileSet& files, const std::filesystem::path& path, int width
     });
 }
 
+void writePngRgb8(const std::filesystem::path& path, int width, int height,
+                  const std::vector<unsigned char>& rgbTopFirst) {
+    checkSize(path, width, height, rgbTopFirst.size(), 3);
+    std::vector<unsigned char*> rows(static_cast<size_t>(height));
+    for (int j = 0; j < height; ++j)
+        rows[size_t(j)] = const_cast<unsigned char*>(rgbTopFirst.data()) + size_t(j) * size_t(width) * 3;
+    AtomicFileSet files;
+    files.add(path, [&](FILE* file) {
+        PngErrorState state;
+        if (!writePngRows(file, width, height, rows.data(), state))
+            throw InputError(path.string() + ": cannot write PNG (" + state.message + ")");
+    });
+    files.commit();
+}
+
 void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
               int channels, const std::vector<float>& topFirst) {
     if (channels != 1 && channels != 3)

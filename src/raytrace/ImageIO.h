@@ -29,6 +29,10 @@ void writePng(AtomicFileSet& files, const std::filesystem::path& path, int width
 void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width, int height,
               int channels, const std::vector<float>& topFirst);
 
+// An 8-bit RGB PNG of pixels already encoded (a window's screenshot), top row first, atomically.
+void writePngRgb8(const std::filesystem::path& path, int width, int height,
+                  const std::vector<unsigned char>& rgbTopFirst);
+
 // Reads a PFM (either byte order) back into top-first rows. Throws InputError on a malformed file.
 std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,
                            int& channels);

@@ -179,7 +179,18 @@ void GPUKernel::applyUniforms() {
     }
 }
 
+GPUKernel& GPUKernel::setScreenTarget(int width, int height) {
+    screenWidth_ = width;
+    screenHeight_ = height;
+    return *this;
+}
+
 void GPUKernel::bindFramebuffer() {
+    if (screenWidth_ > 0) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glDrawBuffer(GL_BACK);
+        return;
+    }
     if (outputs_.empty()) throw UsageError("kernel '" + name_ + "' has no output");
     const GLuint fb = framebuffer_.id;
     bool changed = false;
@@ -282,8 +293,10 @@ void GPUKernel::dispatch() {
     glUseProgram(program_->id());
     applyUniforms();
 
-    const GPUFloatArray& first = outputs_.front().target();
-    const StreamRect rect = rect_.value_or(StreamRect{0, 0, first.width(), first.height()});
+    const StreamRect whole = screenWidth_ > 0 ? StreamRect{0, 0, screenWidth_, screenHeight_}
+                                              : StreamRect{0, 0, outputs_.front().target().width(),
+                                                           outputs_.front().target().height()};
+    const StreamRect rect = rect_.value_or(whole);
     const bool timing = KernelStats::global().timing();
     // On a software renderer the pass runs on the CPU, and llvmpipe's (Mesa 22.3) GL_TIME_ELAPSED
     // misses the rasterisation of some passes (a one-pass trace read 0.2 ms for 56 ms of work):

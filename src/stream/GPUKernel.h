@@ -68,6 +68,9 @@ class GPUKernel {
     // Restricts passes to the mask's active elements (nullptr: no mask). With `updateEachPass`,
     // EarlyZ/Stencil masks run their mask pass before each pass of this kernel.
     GPUKernel& setMask(GPUMask* mask, bool updateEachPass = true);
+    // Draw into the default framebuffer of a window's context (width x height, its back buffer)
+    // instead of outputs: a present pass. 0 x 0: back to the outputs.
+    GPUKernel& setScreenTarget(int width, int height);
     // Draw over a sub-rectangle of the outputs only (std::nullopt: all of them).
     GPUKernel& setRect(std::optional<StreamRect> rect);
     GPUKernel& setPrimitive(StreamPrimitive primitive);
@@ -138,6 +141,7 @@ class GPUKernel {
     GPUMask* mask_ = nullptr;
     bool updateMaskEachPass_ = true;
     std::optional<StreamRect> rect_;
+    int screenWidth_ = 0, screenHeight_ = 0;
     std::map<std::string, Uniform> uniforms_;
     GPUStreamGenerator generator_;
 
