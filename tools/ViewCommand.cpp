@@ -175,7 +175,7 @@ int runView(const ViewOptions& o) {
 
     int width = window->width(), height = window->height();
     std::unique_ptr<GPUKernel> present;
-    GpuPipeline* pipeline = nullptr;
+    glm::ivec2 presentSize(0);
     uint32_t done = 0;
     int mode = 0, frame = 0, screenshots = 0;
     bool dirty = true;
@@ -191,6 +191,26 @@ int runView(const ViewOptions& o) {
     };
     auto writeScreenshot = [&](const std::string& path) {
         writePngRgb8(path, width, height, window->readPixels());
+    };
+    // A new camera or size: the pixel centres' AOVs, and the sample sums start again.
+    auto restart = [&] {
+        const CameraBasis camera = makeCamera(control.spec, width, height);
+        settings.width = width;
+        settings.height = height;
+        GpuPipeline& p = tracer.beginProgressive(camera, settings);
+        // New streams (first frame, resize; a new pipeline may reuse the old one's address): a
+        // new present pass.
+        if (!present || presentSize != glm::ivec2(width, height)) {
+            presentSize = glm::ivec2(width, height);
+            present = std::make_unique<GPUKernel>("present", "view/present.frag");
+            present->addInput(p.sampleSum, "sampleSum").addInput(p.aovHit, "aovHit");
+            present->addInput(p.aovCells, "aovCells").addInput(p.aovNormal, "aovNormal");
+        }
+        const float dist = glm::length(control.spec.eye - bounds.center());
+        const float radius = bounds.empty() ? 1.0f : glm::length(bounds.halfExtent());
+        depthRange = glm::vec2(std::max(0.0f, dist - radius), dist + radius);
+        done = 0;
+        dirty = false;
     };
     const auto started = std::chrono::steady_clock::now();
     auto benchStart = started;
@@ -224,23 +244,7 @@ int runView(const ViewOptions& o) {
             }
         }
         if (window->closeRequested()) break;
-        if (dirty) {
-            const CameraBasis camera = makeCamera(control.spec, width, height);
-            settings.width = width;
-            settings.height = height;
-            GpuPipeline& p = tracer.beginProgressive(camera, settings);
-            if (&p != pipeline || !present) {  // new streams (first frame, resize): a new present pass
-                pipeline = &p;
-                present = std::make_unique<GPUKernel>("present", "view/present.frag");
-                present->addInput(p.sampleSum, "sampleSum").addInput(p.aovHit, "aovHit");
-                present->addInput(p.aovCells, "aovCells").addInput(p.aovNormal, "aovNormal");
-            }
-            const float dist = glm::length(control.spec.eye - bounds.center());
-            const float radius = bounds.empty() ? 1.0f : glm::length(bounds.halfExtent());
-            depthRange = glm::vec2(std::max(0.0f, dist - radius), dist + radius);
-            done = 0;
-            dirty = false;
-        }
+        if (dirty) restart();
         if (done < samples) tracer.addSample(done++, samples);
         show();
         if (screenshotNow) {
@@ -279,6 +283,11 @@ int runView(const ViewOptions& o) {
         if (frames > 0 && frame >= frames) break;
     }
     if (present) {
+        // The camera of the last events (closing with them unrendered would show the old one).
+        if (dirty) {
+            restart();
+            tracer.addSample(done++, samples);
+        }
         show();  // the last frame again into the back buffer, for the screenshot
         if (!o.screenshot.empty()) writeScreenshot(o.screenshot);
     }

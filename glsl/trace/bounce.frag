@@ -7,6 +7,8 @@
 // per pixel per round, so the passes stay image-sized and the rounds end when the trace counts no
 // ray (GpuTracer::traceSample). The stack is the one store outside the pixel's own element: slot s
 // of pixel (x, y) is element (x, y + s H) of the stack images, written only by that pixel.
+// LAST_ROUND: the variant for a round after which no ray can follow (no mirror or glass in the
+// scene, or no bounce allowed): only the colour, one output instead of five.
 #include "shading.glsl"
 
 uniform sampler2D surfacePoint;
@@ -24,6 +26,14 @@ uniform int maxBounces;
 uniform int stackSlots;
 
 layout(location = 0) out vec4 color;
+#ifdef LAST_ROUND
+void main() {
+    vec4 s = readStream(surfacePoint);
+    vec4 w = readStream(weightState);
+    color = readStream(colorState);
+    if (w.w != 0.0f && s.w >= 0.0f) color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
+}
+#else
 layout(location = 1) out vec4 weight;     // (weight of the pixel's ray, alive)
 layout(location = 2) out vec4 rayOrigin;  // the pixel's next ray
 layout(location = 3) out vec4 rayDir;
@@ -90,3 +100,4 @@ void main() {
     }
     pathState = vec4(float(depth), float(height), float(rays - 1), 0.0f);
 }
+#endif

@@ -34,7 +34,7 @@ struct GpuPipeline {
     int stackSlots;
     GPUFloatArray stackOrigin, stackDir, stackWeight;
     GPUMask activeMask, waitMask;
-    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, accumulate;
+    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
     // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
@@ -81,6 +81,7 @@ struct GpuPipeline {
           shadowgen("shadowgen", "trace/shadowgen.frag"),
           light("light", "trace/light.frag"),
           bounce("bounce", "trace/bounce.frag"),
+          lastBounce("lastBounce", "trace/bounce.frag", {"LAST_ROUND"}),
           accumulate("accumulate", "trace/accumulate.frag"),
           emitterShadowgen("emitterShadowgen", "trace/shadowgen.frag", {"EMITTER"}),
           emitterLight("emitterLight", "trace/light.frag", {"EMITTER"}),
@@ -112,6 +113,8 @@ struct GpuPipeline {
         bounce.addOutput(rayOrigin).addOutput(rayDir).addInOut(pathState, "pathStateIn");
         bounce.addImage(stackOrigin, "stackOrigin").addImage(stackDir, "stackDir").addImage(stackWeight, "stackWeight");
         bounce.setUniform("stackSlots", slots);
+        lastBounce.addInput(surfacePoint, "surfacePoint").addInput(weight, "weightState");
+        lastBounce.addInput(localColor, "localColor").addInOut(color, "colorState");
         accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
         emitterShadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         emitterShadowgen.addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
@@ -131,8 +134,8 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 14> allKernels() {
-        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce,
+    std::array<GPUKernel*, 15> allKernels() {
+        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
                 &accumulate, &emitterShadowgen, &emitterLight, &trace, &traceAny, &traceCamera};
     }
 

@@ -199,8 +199,11 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
             stats.shadowRays += traceLoop(p, true);
             p.emitterLight.dispatch();
         }
+        if (maxBounces == 0 || !hasSecondary_) {  // no ray spawns: the next round would trace none
+            p.lastBounce.dispatch();
+            break;
+        }
         p.bounce.dispatch();
-        if (maxBounces == 0 || !hasSecondary_) break;  // no ray spawns: the next round would trace none
     }
 }
 

@@ -1,0 +1,261 @@
+// `gpurt view` in a real window: the test starts its own X server (Xvfb, stopped by its process
+// id afterwards), runs the viewer on Mesa's llvmpipe through GLX, and drives it with real input
+// from xdotool (XTEST): a drag orbits, a key flies, a display-mode key shows the AOV, a resize
+// keeps rendering, Esc closes. Each picture is checked against `gpurt render` with the camera the
+// viewer printed (at most 1 level of 255 apart on 99.9% of the pixels). An X server or xdotool
+// that cannot start fails the test with the reason; nothing is skipped.
+#include "CliRunner.h"
+#include "PngPixels.h"
+
+#include "raytrace/ImageIO.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+extern char** environ;
+
+namespace gpurt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+// A process started in the background, its output in files; killed by pid if still running.
+class Background {
+  public:
+    Background(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err,
+               const std::string& display) {
+        std::vector<std::string> env;
+        for (char** e = environ; *e; ++e)
+            if (std::string(*e).rfind("DISPLAY=", 0) != 0) env.emplace_back(*e);
+        if (!display.empty()) env.push_back("DISPLAY=" + display);
+        std::vector<char*> args, envp;
+        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+        envp.push_back(nullptr);
+        posix_spawn_file_actions_t files;
+        posix_spawn_file_actions_init(&files);
+        posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (posix_spawn(&pid_, args[0], &files, nullptr, args.data(), envp.data()) != 0) pid_ = -1;
+        posix_spawn_file_actions_destroy(&files);
+    }
+    ~Background() { stop(); }
+    bool started() const { return pid_ > 0; }
+    bool running() {
+        if (pid_ <= 0) return false;
+        int status = 0;
+        const pid_t r = waitpid(pid_, &status, WNOHANG);
+        if (r == pid_) {
+            code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            pid_ = -1;
+            return false;
+        }
+        return true;
+    }
+    // The exit status, waiting at most `timeout`; -2 when it is still running then.
+    int wait(std::chrono::seconds timeout) {
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        while (running() && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(50ms);
+        return running() ? -2 : code_;
+    }
+    void stop() {
+        if (running()) {
+            kill(pid_, SIGTERM);
+            if (wait(5s) == -2) {
+                kill(pid_, SIGKILL);
+                waitpid(pid_, nullptr, 0);
+            }
+        }
+        pid_ = -1;
+    }
+
+  private:
+    pid_t pid_ = -1;
+    int code_ = -1;
+};
+
+// One X server for the test suite.
+class XServer {
+  public:
+    static XServer& get() {
+        static XServer server;
+        return server;
+    }
+    const std::string& display() const { return display_; }
+    const std::string& failure() const { return failure_; }
+
+  private:
+    XServer() {
+        const int number = 70 + int(getpid() % 200);
+        display_ = ":" + std::to_string(number);
+        const fs::path log = fs::temp_directory_path() / ("gpurt-xvfb-" + std::to_string(number) + ".log");
+        server_ = std::make_unique<Background>(
+            std::vector<std::string>{"/usr/bin/Xvfb", display_, "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
+            log, log, "");
+        const fs::path socket = "/tmp/.X11-unix/X" + std::to_string(number);
+        for (int i = 0; i < 100 && server_->running() && !fs::exists(socket); ++i) std::this_thread::sleep_for(50ms);
+        if (!server_->started() || !server_->running() || !fs::exists(socket))
+            failure_ = "Xvfb " + display_ + " did not start (is the xvfb package installed?): " + readFile(log);
+    }
+    std::string display_, failure_;
+    std::unique_ptr<Background> server_;
+};
+
+// Runs `command` (an xdotool call) on the test's display; returns its stdout.
+std::string xdotool(const std::string& arguments) {
+    const std::string command = "DISPLAY=" + XServer::get().display() + " xdotool " + arguments + " 2>&1";
+    std::string out;
+    if (FILE* pipe = popen(command.c_str(), "r")) {
+        char buffer[256];
+        while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
+        pclose(pipe);
+    }
+    return out;
+}
+
+class Viewer : public GpurtTest {
+  protected:
+    void SetUp() override {
+        GpurtTest::SetUp();
+        ASSERT_TRUE(XServer::get().failure().empty()) << XServer::get().failure();
+        ASSERT_EQ(std::system("command -v xdotool >/dev/null"), 0) << "xdotool is not installed";
+    }
+    // gpurt view ARGS in the background on the test's display.
+    std::unique_ptr<Background> view(const std::string& scene, const std::vector<std::string>& options) {
+        std::vector<std::string> argv = {GPURT_BINARY, "view", scene};
+        argv.insert(argv.end(), options.begin(), options.end());
+        return std::make_unique<Background>(argv, dir / "view.out", dir / "view.err", XServer::get().display());
+    }
+    // The id of the viewer's window, once it is mapped.
+    std::string window() {
+        for (int i = 0; i < 200; ++i) {
+            const std::string out = xdotool("search --onlyvisible --name '^gpurt view'");
+            if (!out.empty() && std::isdigit(static_cast<unsigned char>(out[0]))) return out.substr(0, out.find('\n'));
+            std::this_thread::sleep_for(100ms);
+        }
+        return {};
+    }
+    // The camera the viewer printed as render options (its last stdout line).
+    std::string printedCamera() const {
+        std::string out = readFile(dir / "view.out");
+        while (!out.empty() && out.back() == '\n') out.pop_back();
+        return out.substr(out.rfind('\n') + 1);
+    }
+    std::vector<unsigned char> png(const std::string& name, int& w, int& h) const {
+        return pngPixels(readFile(dir / name), w, h);
+    }
+    // At most 1 level apart on 99.9% of the pixels.
+    void expectSame(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, const std::string& what) {
+        ASSERT_EQ(a.size(), b.size()) << what;
+        ASSERT_FALSE(a.empty()) << what;
+        size_t close = 0;
+        for (size_t i = 0; i < a.size(); i += 3) {
+            int worst = 0;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a[i + c]) - int(b[i + c])));
+            close += worst <= 1;
+        }
+        EXPECT_GE(double(close) / double(a.size() / 3), 0.999) << what;
+    }
+    void expectRenderMatches(const std::string& scene, const std::string& camera, const std::string& options,
+                             const std::string& screenshot) {
+        const GpurtRun r = gpurt("render " + shellQuote(scene) + " -o " + quoted("render.png") + " " + camera + " " + options);
+        ASSERT_EQ(r.code, 0) << r.err;
+        int w0 = 0, h0 = 0, w1 = 0, h1 = 0;
+        const auto shot = png(screenshot, w0, h0), rendered = png("render.png", w1, h1);
+        EXPECT_EQ(w0, w1);
+        EXPECT_EQ(h0, h1);
+        expectSame(shot, rendered, "screenshot " + screenshot + " against render " + camera + " " + options);
+    }
+};
+
+TEST_F(GpurtTest, ViewWithoutADisplayExits2) {
+    const GpurtRun run = gpurt("view scenes/boxes.json", "env -u DISPLAY");
+    EXPECT_EQ(run.code, 2) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_NE(run.err.find("display"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("gpurt render"), std::string::npos) << run.err;
+    // Bad input is refused before any window is asked for.
+    expectRefused("view " + quoted("missing.obj"), {"missing.obj"});
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    expectRefused("view " + quoted("tri.obj") + " --spp 0", {"--spp"});
+}
+
+// K frames of a still camera are K samples: the screenshot is `gpurt render --spp K`.
+TEST_F(Viewer, FramesAndScreenshotAreTheRenderWithAsManySamples) {
+    auto v = view("scenes/boxes.json", {"--size", "160x120", "--frames", "4", "--screenshot", path("shot.png")});
+    ASSERT_TRUE(v->started());
+    ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
+    const std::string camera = printedCamera();
+    EXPECT_NE(camera.find("--eye "), std::string::npos) << camera;
+    expectRenderMatches("scenes/boxes.json", camera, "--spp 4", "shot.png");
+}
+
+// A drag and a key move the camera; `gpurt render` with the camera printed on closing is the
+// picture the window showed; Esc closes with exit 0.
+TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
+    auto still = view("scenes/boxes.json", {"--size", "200x150", "--frames", "1"});
+    ASSERT_EQ(still->wait(120s), 0) << readFile(dir / "view.err");
+    const std::string initial = printedCamera();
+    auto v = view("scenes/boxes.json", {"--size", "200x150", "--spp", "1", "--screenshot", path("shot.png")});
+    const std::string id = window();
+    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    xdotool("mousemove --window " + id + " 100 75");
+    std::this_thread::sleep_for(300ms);
+    xdotool("mousedown 1");
+    for (int step = 1; step <= 8; ++step) {
+        xdotool("mousemove --window " + id + " " + std::to_string(100 + 5 * step) + " " + std::to_string(75 + 2 * step));
+        std::this_thread::sleep_for(50ms);
+    }
+    xdotool("mouseup 1");
+    xdotool("windowfocus --sync " + id);
+    xdotool("key w");
+    std::this_thread::sleep_for(1500ms);
+    xdotool("key Escape");
+    ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
+    const std::string moved = printedCamera();
+    EXPECT_NE(moved, initial);
+    expectRenderMatches("scenes/boxes.json", moved, "--spp 1", "shot.png");
+}
+
+// Key 3 shows the normal AOV (n * 0.5 + 0.5, black on a miss); a resized window renders at its
+// new size.
+TEST_F(Viewer, DisplayModeKeyShowsTheAovAndResizeKeepsRendering) {
+    auto v = view("scenes/boxes.json", {"--size", "200x150", "--spp", "1", "--screenshot", path("shot.png")});
+    const std::string id = window();
+    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    xdotool("windowsize --sync " + id + " 240 180");
+    xdotool("windowfocus --sync " + id);
+    xdotool("key 3");
+    std::this_thread::sleep_for(1500ms);
+    xdotool("key Escape");
+    ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
+    const std::string camera = printedCamera();
+    EXPECT_NE(camera.find("--size 240x180"), std::string::npos) << camera;
+    const GpurtRun r = gpurt("render scenes/boxes.json -o " + quoted("render.png") + " " + camera +
+                             " --aov normal=" + quoted("normal.pfm"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    int w = 0, h = 0, channels = 0;
+    const std::vector<float> normal = readPfm(path("normal.pfm"), w, h, channels);
+    std::vector<unsigned char> expected(normal.size());
+    for (size_t i = 0; i < normal.size(); i += 3) {
+        const bool miss = normal[i] == 0.0f && normal[i + 1] == 0.0f && normal[i + 2] == 0.0f;
+        for (int c = 0; c < 3; ++c)
+            expected[i + c] = miss ? 0 : (unsigned char)std::lround((normal[i + c] * 0.5f + 0.5f) * 255.0f);
+    }
+    int sw = 0, sh = 0;
+    const std::vector<unsigned char> shot = png("shot.png", sw, sh);
+    EXPECT_EQ(sw, 240);
+    EXPECT_EQ(sh, 180);
+    expectSame(shot, expected, "normal display mode");
+}
+
+}  // namespace
+}  // namespace gpurt::test
