@@ -93,17 +93,24 @@ class XServer {
     const std::string& failure() const { return failure_; }
 
   private:
+    // Xvfb chooses a free display itself (-displayfd): test processes run side by side.
     XServer() {
-        const int number = 70 + int(getpid() % 200);
-        display_ = ":" + std::to_string(number);
-        const fs::path log = fs::temp_directory_path() / ("gpurt-xvfb-" + std::to_string(number) + ".log");
+        const std::string stem = (fs::temp_directory_path() / ("gpurt-xvfb-" + std::to_string(getpid()))).string();
+        const fs::path number = stem + ".display", log = stem + ".log";
         server_ = std::make_unique<Background>(
-            std::vector<std::string>{"/usr/bin/Xvfb", display_, "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
-            log, log, "");
-        const fs::path socket = "/tmp/.X11-unix/X" + std::to_string(number);
-        for (int i = 0; i < 100 && server_->running() && !fs::exists(socket); ++i) std::this_thread::sleep_for(50ms);
-        if (!server_->started() || !server_->running() || !fs::exists(socket))
-            failure_ = "Xvfb " + display_ + " did not start (is the xvfb package installed?): " + readFile(log);
+            std::vector<std::string>{"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
+            number, log, "");
+        std::string text;
+        for (int i = 0; i < 200 && server_->running(); ++i) {
+            text = readFile(number);
+            if (!text.empty() && text.back() == '\n') break;
+            std::this_thread::sleep_for(50ms);
+        }
+        if (!server_->started() || !server_->running() || text.empty() || text.back() != '\n')
+            failure_ = "Xvfb did not start (is the xvfb package installed?): " + readFile(log);
+        else
+            display_ = ":" + text.substr(0, text.size() - 1);
+        fs::remove(number);
     }
     std::string display_, failure_;
     std::unique_ptr<Background> server_;

@@ -1,6 +1,7 @@
 #include "CommonOptions.h"
 
 #include "raytrace/SceneScale.h"
+#include "raytrace/SmoothNormals.h"
 #include "stream/StreamErrors.h"
 
 #include <cstdio>
@@ -200,6 +201,15 @@ PictureCliOptions::Values PictureCliOptions::values() const {
             throw InputError("--smooth: " + smooth + " is not a crease angle from 0 to 180 degrees or 'off'");
     }
     return v;
+}
+
+LoadedScene loadSceneToRender(const std::string& path, float crease, int& scaleExponent) {
+    LoadedScene loaded = loadScene(path);
+    smoothNormals(loaded.scene, crease);
+    scaleExponent = renderScaleExponent(loaded.scene);
+    rescaleScene(loaded.scene, scaleExponent);
+    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
+    return loaded;
 }
 
 }  // namespace gpurt

@@ -99,6 +99,11 @@ struct PictureCliOptions {
     Values values() const;
 };
 
+// The scene as render and view trace it: loaded, with smooth normals for the crease angle
+// (--smooth; < 0: faceted), and, far from unit size where float32 tracing would over- or
+// underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
+LoadedScene loadSceneToRender(const std::string& path, float crease, int& scaleExponent);
+
 // The grid options of render and bench: --lambda and --skip.
 struct GridCliOptions {
     float lambda = GridOptions{}.lambda;

@@ -102,13 +102,8 @@ int runRender(const RenderOptions& o) {
     const ColourSettings& colour = picture.colour;
     const GpuTracerOptions tracerOptions = o.tracer.options();
 
-    LoadedScene loaded = loadScene(o.scene);
-    smoothNormals(loaded.scene, picture.crease);
-    // Far from unit size, float32 tracing would over- or underflow: render the scene rescaled by
-    // a power of two, which gives the same image (SceneScale.h); depths are scaled back below.
-    const int scaleExponent = renderScaleExponent(loaded.scene);
-    rescaleScene(loaded.scene, scaleExponent);
-    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
+    int scaleExponent = 0;  // depths are scaled back below
+    LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, o.backend != "cpu");

@@ -137,11 +137,8 @@ int runView(const ViewOptions& o) {
     const PictureCliOptions::Values picture = o.picture.values();
     if (!o.screenshot.empty()) checkOutputPaths({o.screenshot});
     const GpuTracerOptions tracerOptions = o.tracer.options();
-    LoadedScene loaded = loadScene(o.scene);
-    smoothNormals(loaded.scene, picture.crease);
-    const int scaleExponent = renderScaleExponent(loaded.scene);
-    rescaleScene(loaded.scene, scaleExponent);
-    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
+    int scaleExponent = 0;
+    LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, true);
