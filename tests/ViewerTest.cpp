@@ -29,11 +29,17 @@ using namespace std::chrono_literals;
 // A process started in the background, its output in files; killed by pid if still running.
 class Background {
   public:
+    // ours: gpurt (it keeps the sanitizer build's preloads and options); else another program,
+    // which gets neither.
     Background(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err,
-               const std::string& display) {
+               const std::string& display, bool ours = true) {
         std::vector<std::string> env;
-        for (char** e = environ; *e; ++e)
-            if (std::string(*e).rfind("DISPLAY=", 0) != 0) env.emplace_back(*e);
+        for (char** e = environ; *e; ++e) {
+            const std::string var(*e);
+            const bool sanitizer = var.rfind("LD_PRELOAD=", 0) == 0 || var.rfind("ASAN_OPTIONS=", 0) == 0 ||
+                                   var.rfind("LSAN_OPTIONS=", 0) == 0 || var.rfind("UBSAN_OPTIONS=", 0) == 0;
+            if (var.rfind("DISPLAY=", 0) != 0 && (ours || !sanitizer)) env.push_back(var);
+        }
         if (!display.empty()) env.push_back("DISPLAY=" + display);
         std::vector<char*> args, envp;
         for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -99,7 +105,7 @@ class XServer {
         const fs::path number = stem + ".display", log = stem + ".log";
         server_ = std::make_unique<Background>(
             std::vector<std::string>{"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
-            number, log, "");
+            number, log, "", false);
         std::string text;
         for (int i = 0; i < 200 && server_->running(); ++i) {
             text = readFile(number);
@@ -118,7 +124,8 @@ class XServer {
 
 // Runs `command` (an xdotool call) on the test's display; returns its stdout.
 std::string xdotool(const std::string& arguments) {
-    const std::string command = "DISPLAY=" + XServer::get().display() + " xdotool " + arguments + " 2>&1";
+    const std::string command = "env -u LD_PRELOAD -u ASAN_OPTIONS -u LSAN_OPTIONS DISPLAY=" +
+                                XServer::get().display() + " xdotool " + arguments + " 2>&1";
     std::string out;
     if (FILE* pipe = popen(command.c_str(), "r")) {
         char buffer[256];
