@@ -174,7 +174,8 @@ GpuTracerOptions TracerCliOptions::options() const {
 }
 
 void PictureCliOptions::add(CLI::App& cmd) {
-    sppOption = cmd.add_option("--spp", spp, "Samples per pixel, stratified over the pixel (default 1: the pixel centre)")
+    sppOption = cmd.add_option("--spp", spp, "Samples per pixel, stratified over the pixel (render: default 1, the pixel centre; view: a still "
+                    "camera's samples, default --frames or 256)")
                     ->check(kNotEmpty);
     cmd.add_option("--seed", seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
     cmd.add_option("--smooth", smooth,
