@@ -148,10 +148,11 @@ class Viewer : public GpurtTest {
         argv.insert(argv.end(), options.begin(), options.end());
         return std::make_unique<Background>(argv, dir / "view.out", dir / "view.err", XServer::get().display());
     }
-    // The id of the viewer's window, once it is mapped.
+    // The id of the viewer's window, once it is mapped and has shown a frame (its title then
+    // carries the frame rate).
     std::string window() {
-        for (int i = 0; i < 200; ++i) {
-            const std::string out = xdotool("search --onlyvisible --name '^gpurt view'");
+        for (int i = 0; i < 300; ++i) {
+            const std::string out = xdotool("search --onlyvisible --name '^gpurt view: '");
             if (!out.empty() && std::isdigit(static_cast<unsigned char>(out[0]))) return out.substr(0, out.find('\n'));
             std::this_thread::sleep_for(100ms);
         }
@@ -233,9 +234,9 @@ TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
     xdotool("key w");
     std::this_thread::sleep_for(1500ms);
     xdotool("key Escape");
-    ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
+    ASSERT_EQ(v->wait(60s), 0) << "the viewer did not close on Esc: " << readFile(dir / "view.err");
     const std::string moved = printedCamera();
-    EXPECT_NE(moved, initial);
+    EXPECT_NE(moved, initial) << "the drag and the key did not move the camera";
     expectRenderMatches("scenes/boxes.json", moved, "--spp 1", "shot.png");
 }
 
