@@ -167,8 +167,8 @@ int runView(const ViewOptions& o) {
     }
     if (!o.glslDir.empty()) ShaderLibrary::global().setDirectory(o.glslDir);
     GpuTracer tracer(scene, grid, tracerOptions);
-    const int toneMapMode = picture.colour.toneMap == ToneMap::Aces ? 2 : picture.colour.toneMap == ToneMap::Reinhard ? 1 : 0;
-    const float exposureScale = float(std::exp2(double(picture.colour.exposure)));
+    const int toneMapMode = toneMapCode(picture.colour.toneMap);
+    const float exposure = exposureScale(picture.colour.exposure);
 
     int width = window->width(), height = window->height();
     std::unique_ptr<GPUKernel> present;
@@ -181,7 +181,7 @@ int runView(const ViewOptions& o) {
         present->setScreenTarget(width, height)
             .setUniform("mode", mode)
             .setUniform("samples", float(std::max(1u, done)))
-            .setUniform("exposureScale", exposureScale)
+            .setUniform("exposureScale", exposure)
             .setUniform("toneMapMode", toneMapMode)
             .setUniform("depthRange", depthRange)
             .dispatch();

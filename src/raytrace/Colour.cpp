@@ -30,11 +30,17 @@ bool parseToneMap(const std::string& text, ToneMap& mode) {
 
 float encodeSrgb(float displayLinear) { return raymath::srgbEncode(displayLinear); }
 
+int toneMapCode(ToneMap mode) {
+    return mode == ToneMap::Aces       ? GPURT_TONEMAP_ACES
+           : mode == ToneMap::Reinhard ? GPURT_TONEMAP_REINHARD
+                                       : GPURT_TONEMAP_CLAMP;
+}
+
+float exposureScale(float exposure) { return static_cast<float>(std::exp2(double(exposure))); }
+
 std::vector<glm::vec3> toneMapImage(const std::vector<glm::vec3>& linear, const ColourSettings& settings) {
-    const float scale = static_cast<float>(std::exp2(double(settings.exposure)));
-    const int mode = settings.toneMap == ToneMap::Aces       ? GPURT_TONEMAP_ACES
-                     : settings.toneMap == ToneMap::Reinhard ? GPURT_TONEMAP_REINHARD
-                                                             : GPURT_TONEMAP_CLAMP;
+    const float scale = exposureScale(settings.exposure);
+    const int mode = toneMapCode(settings.toneMap);
     std::vector<glm::vec3> display(linear.size());
     for (size_t k = 0; k < linear.size(); ++k) {
         glm::vec3 c = linear[k];

@@ -19,6 +19,10 @@ struct ColourSettings {
     ToneMap toneMap = ToneMap::Aces;
 };
 
+// The tone map as the GPURT_TONEMAP_* code of glsl/common/colour.h (for kernels), and 2^EV.
+int toneMapCode(ToneMap mode);
+float exposureScale(float exposure);
+
 // The sRGB transfer function of one display-linear value in [0, 1] (colour.h srgbEncode).
 float encodeSrgb(float displayLinear);
 

@@ -176,16 +176,20 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             }
             if (maxBounces < 0) break;
 
+            // Traces one shadow ray (counted); true when nothing blocks it.
+            auto unblocked = [&](glm::vec3 origin, glm::vec3 dir, float limit) {
+                const TraceHit blocker = traceAny(origin, dir, limit);
+                ++stats.shadowRays;
+                if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+                return blocker.prim < 0;
+            };
             glm::vec3 local = ambientColor(material.diffuse);
             for (const PointLight& light : lights) {
                 if (!lightInFront(p, n, light.position)) continue;
                 glm::vec3 shadowOrigin, shadowDir;
                 float shadowLimit;
                 shadowRay(p, n, rayOffset_, light.position, shadowOrigin, shadowDir, shadowLimit);
-                const TraceHit blocker = traceAny(shadowOrigin, shadowDir, shadowLimit);
-                ++stats.shadowRays;
-                if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
-                if (blocker.prim >= 0) continue;
+                if (!unblocked(shadowOrigin, shadowDir, shadowLimit)) continue;
                 local += lightContribution(p, ns, d, material.diffuse, material.specular,
                                            material.shininess, light.position, light.color,
                                            light.intensity);
@@ -202,10 +206,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                     glm::vec3 shadowOrigin, shadowDir;
                     float shadowLimit;
                     emitterShadowRay(p, n, rayOffset_, q, shadowOrigin, shadowDir, shadowLimit);
-                    const TraceHit blocker = traceAny(shadowOrigin, shadowDir, shadowLimit);
-                    ++stats.shadowRays;
-                    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
-                    if (blocker.prim < 0)
+                    if (unblocked(shadowOrigin, shadowDir, shadowLimit))
                         local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
                                                    scene_.materials[scene_.materialIds[id]].emission,
                                                    emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));

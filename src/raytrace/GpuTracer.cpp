@@ -40,6 +40,10 @@ bool GpuTracer::onePassTrace() const {
     return options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0;
 }
 
+int GpuTracer::stackSlots(int maxBounces) const {
+    return hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0;
+}
+
 int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
@@ -120,7 +124,7 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const int maxBounces = std::max(0, settings.maxBounces);
-    GpuPipeline& p = pipeline(camera.width, camera.height, hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0);
+    GpuPipeline& p = pipeline(camera.width, camera.height, stackSlots(maxBounces));
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.height;
@@ -208,8 +212,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 }
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
-    const int maxBounces = std::max(0, settings.maxBounces);
-    GpuPipeline& p = pipeline(camera.width, camera.height, hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0);
+    GpuPipeline& p = pipeline(camera.width, camera.height, stackSlots(std::max(0, settings.maxBounces)));
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye);
     p.surface.setUniform("background", scene_.background);

@@ -83,6 +83,8 @@ class GpuTracer {
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
     int cellLimit() const;  // options_.maxCellSteps or the grid's
+    // Rays a pixel's stack holds for the ray tree (0 without glass: nothing splits).
+    int stackSlots(int maxBounces) const;
     // The fused kernel from the start with the whole traversal in one pass (the default).
     bool onePassTrace() const;
 
