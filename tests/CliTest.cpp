@@ -107,6 +107,25 @@ TEST_F(Cli, StatsJsonHasTheContractFields) {
     EXPECT_EQ(j["passes"]["raygen"]["fragments"], 32 * 32);
 }
 
+// The path integrator's statistics: samples, samples per second and the paths of each round,
+// falling from the camera rays on.
+TEST_F(Cli, PathStatsCountSamplesAndPathsPerBounce) {
+    const Result r = gpurt("render scenes/cornell.json -o " + path("out.png") +
+                           " --size 24x16 --spp 3 --integrator path --bounces 4 --stats=json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["integrator"], "path");
+    EXPECT_EQ(j["samples"], 24 * 16 * 3);
+    EXPECT_GT(j["samples_per_s"].get<double>(), 0.0);
+    const auto paths = j["paths_per_bounce"].get<std::vector<uint64_t>>();
+    ASSERT_EQ(paths.size(), 5u);  // rounds 0..4
+    EXPECT_EQ(paths[0], 24u * 16u * 3u);
+    for (size_t b = 1; b < paths.size(); ++b) EXPECT_LE(paths[b], paths[b - 1]);
+    uint64_t secondary = 0;
+    for (size_t b = 1; b < paths.size(); ++b) secondary += paths[b];
+    EXPECT_EQ(j["rays"]["secondary"], secondary);
+}
+
 TEST_F(Cli, BadOptionsAreRefusedWithExit1) {
     const std::string render = "render " + kTeapot + " -o " + path("out.png");
     expectRefused(render + " --size 0x10", "--size");

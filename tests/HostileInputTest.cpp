@@ -411,14 +411,16 @@ TEST_F(JsonErrors, UnusableLightAndGlassValuesNameTheJsonPointer) {
     }
 }
 
-TEST_F(CliErrors, SamplesExposureToneMapAndSmoothing) {
+TEST_F(CliErrors, SamplesExposureToneMapSmoothingAndIntegrator) {
     write("tri.obj", kTriangle);
     for (const char* options :
          {"--spp 0", "--spp -1", "--spp 1.5", "--spp 16777217", "--spp 99999999999", "--spp ''", "--seed -1",
           "--seed 4294967296", "--exposure nan", "--exposure inf", "--exposure 65", "--exposure 1x",
-          "--tonemap filmic", "--smooth -1", "--smooth 181", "--smooth nan", "--smooth on"}) {
-        const std::string option(options, std::string(options).find(' '));
-        expectRefused(render("tri.obj", options), {option});
+          "--tonemap filmic", "--smooth -1", "--smooth 181", "--smooth nan", "--smooth on", "--integrator bdpt",
+          "--integrator ''", "--integrator path --bounces 65", "--integrator path --bounces -2"}) {
+        const std::string text(options);
+        const size_t last = text.rfind("--");  // the option refused is the last one given
+        expectRefused(render("tri.obj", options), {text.substr(last, text.find(' ', last) - last)});
     }
 }
 

@@ -4,6 +4,7 @@
 // box (area light, glass, mirror) and the smooth-shaded bunny. Statistical tolerances come from
 // the sample count.
 #include "GLTest.h"
+#include "TestScenes.h"
 
 #include "raytrace/Camera.h"
 #include "raytrace/Colour.h"
@@ -21,52 +22,6 @@ namespace gpurt::test {
 namespace {
 
 class Pictures : public GLTest {};
-
-struct Both {
-    RenderOutput gl, cpu;
-};
-
-Both renderBoth(const Scene& scene, const CameraSpec& spec, int width, int height, uint32_t samples,
-                int bounces = 3) {
-    const UniformGrid grid = buildGrid(scene, GridOptions{});
-    const CameraBasis camera = makeCamera(spec, width, height);
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.samples = samples;
-    settings.maxBounces = bounces;
-    Both both;
-    both.cpu = CpuTracer(scene, grid).render(camera, settings);
-    GpuTracer tracer(scene, grid);
-    both.gl = tracer.render(camera, settings);
-    return both;
-}
-
-uint32_t addMaterial(Scene& scene, glm::vec3 kd, glm::vec3 emission = glm::vec3(0.0f), float ior = 0.0f,
-                     glm::vec3 transmission = glm::vec3(1.0f)) {
-    Material m;
-    m.diffuse = kd;
-    m.emission = emission;
-    m.ior = ior;
-    m.transmission = transmission;
-    scene.materials.push_back(m);
-    return uint32_t(scene.materials.size() - 1);
-}
-
-// The polygon's corners as triangles (v0, vi, vi+1).
-void addPolygon(Scene& scene, const std::vector<glm::vec3>& corners, uint32_t material) {
-    for (size_t i = 1; i + 1 < corners.size(); ++i) {
-        scene.triangles.push_back({corners[0], corners[i], corners[i + 1]});
-        scene.materialIds.push_back(material);
-    }
-}
-
-void addBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {  // wound outward
-    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
-    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-    for (const auto& f : faces) addPolygon(scene, {c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, material);
-}
 
 // Irradiance at p (normal n) from a polygon of radiance le (Lambert 1760): le / 2 times the sum
 // over its edges of the angle each subtends times the cosine of that edge's plane with n.
@@ -191,24 +146,6 @@ TEST_F(Pictures, GlassSlabTransmitsAsTheFresnelSeriesSays) {
             EXPECT_NEAR(out->color[0][c], expected, 1e-5) << (out == &both.gl ? "gl" : "cpu");
     // The whole series: (1 - F)^2 tf^2 / (1 - F^2); the tree stops short of it by less than 1e-3.
     EXPECT_NEAR(expected, (1.0 - f) * (1.0 - f) * tf * tf / (1.0 - f * f), 1e-3);
-}
-
-// The 8-bit pictures of both backends (default tone map): at most 1 level apart on 99.9% of the
-// pixels.
-void expectSamePictures(const RenderOutput& gl, const RenderOutput& cpu, const std::string& what) {
-    const std::vector<glm::vec3> a = toneMapImage(gl.color, {}), b = toneMapImage(cpu.color, {});
-    size_t close = 0, nans = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        int worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(linearToSrgb8(a[i][c])) - int(linearToSrgb8(b[i][c]))));
-        close += worst <= 1;
-        nans += std::isnan(gl.color[i].x + gl.color[i].y + gl.color[i].z);
-    }
-    EXPECT_GE(double(close) / double(a.size()), 0.999) << what;
-    EXPECT_EQ(nans, 0u) << what;
-    // The same rays but where float differences send a glass ray another way (0.1%).
-    EXPECT_NEAR(double(gl.stats.shadowRays), double(cpu.stats.shadowRays), 1e-3 * double(cpu.stats.shadowRays)) << what;
-    EXPECT_NEAR(double(gl.stats.secondaryRays), double(cpu.stats.secondaryRays), 1e-3 * double(cpu.stats.secondaryRays)) << what;
 }
 
 TEST_F(Pictures, CornellBoxWithLightGlassAndMirrorAgreesAcrossBackends) {

@@ -213,6 +213,16 @@ TEST_F(Viewer, FramesAndScreenshotAreTheRenderWithAsManySamples) {
     expectRenderMatches("scenes/boxes.json", camera, "--spp 4", "shot.png");
 }
 
+// The path integrator refines progressively the same way: K frames are `gpurt render
+// --integrator path --spp K`.
+TEST_F(Viewer, PathTracedFramesAreTheRenderWithAsManySamples) {
+    auto v = view("scenes/cornell.json", {"--size", "96x96", "--integrator", "path", "--frames", "6", "--screenshot",
+                                          path("shot.png")});
+    ASSERT_TRUE(v->started());
+    ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
+    expectRenderMatches("scenes/cornell.json", printedCamera(), "--integrator path --spp 6", "shot.png");
+}
+
 // A drag and a key move the camera; `gpurt render` with the camera printed on closing is the
 // picture the window showed; Esc closes with exit 0.
 TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {

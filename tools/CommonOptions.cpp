@@ -185,6 +185,15 @@ void PictureCliOptions::add(CLI::App& cmd) {
         ->check(kNotEmpty);
     cmd.add_option("--tonemap", tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")
         ->check(CLI::IsMember({"aces", "reinhard", "clamp"}));
+    cmd.add_option("--integrator", integrator,
+                   "whitted (ray tree: shadows, mirror, glass; default) or path (path tracing with next-event "
+                   "estimation; --bounces is then the longest path, default " + std::to_string(kDefaultPathBounces) + ")")
+        ->check(CLI::IsMember({"whitted", "path"}));
+}
+
+int PictureCliOptions::bounces(int given, const Scene& scene, Integrator integrator) {
+    if (given >= 0) return given;
+    return integrator == Integrator::Path ? kDefaultPathBounces : scene.maxBounces;
 }
 
 PictureCliOptions::Values PictureCliOptions::values() const {
@@ -193,6 +202,7 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     if (std::abs(v.colour.exposure) > 64.0f)
         throw InputError("--exposure: " + exposure + " is outside [-64, 64]");
     parseToneMap(tonemap, v.colour.toneMap);
+    v.integrator = integrator == "path" ? Integrator::Path : Integrator::Whitted;
     // The per-pixel sums take the same memory for any sample count; the bound keeps sample
     // indices and counts exact in float (2^24).
     v.samples = parseCount("--spp", spp, 1, 1u << 24);

@@ -86,7 +86,7 @@ struct CameraOptions {
 
 // The picture options of render and view: --spp, --seed, --exposure, --tonemap, --smooth.
 struct PictureCliOptions {
-    std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60";
+    std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60", integrator = "whitted";
     CLI::Option* sppOption = nullptr;
 
     void add(CLI::App& cmd);
@@ -95,8 +95,12 @@ struct PictureCliOptions {
         uint32_t samples = 1, seed = 0;
         float crease = 60.0f;  // --smooth; < 0: off
         ColourSettings colour;
+        Integrator integrator = Integrator::Whitted;
     };
     Values values() const;
+    // --bounces as given (>= 0), else the integrator's default: the scene's for Whitted (its
+    // mirror and glass levels, 3 unless it says), kDefaultPathBounces for path.
+    static int bounces(int given, const Scene& scene, Integrator integrator);
 };
 
 // The scene as render and view trace it: loaded, with smooth normals for the crease angle

@@ -48,6 +48,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
     const RenderStats& s = out.stats;
     const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
     const double mrays = totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0;
+    const double samplesPerS = totalMs > 0 ? double(s.samples) / (totalMs * 1e-3) : 0.0;
     if (o.stats == "json") {
         nlohmann::json j;
         j["width"] = out.width;
@@ -63,6 +64,10 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
         j["mrays_per_s"] = mrays;
         j["backend"] = o.backend;
         j["overflow_rays"] = s.overflowRays;
+        j["integrator"] = o.picture.integrator;
+        j["samples"] = s.samples;  // pixel samples: width x height x spp
+        j["samples_per_s"] = samplesPerS;
+        if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
         std::printf("%s\n", j.dump().c_str());
         return;
     }
@@ -72,6 +77,12 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
                 grid.resolution.z, gridSource);
     std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
+    std::printf("samples    %llu, %.3g per second\n", (unsigned long long)s.samples, samplesPerS);
+    if (!s.livePaths.empty()) {
+        std::printf("paths      per bounce:");
+        for (uint64_t n : s.livePaths) std::printf(" %llu", (unsigned long long)n);
+        std::printf("\n");
+    }
     if (s.overflowRays) std::printf("overflow   %llu rays hit the step limit\n", (unsigned long long)s.overflowRays);
     if (!KernelStats::global().passes().empty()) {
         std::printf("%-16s %8s %14s %10s\n", "pass", "calls", "fragments", "ms");
@@ -111,7 +122,8 @@ int runRender(const RenderOptions& o) {
     RenderSettings settings;
     settings.width = size.x;
     settings.height = size.y;
-    settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
+    settings.maxBounces = PictureCliOptions::bounces(o.bounces, scene, picture.integrator);
+    settings.integrator = picture.integrator;
     settings.samples = picture.samples;
     settings.seed = picture.seed;
 
@@ -167,7 +179,7 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")
                       ->expected(0, 1)
                       ->check(CLI::IsMember({"", "text", "json"}));
-    cmd->add_option("--bounces", o->bounces, "Maximum mirror bounces (default: the scene's, 3)")
+    cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")
         ->check(CLI::Range(0, 64));
     o->picture.add(*cmd);
     o->tracer.add(*cmd);

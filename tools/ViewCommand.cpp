@@ -149,7 +149,8 @@ int runView(const ViewOptions& o) {
     const float diagonal = bounds.empty() ? 1.0f : 2.0f * glm::length(bounds.halfExtent());
     control.step = 0.02f * (diagonal > 0.0f ? diagonal : 1.0f);
     RenderSettings settings;
-    settings.maxBounces = o.bounces >= 0 ? o.bounces : scene.maxBounces;
+    settings.maxBounces = PictureCliOptions::bounces(o.bounces, scene, picture.integrator);
+    settings.integrator = picture.integrator;
     settings.seed = picture.seed;
     // Samples of one camera: --spp, else --frames (so that N frames are N samples, as render
     // --spp N), else 256; --bench: one a frame for all its frames.
@@ -322,7 +323,7 @@ void addViewCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--screenshot", o->screenshot, "Write the last frame to this PNG on closing (and on P)")
         ->check(kNotEmpty);
     cmd->add_flag("--bench", o->bench, "Render a fixed number of frames and print one JSON object (fps, ...)");
-    cmd->add_option("--bounces", o->bounces, "Maximum bounces (default: the scene's, 3)")->check(CLI::Range(0, 64));
+    cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")->check(CLI::Range(0, 64));
     cmd->add_option("--glsl-dir", o->glslDir, "Load GLSL kernels from this folder instead of the embedded copies")
         ->check(CLI::ExistingDirectory);
     o->picture.add(*cmd);

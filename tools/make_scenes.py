@@ -339,7 +339,12 @@ def scene_d():
     w = 555.0
     obj.use("white")
     add_quad(obj, [(0, 0, 0), (0, 0, w), (w, 0, w), (w, 0, 0)])  # floor, facing up
-    add_quad(obj, [(0, w, 0), (w, w, 0), (w, w, w), (0, w, w)])  # ceiling, facing down
+    # The ceiling, facing down, with the light in a hole of its own (as in the real box): a light
+    # hung below a closed ceiling would light the thin gap above it from its back, a hot spot that
+    # paths find only rarely (fireflies).
+    lx0, lx1, lz0, lz1 = 213.0, 343.0, 227.0, 332.0
+    for x0, x1, z0, z1 in ((0, w, 0, lz0), (0, w, lz1, w), (0, lx0, lz0, lz1), (lx1, w, lz0, lz1)):
+        add_quad(obj, [(x0, w, z0), (x1, w, z0), (x1, w, z1), (x0, w, z1)])
     add_quad(obj, [(0, 0, w), (0, w, w), (w, w, w), (w, 0, w)])  # back wall, facing -z
     # The camera looks along +z from z < 0, so +x is on its left: red there, green at x = 0.
     obj.use("red")
@@ -347,8 +352,7 @@ def scene_d():
     obj.use("green")
     add_quad(obj, [(0, 0, 0), (0, w, 0), (0, w, w), (0, 0, w)])  # right wall (x = 0), facing +x
     obj.use("light")
-    y = w - 0.5
-    add_quad(obj, [(213, y, 227), (343, y, 227), (343, y, 332), (213, y, 332)])  # facing down
+    add_quad(obj, [(lx0, w, lz0), (lx1, w, lz0), (lx1, w, lz1), (lx0, w, lz1)])  # facing down, in the hole
     obj.use("mirror")
     add_box(obj, (368.0, 165.0, 372.0), (82.5, 165.0, 82.5), -17.0)
     obj.use("glass")

@@ -1,7 +1,13 @@
 // Adds one point light's diffuse and specular term to the local colour of each surface point
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
+// PATH: the path integrator's diffuse and glossy lobes (common/path.h) instead of Whitted's
+// Phong terms, and the emitter point weighed against the BSDF's sampling of it (multiple
+// importance sampling).
 #include "shading.glsl"
+#ifdef PATH
+#include "../common/path.h"
+#endif
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
@@ -39,7 +45,20 @@ void main() {
     vec3 kd, ks, reflectivity;
     float ns;
     fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
-    vec3 add = lightContribution(s.xyz, readStream(surfaceShading).xyz, readStream(surfaceView).xyz, kd, ks, ns,
-                                 lightPosition, lightColor, lightIntensity);
+    vec3 n = readStream(surfaceShading).xyz;
+    vec3 d = readStream(surfaceView).xyz;
+#ifdef PATH
+    vec3 tf, diffuse, glossy;
+    float ior;
+    fetchDielectric(int(nm.w), tf, ior);
+    pathLobes(kd, ks, reflectivity, ior, diffuse, glossy);
+    vec3 add = pathLightContribution(s.xyz, n, d, diffuse, glossy, ns, lightPosition, lightColor, lightIntensity);
+#ifdef EMITTER
+    vec3 probs = lobeProbabilities(diffuse, glossy, reflectivity, ior);
+    add = add * emitterSampleWeight(s.xyz, lightPosition, e1, e2, emitterArea, probs, ns, n, d);
+#endif
+#else
+    vec3 add = lightContribution(s.xyz, n, d, kd, ks, ns, lightPosition, lightColor, lightIntensity);
+#endif
     localColor = vec4(readStream(localState).xyz + add, 0.0f);
 }

@@ -3,9 +3,13 @@
 // EMITTER: for the emitters (area lights) instead: each surface point takes its sample's point q
 // of the emitters, uniform by area (common/sampling.h, dimension GPURT_DIM_EMITTER + bounce; the
 // emitter by a binary search of the area table), stores it for the light pass, and aims the ray
-// at it.
+// at it. PATH: only from surfaces that the path integrator's diffuse or glossy lobe can light
+// (not from mirrors and glass: common/path.h pathLobes).
 #include "shading.glsl"
 #include "../common/sampling.h"
+#ifdef PATH
+#include "../common/path.h"
+#endif
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
@@ -26,9 +30,19 @@ layout(location = 2) out vec4 lightSample;  // (q, emitting triangle | -1)
 
 void main() {
     vec4 s = readStream(surfacePoint);
-    vec3 n = readStream(surfaceNormal).xyz;
+    vec4 nm = readStream(surfaceNormal);
+    vec3 n = nm.xyz;
     rayOrigin = vec4(0.0f);
     rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
+#ifdef PATH
+    if (s.w >= 0.0f) {
+        vec3 kd, ks, reflectivity, tf, diffuse, glossy;
+        float ns, ior;
+        fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
+        fetchDielectric(int(nm.w), tf, ior);
+        if (!pathLobes(kd, ks, reflectivity, ior, diffuse, glossy)) s.w = -1.0f;  // nothing to light
+    }
+#endif
 #ifdef EMITTER
     lightSample = vec4(0.0f, 0.0f, 0.0f, -1.0f);
     if (s.w < 0.0f) return;

@@ -2,7 +2,14 @@
 // a surface record (point, facing normal, material, view direction) and starts the local colour
 // with the ambient term; an emitter that the ray hits adds weight * its radiance to the pixel. A
 // path whose ray missed adds weight * background to the pixel and ends.
+// PATH: for the path integrator: the emission is weighed against next-event estimation of the
+// same point (common/path.h emissionWeight, from the pdf of the direction the last hit chose), and
+// the local colour starts at 0 (no ambient term).
 #include "shading.glsl"
+#ifdef PATH
+#include "../common/path.h"
+uniform sampler2D pathState;  // (pdf of the ray's direction at the last hit, 0: delta or camera)
+#endif
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
@@ -46,6 +53,11 @@ void main() {
     surfaceNormal = vec4(ng, float(material));
     surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), 0.0f);
     surfaceView = vec4(d, 0.0f);
+#ifdef PATH
+    float mis = emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea);
+    color = vec4(c.xyz + w.xyz * (fetchEmission(material) * mis), 0.0f);
+#else
     color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
     localColor = vec4(ambientColor(kd), 0.0f);
+#endif
 }

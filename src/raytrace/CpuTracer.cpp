@@ -16,6 +16,7 @@
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"
+#include "../../glsl/common/path.h"
 }  // namespace gpurt::raymath
 
 namespace gpurt {
@@ -114,6 +115,105 @@ uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
     return rays.rays();
 }
 
+bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const {
+    const TraceHit blocker = traceAny(origin, dir, limit);
+    ++stats.shadowRays;
+    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+    return blocker.prim < 0;
+}
+
+// Round b of GpuTracer::tracePath is iteration b here, in the same order of operations: the hit's
+// emission (weighed against next-event estimation), then below the last depth the point lights
+// and one emitter point, each with a shadow ray, then the next direction and Russian roulette.
+glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples, glm::vec3 eye, glm::vec3 d,
+                                const RenderSettings& settings, const std::vector<PointLight>& lights,
+                                RenderOutput* aovs, size_t pixel, RenderStats& stats) const {
+    const int maxDepth = std::max(0, settings.maxBounces);
+    glm::vec3 o = eye, color(0.0f), weight(1.0f);
+    float prevPdf = 0.0f;  // the camera ray: its emission counts in full
+    for (int b = 0;; ++b) {
+        const TraceHit hit = trace(o, d, GPURT_FAR);
+        stats.addLivePaths(size_t(b), 1);
+        ++(b == 0 ? stats.primaryRays : stats.secondaryRays);
+        if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
+        if (b == 0 && aovs) aovs->steps[pixel] = static_cast<float>(hit.steps);
+        if (hit.prim < 0) {
+            color += weight * scene_.background;
+            break;
+        }
+        const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
+        const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+        const glm::vec3 p = o + hit.t * d;
+        const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
+        glm::vec3 ns = n;
+        if (!scene_.normals.empty()) {
+            const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
+            ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, n);
+        }
+        if (b == 0 && aovs) {
+            aovs->depth[pixel] = hit.t;
+            aovs->prim[pixel] = static_cast<float>(hit.prim);
+            aovs->normal[pixel] = n;
+        }
+        color += weight * (m.emission * emissionWeight(prevPdf, hit.t, n, d, emitters_.totalArea));
+        if (b == maxDepth) break;
+
+        glm::vec3 diffuse, glossy;
+        const vec3 probs = pathLobes(m.diffuse, m.specular, m.reflectivity, m.ior, diffuse, glossy)
+                               ? lobeProbabilities(diffuse, glossy, m.reflectivity, m.ior)
+                               : vec3(0.0f);
+        if (probs.x + probs.y > 0.0f) {  // next-event estimation (shadowgen.frag, light.frag PATH)
+            glm::vec3 local(0.0f);
+            for (const PointLight& light : lights) {
+                if (!lightInFront(p, n, light.position)) continue;
+                glm::vec3 so, sd;
+                float limit;
+                shadowRay(p, n, rayOffset_, light.position, so, sd, limit);
+                if (unblocked(so, sd, limit, stats))
+                    local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, light.position,
+                                                   light.color, light.intensity);
+            }
+            if (!emitters_.empty()) {
+                const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed,
+                                                                        GPURT_DIM_EMITTER + uint32_t(b)));
+                const size_t k = emitters_.pick(u.x);
+                const uint32_t id = emitters_.triangles[k];
+                const PreparedTriangle& e = triangles_[id];
+                const vec3 q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
+                if (lightInFront(p, n, q)) {
+                    glm::vec3 so, sd;
+                    float limit;
+                    emitterShadowRay(p, n, rayOffset_, q, so, sd, limit);
+                    if (unblocked(so, sd, limit, stats))
+                        local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, q,
+                                                       scene_.materials[scene_.materialIds[id]].emission,
+                                                       emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea)) *
+                                 emitterSampleWeight(p, q, e.e1, e.e2, emitters_.totalArea, probs, m.shininess, ns, d);
+                }
+            }
+            color += weight * local;
+        }
+
+        // The next direction (pathbounce.frag).
+        const uint32_t dim = GPURT_DIM_SCATTER + 2u * uint32_t(b);
+        const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim));
+        const vec2 choice = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim + 1u));
+        vec3 dir, factor;
+        float pdf, side;
+        if (!scatterPath(d, n, ns, frontFace(tri.e1, tri.e2, d), diffuse, glossy, m.shininess, m.reflectivity, m.ior,
+                         m.transmission, u, choice.x, dir, factor, pdf, side))
+            break;
+        weight *= factor;
+        const float q = survival(b, weight, choice.y);
+        if (q == 0.0f) break;
+        weight /= q;
+        prevPdf = pdf;
+        o = offsetOrigin(p, side * n, rayOffset_);
+        d = dir;
+    }
+    return color;
+}
+
 RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
     const auto start = std::chrono::steady_clock::now();
     RenderOutput out;
@@ -126,7 +226,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     out.normal.assign(pixels, glm::vec3(0.0f));
     out.steps.assign(pixels, 0.0f);
 
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
+    const bool path = settings.integrator == Integrator::Path;
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, path);
 
     // One sample of a pixel: the ray tree of the primary ray d (< 0: the primary hit only, for
     // the AOVs), depth first with a stack of pending rays exactly as the GL rounds take it
@@ -176,20 +277,13 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             }
             if (maxBounces < 0) break;
 
-            // Traces one shadow ray (counted); true when nothing blocks it.
-            auto unblocked = [&](glm::vec3 origin, glm::vec3 dir, float limit) {
-                const TraceHit blocker = traceAny(origin, dir, limit);
-                ++stats.shadowRays;
-                if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
-                return blocker.prim < 0;
-            };
             glm::vec3 local = ambientColor(material.diffuse);
             for (const PointLight& light : lights) {
                 if (!lightInFront(p, n, light.position)) continue;
                 glm::vec3 shadowOrigin, shadowDir;
                 float shadowLimit;
                 shadowRay(p, n, rayOffset_, light.position, shadowOrigin, shadowDir, shadowLimit);
-                if (!unblocked(shadowOrigin, shadowDir, shadowLimit)) continue;
+                if (!unblocked(shadowOrigin, shadowDir, shadowLimit, stats)) continue;
                 local += lightContribution(p, ns, d, material.diffuse, material.specular,
                                            material.shininess, light.position, light.color,
                                            light.intensity);
@@ -206,7 +300,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                     glm::vec3 shadowOrigin, shadowDir;
                     float shadowLimit;
                     emitterShadowRay(p, n, rayOffset_, q, shadowOrigin, shadowDir, shadowLimit);
-                    if (unblocked(shadowOrigin, shadowDir, shadowLimit))
+                    if (unblocked(shadowOrigin, shadowDir, shadowLimit, stats))
                         local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
                                                    scene_.materials[scene_.materialIds[id]].emission,
                                                    emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
@@ -252,10 +346,14 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     auto shadePixel = [&](int i, int j, RenderStats& stats) {
         if (samples > 1) shadeSample(i, j, 0, 1, primaryDirection(camera, i, j), -1, true, stats);
         glm::vec3 sum(0.0f);
-        for (uint32_t s = 0; s < samples; ++s)
+        const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
+        for (uint32_t s = 0; s < samples && path; ++s)
+            sum += pathSample(i, j, s, samples, camera.eye, sampleDirection(camera, i, j, s, samples, settings.seed),
+                              settings, lights, samples == 1 ? &out : nullptr, pixel, stats);
+        for (uint32_t s = 0; s < samples && !path; ++s)
             sum += shadeSample(i, j, s, samples, sampleDirection(camera, i, j, s, samples, settings.seed),
                                std::max(0, settings.maxBounces), samples == 1, stats);
-        out.color[size_t(j) * size_t(camera.width) + size_t(i)] = sum / float(samples);
+        out.color[pixel] = sum / float(samples);
     };
 
     // Rows are handed out one at a time: cost varies strongly across the image.
@@ -269,7 +367,9 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.stats.shadowRays += s.shadowRays;
         out.stats.secondaryRays += s.secondaryRays;
         out.stats.overflowRays += s.overflowRays;
+        for (size_t b = 0; b < s.livePaths.size(); ++b) out.stats.addLivePaths(b, s.livePaths[b]);
     }
+    out.stats.samples = uint64_t(pixels) * samples;
     out.stats.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;

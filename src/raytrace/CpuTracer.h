@@ -45,6 +45,15 @@ class CpuTracer {
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) const;
 
   private:
+    // One sample of the path integrator through pixel (i, j): the path of the camera ray d
+    // (glsl/common/path.h; GpuTracer::tracePath is this as rounds of passes). With `aovs`,
+    // writes the pixel's primary AOVs there.
+    glm::vec3 pathSample(int i, int j, uint32_t sample, uint32_t samples, glm::vec3 eye, glm::vec3 d,
+                         const RenderSettings& settings, const std::vector<PointLight>& lights,
+                         RenderOutput* aovs, size_t pixel, RenderStats& stats) const;
+    // Traces one shadow ray (counted in stats); true when nothing blocks it.
+    bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
+
     template <bool AnyHit>
     TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;
 

@@ -37,6 +37,8 @@ struct GpuPipeline {
     GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
+    // The path integrator's variants (PATH) and its bounce (pathbounce.frag).
+    GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathEmitterLight, pathBounce;
     // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
     // the whole primary trace in one pass, generating its own rays (no ray streams; hits only).
     GPUKernel trace, traceAny, traceCamera;
@@ -85,6 +87,12 @@ struct GpuPipeline {
           accumulate("accumulate", "trace/accumulate.frag"),
           emitterShadowgen("emitterShadowgen", "trace/shadowgen.frag", {"EMITTER"}),
           emitterLight("emitterLight", "trace/light.frag", {"EMITTER"}),
+          pathSurface("pathSurface", "trace/surface.frag", {"PATH"}),
+          pathShadowgen("pathShadowgen", "trace/shadowgen.frag", {"PATH"}),
+          pathLight("pathLight", "trace/light.frag", {"PATH"}),
+          pathEmitterShadowgen("pathEmitterShadowgen", "trace/shadowgen.frag", {"EMITTER", "PATH"}),
+          pathEmitterLight("pathEmitterLight", "trace/light.frag", {"EMITTER", "PATH"}),
+          pathBounce("pathBounce", "trace/pathbounce.frag"),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
           traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
           traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
@@ -97,15 +105,22 @@ struct GpuPipeline {
         intersect.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
         intersect.addInOut(dda, "ddaState").addInOut(voxel, "voxel").addInOut(hit, "hitState");
         intersect.setMask(&waitMask);
-        surface.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
-        surface.addInput(weight, "weight").addInOut(color, "colorState");
-        surface.addOutput(surfacePoint).addOutput(surfaceNormal).addOutput(surfaceView).addOutput(localColor);
-        surface.addOutput(surfaceShading);
-        shadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-        shadowgen.addOutput(rayOrigin).addOutput(rayDir);
-        light.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-        light.addInput(surfaceView, "surfaceView").addInput(hit, "hitState").addInOut(localColor, "localState");
-        light.addInput(surfaceShading, "surfaceShading");
+        for (GPUKernel* k : {&surface, &pathSurface}) {
+            k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
+            k->addInput(weight, "weight").addInOut(color, "colorState");
+            k->addOutput(surfacePoint).addOutput(surfaceNormal).addOutput(surfaceView).addOutput(localColor);
+            k->addOutput(surfaceShading);
+        }
+        pathSurface.addInput(pathState, "pathState");
+        for (GPUKernel* k : {&shadowgen, &pathShadowgen}) {
+            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+            k->addOutput(rayOrigin).addOutput(rayDir);
+        }
+        for (GPUKernel* k : {&light, &pathLight}) {
+            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+            k->addInput(surfaceView, "surfaceView").addInput(hit, "hitState").addInOut(localColor, "localState");
+            k->addInput(surfaceShading, "surfaceShading");
+        }
         bounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInput(surfaceShading, "surfaceShading");
@@ -116,12 +131,21 @@ struct GpuPipeline {
         lastBounce.addInput(surfacePoint, "surfacePoint").addInput(weight, "weightState");
         lastBounce.addInput(localColor, "localColor").addInOut(color, "colorState");
         accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
-        emitterShadowgen.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-        emitterShadowgen.addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
-        emitterLight.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-        emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
-        emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
-        emitterLight.addInput(surfaceShading, "surfaceShading");
+        for (GPUKernel* k : {&emitterShadowgen, &pathEmitterShadowgen}) {
+            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+            k->addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
+        }
+        for (GPUKernel* k : {&emitterLight, &pathEmitterLight}) {
+            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+            k->addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
+            k->addInput(lightSample, "lightSample").addInOut(localColor, "localState");
+            k->addInput(surfaceShading, "surfaceShading");
+        }
+        pathBounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        pathBounce.addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");
+        pathBounce.addInput(localColor, "localColor");
+        pathBounce.addInOut(color, "colorState").addInOut(weight, "weightState");
+        pathBounce.addOutput(rayOrigin).addOutput(rayDir).addOutput(pathState);
         for (GPUKernel* k : {&trace, &traceAny}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
             if (fusedSteps > 0) {
@@ -134,9 +158,10 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 15> allKernels() {
+    std::array<GPUKernel*, 21> allKernels() {
         return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
-                &accumulate, &emitterShadowgen, &emitterLight, &trace, &traceAny, &traceCamera};
+                &accumulate, &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight,
+                &pathEmitterShadowgen, &pathEmitterLight, &pathBounce, &trace, &traceAny, &traceCamera};
     }
 
     // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
@@ -172,7 +197,7 @@ struct GpuPipeline {
 
     // The sample that raygen's rays go through: sample s of n (n = 1: the pixel centre).
     void setSample(uint32_t s, uint32_t n, uint32_t seed) {
-        for (GPUKernel* k : {&raygen, &emitterShadowgen})
+        for (GPUKernel* k : {&raygen, &emitterShadowgen, &pathEmitterShadowgen, &pathBounce})
             k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
     }
 

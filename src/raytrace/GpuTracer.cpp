@@ -7,6 +7,7 @@
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"
+#include "../../glsl/common/path.h"
 }  // namespace gpurt::raymath
 
 #include "stream/GPUKernel.h"
@@ -129,17 +130,20 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     out.width = camera.width;
     out.height = camera.height;
 
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye);
+    const std::vector<PointLight> lights =
+        lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
     const uint32_t samples = std::max(1u, settings.samples);
     p.surface.setUniform("background", scene_.background);
+    p.pathSurface.setUniform("background", scene_.background);
     p.setCamera(camera);
     if (samples > 1) traceSample(p, lights, -1, true, out);  // pixel centres: the AOVs only
     p.sampleSum.fill(0.0f);
     for (uint32_t s = 0; s < samples; ++s) {
         p.setSample(s, samples, settings.seed);
-        traceSample(p, lights, maxBounces, samples == 1, out);
+        traceIntegrator(p, lights, settings, samples == 1, out);
         p.accumulate.dispatch();
     }
+    out.stats.samples = uint64_t(camera.width) * uint64_t(camera.height) * samples;
     out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
     for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     flushStats();
@@ -151,9 +155,78 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 // One sample of every pixel through the chain into p.color, from the rays of raygen's current
 // sample, with up to maxBounces mirror bounces (< 0: only the primary trace and surface pass, for
 // the AOVs). With readAovs, reads the primary AOVs into `out`; the rays traced count in out.stats.
+void GpuTracer::readHitAovs(GpuPipeline& p, RenderOutput& out) {
+    const size_t pixels = size_t(p.width) * size_t(p.height);
+    const auto hits = p.hit.download();
+    const auto cells = p.voxel.downloadInt();
+    out.depth.resize(pixels);
+    out.prim.resize(pixels);
+    out.steps.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const bool isHit = hits[i * 4 + 3] >= 0.0f;
+        out.depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
+        out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
+        out.steps[i] = float(cells[i * 4 + 3]);
+        // Overflow, counted for primary rays (their cell counts are read back anyway): with the
+        // grid's limit, reaching it is the only way to visit that many cells.
+        if (cells[i * 4 + 3] >= cellLimit()) ++out.stats.overflowRays;
+    }
+}
+
+void GpuTracer::readNormalAov(GpuPipeline& p, RenderOutput& out) {
+    out.normal = toVectors<glm::vec3>(p.surfaceNormal.download(), 4);
+    for (size_t i = 0; i < out.normal.size(); ++i)
+        if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
+}
+
+void GpuTracer::traceIntegrator(GpuPipeline& p, const std::vector<PointLight>& lights,
+                                const RenderSettings& settings, bool readAovs, RenderOutput& out) {
+    const int bounces = std::max(0, settings.maxBounces);
+    if (settings.integrator == Integrator::Path) tracePath(p, lights, bounces, readAovs, out);
+    else traceSample(p, lights, bounces, readAovs, out);
+}
+
+// Round b traces the rays of the paths alive at depth b (round 0: the camera rays), and its count
+// ends the loop when no path is left; then, as CpuTracer::pathSample: the surface pass (emission
+// weighed against next-event estimation, the background on a miss), below the last depth a shadow
+// trace and light pass per point light and one for an emitter point, and the bounce pass that
+// samples each path's next direction. A path that has ended carries no ray: the trace skips it
+// (GPURT_NO_RAY) and every later pass leaves it at once.
+void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights, int maxDepth, bool readAovs,
+                          RenderOutput& out) {
+    RenderStats& stats = out.stats;
+    p.color.fill(0.0f);
+    p.weight.fill(1.0f);
+    p.pathState.fill(0.0f);  // the camera rays: their emission counts in full
+    p.raygen.dispatch();
+    for (int b = 0; b <= maxDepth; ++b) {
+        const uint64_t rays = traceLoop(p, false);
+        if (b > 0 && rays == 0) break;  // every path has ended
+        stats.addLivePaths(size_t(b), rays);
+        (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
+        if (b == 0 && readAovs) readHitAovs(p, out);
+        p.pathSurface.dispatch();
+        if (b == 0 && readAovs) readNormalAov(p, out);
+        if (b == maxDepth) break;  // the last depth: its emission only
+        for (const PointLight& l : lights) {
+            p.pathShadowgen.setUniform("lightPosition", l.position).dispatch();
+            stats.shadowRays += traceLoop(p, true);
+            p.pathLight.setUniform("lightPosition", l.position)
+                .setUniform("lightColor", l.color)
+                .setUniform("lightIntensity", l.intensity)
+                .dispatch();
+        }
+        if (!textures_.emitterTable().empty()) {
+            p.pathEmitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();
+            stats.shadowRays += traceLoop(p, true);
+            p.pathEmitterLight.dispatch();
+        }
+        p.pathBounce.setUniform("depth", b).dispatch();
+    }
+}
+
 void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                             bool readAovs, RenderOutput& out) {
-    const size_t pixels = size_t(p.width) * size_t(p.height);
     RenderStats& stats = out.stats;
     RenderOutput* aovs = readAovs ? &out : nullptr;
     p.color.fill(0.0f);
@@ -166,29 +239,9 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
         const uint64_t rays = traceLoop(p, false);
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
         if (b > 0 && rays == 0) break;  // every tree is done (the count ends the loop)
-        if (b == 0 && aovs) {
-            // The primary AOVs, before shadow rays reuse the ray streams.
-            const auto hits = p.hit.download();
-            const auto cells = p.voxel.downloadInt();
-            aovs->depth.resize(pixels);
-            aovs->prim.resize(pixels);
-            aovs->steps.resize(pixels);
-            for (size_t i = 0; i < pixels; ++i) {
-                const bool isHit = hits[i * 4 + 3] >= 0.0f;
-                aovs->depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
-                aovs->prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
-                aovs->steps[i] = float(cells[i * 4 + 3]);
-                // Overflow, counted for primary rays (their cell counts are read back anyway):
-                // with the grid's limit, reaching it is the only way to visit that many cells.
-                if (cells[i * 4 + 3] >= cellLimit()) ++stats.overflowRays;
-            }
-        }
+        if (b == 0 && aovs) readHitAovs(p, *aovs);  // before shadow rays reuse the ray streams
         p.surface.dispatch();
-        if (b == 0 && aovs) {
-            aovs->normal = toVectors<glm::vec3>(p.surfaceNormal.download(), 4);
-            for (size_t i = 0; i < pixels; ++i)
-                if (aovs->prim[i] < 0.0f) aovs->normal[i] = glm::vec3(0.0f);
-        }
+        if (b == 0 && aovs) readNormalAov(p, *aovs);
         if (maxBounces < 0) return;
         for (const PointLight& l : lights) {
             p.shadowgen.setUniform("lightPosition", l.position).dispatch();
@@ -214,8 +267,9 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     GpuPipeline& p = pipeline(camera.width, camera.height, stackSlots(std::max(0, settings.maxBounces)));
     progressive_.settings = settings;
-    progressive_.lights = lightsOrHeadlight(scene_, camera.eye);
+    progressive_.lights = lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
     p.surface.setUniform("background", scene_.background);
+    p.pathSurface.setUniform("background", scene_.background);
     p.setCamera(camera);
     traceSample(p, progressive_.lights, -1, false, progressive_.output);  // pixel centres
     p.aovHit.copyFrom(p.hit);
@@ -228,8 +282,9 @@ GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const Render
 void GpuTracer::addSample(uint32_t s, uint32_t n) {
     GpuPipeline& p = *pipeline_;
     p.setSample(s, n, progressive_.settings.seed);
-    traceSample(p, progressive_.lights, std::max(0, progressive_.settings.maxBounces), false, progressive_.output);
+    traceIntegrator(p, progressive_.lights, progressive_.settings, false, progressive_.output);
     p.accumulate.dispatch();
+    progressive_.output.stats.samples += uint64_t(p.width) * uint64_t(p.height);
 }
 
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {

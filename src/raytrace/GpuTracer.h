@@ -82,6 +82,17 @@ class GpuTracer {
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
+    // One sample of every pixel under the path integrator, as rounds of passes over the paths
+    // still alive (CpuTracer::pathSample is one path of it).
+    void tracePath(GpuPipeline& p, const std::vector<PointLight>& lights, int maxDepth, bool readAovs,
+                   RenderOutput& out);
+    // The sample of the integrator `settings` asks for (traceSample or tracePath).
+    void traceIntegrator(GpuPipeline& p, const std::vector<PointLight>& lights, const RenderSettings& settings,
+                         bool readAovs, RenderOutput& out);
+    // The primary rays' depth, prim and steps AOVs from the hit and cell streams (before the
+    // shading passes reuse them), and the normal AOV after the surface pass.
+    void readHitAovs(GpuPipeline& p, RenderOutput& out);
+    void readNormalAov(GpuPipeline& p, RenderOutput& out);
     int cellLimit() const;  // options_.maxCellSteps or the grid's
     // Rays a pixel's stack holds for the ray tree (0 without glass: nothing splits).
     int stackSlots(int maxBounces) const;

@@ -9,12 +9,22 @@
 
 namespace gpurt {
 
+// --integrator: Whitted's ray tree (shadows, mirror, glass; the default) or path tracing with
+// next-event estimation (glsl/common/path.h).
+enum class Integrator { Whitted, Path };
+
+// The path integrator's --bounces when none is given (pbrt's default maxdepth is 5, Cycles' 12).
+constexpr int kDefaultPathBounces = 8;
+
 struct RenderSettings {
     // The image size is the camera's (CameraBasis); these are kept for callers.
     int width = 512, height = 512;
     // Levels of the ray tree after the primary hit (mirror, glass; callers copy
     // Scene::maxBounces here).
+    // Under the path integrator: the longest path in hits after which light is gathered (pbrt's
+    // maxdepth: 1 is direct light only, 0 the emitters the camera sees).
     int maxBounces = 3;
+    Integrator integrator = Integrator::Whitted;
     int threads = 0;  // CPU backend: 0 = all cores
     // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
     uint32_t samples = 1;
@@ -26,7 +36,16 @@ struct RenderStats {
     // Rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0. The GL backend
     // counts primary rays only (their cell counts are read back for the steps AOV).
     uint64_t overflowRays = 0;
+    // The path integrator: livePaths[b] paths (over all samples) reached hit depth b, that is,
+    // traced their ray of round b (round 0: the camera rays). Empty for Whitted.
+    std::vector<uint64_t> livePaths;
+    uint64_t samples = 0;  // pixel samples taken (width x height x spp)
     double totalMs = 0;
+
+    void addLivePaths(size_t round, uint64_t paths) {
+        if (livePaths.size() <= round) livePaths.resize(round + 1, 0);
+        livePaths[round] += paths;
+    }
 };
 
 // The image and the contract's AOVs, all row-major with row 0 = the TOP row of the image.

@@ -26,8 +26,9 @@ Bounds Scene::bounds() const {
     return b;
 }
 
-std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye) {
+std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights) {
     if (!scene.lights.empty()) return scene.lights;
+    if (backgroundLights && scene.background != glm::vec3(0.0f)) return {};  // lit by its background
     for (uint32_t m : scene.materialIds)
         if (scene.materials[m].emits()) return {};  // lit by its emitters
     PointLight headlight;

@@ -90,6 +90,8 @@ struct Scene {
 // point light and no emitting triangle), one headlight at the camera eye
 // with colour 1 and intensity |eye - centre|^2 / 2 of the scene's box, so that its 1/d^2 falloff
 // gives 1/2 at the centre of the scene. Both backends call this, so they light identically.
-std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye);
+// `backgroundLights`: the path integrator, under which a background that is not black is a light
+// too (CONTRACT.md): it then adds no headlight.
+std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights = false);
 
 }  // namespace gpurt
