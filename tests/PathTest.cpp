@@ -159,6 +159,27 @@ TEST_F(Paths, CornellBoxAgreesAcrossBackends) {
     EXPECT_LT(gl.back(), gl[3] / 2);  // Russian roulette from depth 3 on
 }
 
+// Masking the rounds' passes to the live paths (--mask-paths) changes the cost, not the image:
+// under a grey sky, so that the paths that leave the box must end where they miss.
+TEST_F(Paths, MaskedRoundsGiveTheSameImage) {
+    LoadedScene loaded = loadScene("scenes/cornell_blocks.json");
+    loaded.scene.background = glm::vec3(0.3f);
+    const UniformGrid grid = buildGrid(loaded.scene, GridOptions{});
+    const CameraBasis camera = makeCamera(*loaded.scene.camera, 48, 40);
+    RenderSettings settings;
+    settings.integrator = Integrator::Path;
+    settings.maxBounces = 5;
+    settings.samples = 2;
+    GpuTracerOptions masked;
+    masked.maskPaths = true;
+    const RenderOutput a = GpuTracer(loaded.scene, grid).render(camera, settings);
+    const RenderOutput b = GpuTracer(loaded.scene, grid, masked).render(camera, settings);
+    EXPECT_EQ(a.color, b.color);
+    EXPECT_EQ(a.stats.livePaths, b.stats.livePaths);
+    EXPECT_EQ(a.stats.shadowRays, b.stats.shadowRays);
+    EXPECT_LT(a.stats.livePaths[1], a.stats.livePaths[0]);  // some paths left through the open side
+}
+
 // The Cornell box converges: the RMS error against a long render (another seed, so its own noise
 // is independent) falls as 1 / sqrt(spp), a factor 2 for each 4 times the samples. Its sphere and
 // block are made diffuse here: the caustics of glass and mirror (light reaching the floor through

@@ -161,6 +161,9 @@ void TracerCliOptions::add(CLI::App& cmd) {
     cmd.add_option("--wait-threshold", waitThreshold,
                    "Split kernels: run the intersector once this fraction of live rays wait (0: every iteration)")
         ->check(CLI::Range(0.0f, 1.0f));
+    cmd.add_flag("--mask-paths", maskPaths,
+                 "Path integrator: mask each round's passes to the live paths (--mask's mode) instead of "
+                 "each kernel's early exit (slower on llvmpipe: docs/PERFORMANCE.md)");
 }
 
 GpuTracerOptions TracerCliOptions::options() const {
@@ -170,6 +173,7 @@ GpuTracerOptions TracerCliOptions::options() const {
     parseTraceKernel(kernel, options.kernel);
     options.traverseSteps = traverseSteps;
     options.waitThreshold = waitThreshold;
+    options.maskPaths = maskPaths;
     return options;
 }
 

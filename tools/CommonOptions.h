@@ -128,6 +128,7 @@ struct TracerCliOptions {
     int traverseSteps = 0;
     std::string mask;
     float waitThreshold = 0.0f;
+    bool maskPaths = false;
 
     void add(CLI::App& cmd);
     // Throws InputError for an unknown --mask.

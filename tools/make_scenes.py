@@ -332,10 +332,9 @@ def add_sphere(obj, center, radius, segments, rings):
                 obj.triangles += 1
 
 
-def scene_d():
-    """The Cornell box (Goral et al. 1984; the Cornell measurements' layout, 555 units a side) lit
-    by its ceiling light, with a glass sphere and a mirror block."""
-    obj = ObjWriter('Scene D "Cornell box": area light, glass sphere, mirror block', "cornell.mtl")
+def cornell_walls(obj):
+    """The Cornell box's walls (Goral et al. 1984; the Cornell measurements' layout, 555 units a
+    side) and its ceiling light."""
     w = 555.0
     obj.use("white")
     add_quad(obj, [(0, 0, 0), (0, 0, w), (w, 0, w), (w, 0, 0)])  # floor, facing up
@@ -353,41 +352,70 @@ def scene_d():
     add_quad(obj, [(0, 0, 0), (0, w, 0), (0, w, w), (0, 0, w)])  # right wall (x = 0), facing +x
     obj.use("light")
     add_quad(obj, [(lx0, w, lz0), (lx1, w, lz0), (lx1, w, lz1), (lx0, w, lz1)])  # facing down, in the hole
+
+
+def cornell_materials(name, blocks):
+    """The Cornell box's MTL: its walls, light (Ke) and the materials `blocks` of what stands in it."""
+    lines = mtl(name, [
+        ("white", (0.725, 0.71, 0.68), (0, 0, 0), 1, 1),
+        ("red", (0.63, 0.065, 0.05), (0, 0, 0), 1, 1),
+        ("green", (0.14, 0.45, 0.091), (0, 0, 0), 1, 1),
+        ("light", (0.78, 0.78, 0.78), (0, 0, 0), 1, 1),
+    ] + blocks).split("\n")
+    out = []
+    for line in lines:
+        out.append(line)
+        if line == "illum 1" and out[-5] == "newmtl light":
+            out.append("Ke 34 26 16")
+        if line == "illum 7":
+            out += ["Ni 1.5", "Tf 0.98 0.98 0.98"]
+    return "\n".join(out)
+
+
+def cornell_json(obj_name, max_bounces):
+    return to_json({
+        "meshes": [{"file": obj_name}],
+        "camera": {"eye": [278.0, 273.0, -800.0], "target": [278.0, 273.0, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 39.0},
+        "background": [0.0, 0.0, 0.0],
+        "render": {"size": [512, 512], "max_bounces": max_bounces},
+    }) + "\n"
+
+
+def scene_d():
+    """The Cornell box lit by its ceiling light, with a glass sphere and a mirror block."""
+    obj = ObjWriter('Scene D "Cornell box": area light, glass sphere, mirror block', "cornell.mtl")
+    cornell_walls(obj)
     obj.use("mirror")
     add_box(obj, (368.0, 165.0, 372.0), (82.5, 165.0, 82.5), -17.0)
     obj.use("glass")
     add_sphere(obj, (185.0, 100.0, 170.0), 100.0, 48, 24)
     obj.save("cornell.obj")
-    lines = mtl('Scene D "Cornell box"', [
-        ("white", (0.725, 0.71, 0.68), (0, 0, 0), 1, 1),
-        ("red", (0.63, 0.065, 0.05), (0, 0, 0), 1, 1),
-        ("green", (0.14, 0.45, 0.091), (0, 0, 0), 1, 1),
-        ("light", (0.78, 0.78, 0.78), (0, 0, 0), 1, 1),
+    write("cornell.mtl", cornell_materials('Scene D "Cornell box"', [
         ("mirror", (0.02, 0.02, 0.02), (0.9, 0.9, 0.9), 1000, 3),  # illum 3: Ks is the reflectivity
         ("glass", (0, 0, 0), (0, 0, 0), 1, 7),  # illum 7: glass, index Ni, filter Tf
-    ]).split("\n")
-    out = []
-    for line in lines:
-        out.append(line)
-        if line == "newmtl light":
-            pass
-        if line == "illum 1" and out[-5] == "newmtl light":
-            out.append("Ke 34 26 16")
-        if line == "illum 7":
-            out += ["Ni 1.5", "Tf 0.98 0.98 0.98"]
-    write("cornell.mtl", "\n".join(out))
-    write("cornell.json", to_json({
-        "meshes": [{"file": "cornell.obj"}],
-        "camera": {"eye": [278.0, 273.0, -800.0], "target": [278.0, 273.0, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 39.0},
-        "background": [0.0, 0.0, 0.0],
-        "render": {"size": [512, 512], "max_bounces": 6},
-    }) + "\n")
+    ]))
+    write("cornell.json", cornell_json("cornell.obj", 6))
+    return obj.triangles
+
+
+def scene_e():
+    """The classic Cornell box: its light and two diffuse blocks, 42 triangles (the scene path
+    tracers compare on, as GLSL-PathTracer's cornell_box)."""
+    obj = ObjWriter('Scene E "Cornell blocks": the classic box, area light, two white blocks', "cornell_blocks.mtl")
+    cornell_walls(obj)
+    obj.use("white")
+    add_box(obj, (368.0, 165.0, 372.0), (82.5, 165.0, 82.5), -17.0)  # the tall block
+    add_box(obj, (185.0, 82.5, 169.0), (82.5, 82.5, 82.5), 17.0)  # the short block
+    obj.save("cornell_blocks.obj")
+    write("cornell_blocks.mtl", cornell_materials('Scene E "Cornell blocks"', []))
+    write("cornell_blocks.json", cornell_json("cornell_blocks.obj", 3))
     return obj.triangles
 
 
 def main():
     os.makedirs(SCENES, exist_ok=True)
-    for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d)):
+    for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
+                       ("E cornell blocks", scene_e)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

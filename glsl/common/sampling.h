@@ -78,6 +78,13 @@ GPURT_FN vec2 cmjSample(uint s, uint n, uint p) {
     return vec2((float(sx) + (float(sy) + jx) / float(k)) / float(m), (float(s) + jy) / float(n));
 }
 
+// Two independent uniform numbers in [0, 1) for sample s of the pattern p, without
+// stratification: for choices that gain little from it (a lobe, Russian roulette), at a fraction
+// of cmjSample's cost.
+GPURT_FN vec2 randomPair(uint s, uint p) {
+    return vec2(unitFloat(hashPcg(s ^ (p * 0x8a4f2c1bu))), unitFloat(hashPcg(s ^ (p * 0x27d4eb2fu))));
+}
+
 // Where sample s of n of pixel (x, y) lies in the pixel, in [0, 1)^2: the centre for n = 1 (the
 // contract's pixel-centre ray), else the pixel's stratified pattern.
 GPURT_FN vec2 pixelSampleOffset(uint x, uint y, uint s, uint n, uint seed) {

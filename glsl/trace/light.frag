@@ -2,8 +2,7 @@
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
 // PATH: the path integrator's diffuse and glossy lobes (common/path.h) instead of Whitted's
-// Phong terms, and the emitter point weighed against the BSDF's sampling of it (multiple
-// importance sampling).
+// Phong terms, for point lights (its emitter point is lit in pathbounce.frag).
 #include "shading.glsl"
 #ifdef PATH
 #include "../common/path.h"
@@ -53,10 +52,6 @@ void main() {
     fetchDielectric(int(nm.w), tf, ior);
     pathLobes(kd, ks, reflectivity, ior, diffuse, glossy);
     vec3 add = pathLightContribution(s.xyz, n, d, diffuse, glossy, ns, lightPosition, lightColor, lightIntensity);
-#ifdef EMITTER
-    vec3 probs = lobeProbabilities(diffuse, glossy, reflectivity, ior);
-    add = add * emitterSampleWeight(s.xyz, lightPosition, e1, e2, emitterArea, probs, ns, n, d);
-#endif
 #else
     vec3 add = lightContribution(s.xyz, n, d, kd, ks, ns, lightPosition, lightColor, lightIntensity);
 #endif

@@ -197,7 +197,7 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
         // The next direction (pathbounce.frag).
         const uint32_t dim = GPURT_DIM_SCATTER + 2u * uint32_t(b);
         const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim));
-        const vec2 choice = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim + 1u));
+        const vec2 choice = randomPair(sample, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim + 1u));
         vec3 dir, factor;
         float pdf, side;
         if (!scatterPath(d, n, ns, frontFace(tri.e1, tri.e2, d), diffuse, glossy, m.shininess, m.reflectivity, m.ior,

@@ -34,11 +34,16 @@ struct GpuPipeline {
     int stackSlots;
     GPUFloatArray stackOrigin, stackDir, stackWeight;
     GPUMask activeMask, waitMask;
+    // The path integrator's masks: paths alive at the start of a round (its trace, surface and
+    // bounce passes) and paths with a hit in it (the shadow rays' passes).
+    GPUMask aliveMask, surfaceMask;
     GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
     // The path integrator's variants (PATH) and its bounce (pathbounce.frag).
-    GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathEmitterLight, pathBounce;
+    GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathBounce;
+    // The one-pass trace kernels for the masked path rounds.
+    GPUKernel pathTrace, pathTraceAny;
     // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
     // the whole primary trace in one pass, generating its own rays (no ray streams; hits only).
     GPUKernel trace, traceAny, traceCamera;
@@ -74,6 +79,8 @@ struct GpuPipeline {
           stackWeight(w, h * std::max(1, slots), 4, "stackWeight"),
           activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
           waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
+          aliveMask("alive", mask, weight, 3, 1.0f, 1.0f),
+          surfaceMask("surface", mask, surfacePoint, 3, 0.0f, 1e30f),
           raygen("raygen", "trace/raygen.frag"),
           precalc("precalc", "trace/precalc.frag"),
           traverse("traverse", "trace/traverse.frag",
@@ -91,8 +98,9 @@ struct GpuPipeline {
           pathShadowgen("pathShadowgen", "trace/shadowgen.frag", {"PATH"}),
           pathLight("pathLight", "trace/light.frag", {"PATH"}),
           pathEmitterShadowgen("pathEmitterShadowgen", "trace/shadowgen.frag", {"EMITTER", "PATH"}),
-          pathEmitterLight("pathEmitterLight", "trace/light.frag", {"EMITTER", "PATH"}),
           pathBounce("pathBounce", "trace/pathbounce.frag"),
+          pathTrace("pathTrace", "trace/trace.frag", traceDefines(0, false)),
+          pathTraceAny("pathTraceAny", "trace/trace.frag", traceDefines(0, true)),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
           traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
           traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
@@ -135,17 +143,19 @@ struct GpuPipeline {
             k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
             k->addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
         }
-        for (GPUKernel* k : {&emitterLight, &pathEmitterLight}) {
-            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-            k->addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
-            k->addInput(lightSample, "lightSample").addInOut(localColor, "localState");
-            k->addInput(surfaceShading, "surfaceShading");
-        }
+        emitterLight.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+        emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
+        emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
+        emitterLight.addInput(surfaceShading, "surfaceShading");
         pathBounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         pathBounce.addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");
-        pathBounce.addInput(localColor, "localColor");
+        pathBounce.addInput(localColor, "localColor").addInput(hit, "hitState").addInput(lightSample, "lightSample");
         pathBounce.addInOut(color, "colorState").addInOut(weight, "weightState");
         pathBounce.addOutput(rayOrigin).addOutput(rayDir).addOutput(pathState);
+        for (GPUKernel* k : {&pathTrace, &pathTraceAny})
+            k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addOutput(voxel).addOutput(hit);
+        pathTrace.setMask(&aliveMask, false);
+        pathTraceAny.setMask(&surfaceMask, false);
         for (GPUKernel* k : {&trace, &traceAny}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
             if (fusedSteps > 0) {
@@ -158,10 +168,11 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 21> allKernels() {
+    std::array<GPUKernel*, 22> allKernels() {
         return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
                 &accumulate, &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight,
-                &pathEmitterShadowgen, &pathEmitterLight, &pathBounce, &trace, &traceAny, &traceCamera};
+                &pathEmitterShadowgen, &pathBounce, &pathTrace, &pathTraceAny, &trace, &traceAny,
+                &traceCamera};
     }
 
     // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
@@ -179,6 +190,15 @@ struct GpuPipeline {
         std::vector<std::string> defines = traceDefines(0, false);
         defines.push_back("CAMERA");
         return defines;
+    }
+
+    // The path rounds' shading passes under the masks (GpuTracerOptions::maskPaths), or not.
+    void maskPaths(bool on) {
+        // The bounce pass ends the paths that missed: it runs for all paths alive in the round.
+        pathSurface.setMask(on ? &aliveMask : nullptr, false);
+        pathBounce.setMask(on ? &aliveMask : nullptr, false);
+        for (GPUKernel* k : {&pathShadowgen, &pathLight, &pathEmitterShadowgen})
+            k->setMask(on ? &surfaceMask : nullptr, false);
     }
 
     // The contract camera as the uniforms of the kernels that generate primary rays (raygen's

@@ -195,22 +195,35 @@ void GpuTracer::traceIntegrator(GpuPipeline& p, const std::vector<PointLight>& l
 void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights, int maxDepth, bool readAovs,
                           RenderOutput& out) {
     RenderStats& stats = out.stats;
+    // Masks need a mask pass (early-Z or stencil); the early-exit mode is what the kernels do anyway.
+    const MaskMode mode = p.aliveMask.mode();
+    const bool masked = options_.maskPaths && (mode == MaskMode::EarlyZ || mode == MaskMode::Stencil);
+    // The rays of the round; masked: the one-pass trace under the mask of the live paths (their
+    // rays), or of those with a hit (their shadow rays).
+    auto traceRound = [&](bool anyHit) -> uint64_t {
+        if (!masked || !onePassTrace()) return traceLoop(p, anyHit);
+        return (anyHit ? p.pathTraceAny : p.pathTrace).execute();
+    };
+    p.maskPaths(masked);
     p.color.fill(0.0f);
     p.weight.fill(1.0f);
     p.pathState.fill(0.0f);  // the camera rays: their emission counts in full
     p.raygen.dispatch();
     for (int b = 0; b <= maxDepth; ++b) {
-        const uint64_t rays = traceLoop(p, false);
+        if (masked) p.aliveMask.update();
+        const uint64_t rays = traceRound(false);
         if (b > 0 && rays == 0) break;  // every path has ended
         stats.addLivePaths(size_t(b), rays);
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
         if (b == 0 && readAovs) readHitAovs(p, out);
+        if (masked) p.surfacePoint.fill(-1.0f);  // no surface for the paths the mask leaves out
         p.pathSurface.dispatch();
         if (b == 0 && readAovs) readNormalAov(p, out);
         if (b == maxDepth) break;  // the last depth: its emission only
+        if (masked) p.surfaceMask.update();
         for (const PointLight& l : lights) {
             p.pathShadowgen.setUniform("lightPosition", l.position).dispatch();
-            stats.shadowRays += traceLoop(p, true);
+            stats.shadowRays += traceRound(true);
             p.pathLight.setUniform("lightPosition", l.position)
                 .setUniform("lightColor", l.color)
                 .setUniform("lightIntensity", l.intensity)
@@ -218,8 +231,7 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
         }
         if (!textures_.emitterTable().empty()) {
             p.pathEmitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();
-            stats.shadowRays += traceLoop(p, true);
-            p.pathEmitterLight.dispatch();
+            stats.shadowRays += traceRound(true);  // lit in the bounce pass
         }
         p.pathBounce.setUniform("depth", b).dispatch();
     }

@@ -42,6 +42,10 @@ struct GpuTracerOptions {
     // RenderStats::overflowRays; 0: UniformGrid::maxCellSteps(), which no ray reaches. Tests
     // lower it to see that reaching it is reported.
     int maxCellSteps = 0;
+    // The path integrator's rounds: run the trace and shading passes under masks of the live
+    // paths (the pipeline's mask mode) rather than leaving dead paths to each kernel's early exit.
+    // Off by default: slower on llvmpipe (docs/PERFORMANCE.md).
+    bool maskPaths = false;
 };
 
 
