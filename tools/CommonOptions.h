@@ -53,7 +53,7 @@ glm::ivec2 parseSize(const std::string& option, const std::string& text);
 // Throws EnvironmentError (exit 2) when a render of `size` on the GL (`gl`) or CPU backend would
 // need more memory than the machine has available (MemAvailable): Linux overcommits, so past
 // that point the render would be killed instead of failing cleanly.
-void checkRenderFitsInMemory(glm::ivec2 size, bool gl);
+void checkRenderFitsInMemory(glm::ivec2 size, bool gl, bool paths = false);
 
 // Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
 inline const CLI::Validator kNotEmpty(

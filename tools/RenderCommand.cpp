@@ -117,7 +117,7 @@ int runRender(const RenderOptions& o) {
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    checkRenderFitsInMemory(size, o.backend != "cpu");
+    checkRenderFitsInMemory(size, o.backend != "cpu", picture.integrator == Integrator::Path);
     const CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
     RenderSettings settings;
     settings.width = size.x;

@@ -141,7 +141,7 @@ int runView(const ViewOptions& o) {
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    checkRenderFitsInMemory(size, true);
+    checkRenderFitsInMemory(size, true, picture.integrator == Integrator::Path);
     CameraControl control;
     control.spec = control.initial = o.camera.spec(scene, size, scaleExponent);
     makeCamera(control.spec, size.x, size.y);  // refuses an unusable camera now

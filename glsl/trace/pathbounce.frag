@@ -3,8 +3,11 @@
 // emitter point's, whose shadow ray the last trace answered, added here: the light pass of the
 // emitters fused into this one), then the path's next ray: a direction from the
 // BSDF (scatterPath, the sample's numbers of this depth), the throughput times f cos / pdf, and
-// Russian roulette. A path that ends (missed, absorbed, below the surface, roulette) writes no ray,
-// so the next round's trace and its count skip it (GpuTracer::tracePath).
+// Russian roulette. A path that ends (missed, absorbed, below the surface, roulette) leaves its
+// colour in its pixel's element of pixelColor. The paths that go on stay in their elements, or
+// with PACK are packed to the front of the next round's streams (an atomic counter gives each
+// its slot: Purcell's stream compaction), so that the next rounds' passes cover only them; the
+// packing costs, so GpuTracer::tracePath packs only once many paths end.
 #include "shading.glsl"
 #include "../common/sampling.h"
 #include "../common/path.h"
@@ -14,31 +17,38 @@ uniform sampler2D surfaceNormal;
 uniform sampler2D surfaceView;
 uniform sampler2D surfaceShading;
 uniform sampler2D localColor;
-uniform sampler2D colorState;   // in place
-uniform sampler2D weightState;  // in place: (throughput, alive)
+uniform sampler2D colorState;   // the path's colour so far
+uniform sampler2D weightState;  // (throughput, alive)
+uniform sampler2D pathStateIn;  // (pdf of the ray's direction, pixel x, pixel y, 0)
 uniform sampler2D hitState;     // the emitter shadow rays' hits
 uniform sampler2D lightSample;  // (q, emitting triangle | -1): the emitter point of the hit
 uniform uint sampleIndex;
 uniform uint sampleCount;
 uniform uint seed;
 uniform int depth;  // the hits' depth (0: the camera rays' hits)
+layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
+#ifdef PACK
+// The live paths, packed for the next round: slot k is element (k % W, k / W), k from the counter.
+layout(rgba32f) uniform image2D nextOrigin;
+layout(rgba32f) uniform image2D nextDir;
+layout(rgba32f) uniform image2D nextWeight;
+layout(rgba32f) uniform image2D nextState;
+layout(rgba32f) uniform image2D nextColor;
+layout(r32ui) uniform uimage2D pathCount;
 
-layout(location = 0) out vec4 color;
-layout(location = 1) out vec4 weight;
-layout(location = 2) out vec4 rayOrigin;
-layout(location = 3) out vec4 rayDir;
-layout(location = 4) out vec4 pathState;  // (pdf of the new direction, 0, 0, 0)
+layout(location = 0) out vec4 lives;  // (1 if the path goes on, 0, 0, 0)
+#else
+// The path's next state in place.
+layout(location = 0) out vec4 colorOut;
+layout(location = 1) out vec4 weightOut;
+layout(location = 2) out vec4 rayOriginOut;
+layout(location = 3) out vec4 rayDirOut;
+layout(location = 4) out vec4 pathStateOut;
+#endif
 
-void main() {
-    vec4 s = readStream(surfacePoint);
-    vec4 w = readStream(weightState);
-    color = readStream(colorState);
-    weight = vec4(w.xyz, 0.0f);
-    rayOrigin = vec4(0.0f);
-    rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
-    pathState = vec4(0.0f);
-    if (w.w == 0.0f || s.w < 0.0f) return;  // ended before, or missed in this round
-    vec3 throughput = w.xyz;
+// The path's next ray from its hit; false when it ends here.
+bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput, out vec3 o, out vec3 dir,
+             out float pdf) {
     vec4 nm = readStream(surfaceNormal);
     vec3 kd, ks, reflectivity, tf, diffuse, glossy;
     float ns, ior;
@@ -58,27 +68,68 @@ void main() {
                                               emitterIntensity(s.xyz, q.xyz, qe1, qe2, emitterArea)) *
                             emitterSampleWeight(s.xyz, q.xyz, qe1, qe2, emitterArea, probs, ns, n, d);
     }
-    color = vec4(color.xyz + throughput * local, 0.0f);
+    color = color + w * local;
 
     vec3 v0, e1, e2;
     int material;
     fetchTriangle(int(s.w), v0, e1, e2, material);
-    uvec2 pixel = uvec2(gl_FragCoord.xy);
     uint dim = GPURT_DIM_SCATTER + 2u * uint(depth);
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, dim));
-    vec2 choice = randomPair(sampleIndex, samplePattern(pixel.x, pixel.y, seed, dim + 1u));
-    vec3 dir, factor;
-    float pdf, side;
-    if (!scatterPath(d, nm.xyz, n, frontFace(e1, e2, d), diffuse, glossy, ns,
-                     reflectivity, ior, tf, u, choice.x, dir, factor, pdf, side))
-        return;
-    throughput = throughput * factor;
+    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim));
+    vec2 choice = randomPair(sampleIndex, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim + 1u));
+    vec3 factor;
+    float side;
+    if (!scatterPath(d, nm.xyz, n, frontFace(e1, e2, d), diffuse, glossy, ns, reflectivity, ior, tf, u, choice.x,
+                     dir, factor, pdf, side))
+        return false;
+    throughput = w * factor;
     float survive = survival(depth, throughput, choice.y);
-    if (survive == 0.0f) return;
+    if (survive == 0.0f) return false;
     throughput = throughput / survive;
-    vec3 o = offsetOrigin(s.xyz, side * nm.xyz, rayOffset);
-    weight = vec4(throughput, 1.0f);
-    rayOrigin = vec4(o, GPURT_FAR);
-    rayDir = vec4(dir, gridEntry(o, dir, GPURT_FAR));
-    pathState = vec4(pdf, 0.0f, 0.0f, 0.0f);
+    o = offsetOrigin(s.xyz, side * nm.xyz, rayOffset);
+    return true;
+}
+
+void main() {
+    vec4 w = readStream(weightState);
+#ifdef PACK
+    lives = vec4(0.0f);
+#else
+    colorOut = readStream(colorState);
+    weightOut = vec4(w.xyz, 0.0f);
+    rayOriginOut = vec4(0.0f);
+    rayDirOut = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
+    pathStateOut = vec4(0.0f);
+#endif
+    if (w.w == 0.0f) return;  // no path in this element
+    vec4 s = readStream(surfacePoint);
+    vec4 ps = readStream(pathStateIn);
+    ivec2 pixel = pathPixel(ps, depth);
+    vec3 color = readStream(colorState).xyz;
+    vec3 throughput, o, dir;
+    float pdf;
+    // A path that missed in this round (its background added by the surface pass) ends.
+    if (s.w < 0.0f || !nextRay(s, w.xyz, pixel, color, throughput, o, dir, pdf)) {
+        imageStore(pixelColor, pixel, vec4(color, 0.0f));
+        return;
+    }
+    vec4 origin = vec4(o, GPURT_FAR);
+    vec4 direction = vec4(dir, gridEntry(o, dir, GPURT_FAR));
+    vec4 state = vec4(pdf, float(pixel.x), float(pixel.y), 0.0f);
+#ifdef PACK
+    uint k = imageAtomicAdd(pathCount, ivec2(0), 1u);
+    int width = textureSize(colorState, 0).x;
+    ivec2 at = ivec2(int(k) % width, int(k) / width);
+    imageStore(nextOrigin, at, origin);
+    imageStore(nextDir, at, direction);
+    imageStore(nextWeight, at, vec4(throughput, 1.0f));
+    imageStore(nextState, at, state);
+    imageStore(nextColor, at, vec4(color, 0.0f));
+    lives = vec4(1.0f, 0.0f, 0.0f, 0.0f);
+#else
+    colorOut = vec4(color, 0.0f);
+    weightOut = vec4(throughput, 1.0f);
+    rayOriginOut = origin;
+    rayDirOut = direction;
+    pathStateOut = state;
+#endif
 }

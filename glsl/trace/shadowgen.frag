@@ -9,6 +9,7 @@
 #include "../common/sampling.h"
 #ifdef PATH
 #include "../common/path.h"
+uniform sampler2D pathState;  // the path's pixel (packed paths: shading.glsl pathPixel)
 #endif
 
 uniform sampler2D surfacePoint;
@@ -46,7 +47,11 @@ void main() {
 #ifdef EMITTER
     lightSample = vec4(0.0f, 0.0f, 0.0f, -1.0f);
     if (s.w < 0.0f) return;
+#ifdef PATH
+    uvec2 pixel = uvec2(pathPixel(readStream(pathState), int(bounce)));
+#else
     uvec2 pixel = uvec2(gl_FragCoord.xy);
+#endif
     vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + bounce));
     int k = pickEmitter(u.x);
     vec2 entry = texelFetch(emitters, k).xy;

@@ -33,6 +33,11 @@ struct GpuPipeline {
     GPUFloatArray aovHit, aovCells, aovNormal;
     int stackSlots;
     GPUFloatArray stackOrigin, stackDir, stackWeight;
+    // The path integrator (1 x 1 unless `paths`): the live paths packed for the next round (ray,
+    // throughput, path state, colour so far), their counter, each pixel's colour once its path has
+    // ended, and the bounce pass's own output (whether the element's path lives on).
+    bool paths;
+    GPUFloatArray nextOrigin, nextDir, nextWeight, nextState, nextColor, pathCount, pixelColor, pathLives;
     GPUMask activeMask, waitMask;
     // The path integrator's masks: paths alive at the start of a round (its trace, surface and
     // bounce passes) and paths with a hit in it (the shadow rays' passes).
@@ -41,7 +46,8 @@ struct GpuPipeline {
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
     // The path integrator's variants (PATH) and its bounce (pathbounce.frag).
-    GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathBounce;
+    GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathBounce, pathPack, pathDeposit,
+        pathAccumulate;
     // The one-pass trace kernels for the masked path rounds.
     GPUKernel pathTrace, pathTraceAny;
     // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
@@ -52,7 +58,7 @@ struct GpuPipeline {
     // fused kernels, 0 for the whole traversal in one pass. stackSlots: rays a pixel's stack can
     // hold (0 where nothing spawns two rays: a scene without glass).
     GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
-                int fusedSteps = 0, int slots = 0)
+                int fusedSteps = 0, int slots = 0, bool pathStreams = false)
         : width(w),
           height(h),
           rayOrigin(w, h, 4, "rayOrigin"),
@@ -77,6 +83,15 @@ struct GpuPipeline {
           stackOrigin(w, h * std::max(1, slots), 4, "stackOrigin"),
           stackDir(w, h * std::max(1, slots), 4, "stackDir"),
           stackWeight(w, h * std::max(1, slots), 4, "stackWeight"),
+          paths(pathStreams),
+          nextOrigin(paths ? w : 1, paths ? h : 1, 4, "nextOrigin"),
+          nextDir(paths ? w : 1, paths ? h : 1, 4, "nextDir"),
+          nextWeight(paths ? w : 1, paths ? h : 1, 4, "nextWeight"),
+          nextState(paths ? w : 1, paths ? h : 1, 4, "nextState"),
+          nextColor(paths ? w : 1, paths ? h : 1, 4, "nextColor"),
+          pathCount(1, 1, GPUFormat::R32UI, "pathCount"),
+          pixelColor(paths ? w : 1, paths ? h : 1, 4, "pixelColor"),
+          pathLives(paths ? w : 1, paths ? h : 1, 1, "pathLives"),
           activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
           waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
           aliveMask("alive", mask, weight, 3, 1.0f, 1.0f),
@@ -99,6 +114,9 @@ struct GpuPipeline {
           pathLight("pathLight", "trace/light.frag", {"PATH"}),
           pathEmitterShadowgen("pathEmitterShadowgen", "trace/shadowgen.frag", {"EMITTER", "PATH"}),
           pathBounce("pathBounce", "trace/pathbounce.frag"),
+          pathPack("pathPack", "trace/pathbounce.frag", {"PACK"}),
+          pathDeposit("pathDeposit", "trace/pathdeposit.frag"),
+          pathAccumulate("pathAccumulate", "trace/accumulate.frag"),
           pathTrace("pathTrace", "trace/trace.frag", traceDefines(0, false)),
           pathTraceAny("pathTraceAny", "trace/trace.frag", traceDefines(0, true)),
           trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
@@ -147,11 +165,22 @@ struct GpuPipeline {
         emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
         emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
         emitterLight.addInput(surfaceShading, "surfaceShading");
-        pathBounce.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-        pathBounce.addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");
-        pathBounce.addInput(localColor, "localColor").addInput(hit, "hitState").addInput(lightSample, "lightSample");
-        pathBounce.addInOut(color, "colorState").addInOut(weight, "weightState");
-        pathBounce.addOutput(rayOrigin).addOutput(rayDir).addOutput(pathState);
+        pathEmitterShadowgen.addInput(pathState, "pathState");
+        for (GPUKernel* k : {&pathBounce, &pathPack}) {
+            k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
+            k->addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");
+            k->addInput(localColor, "localColor").addInput(hit, "hitState").addInput(lightSample, "lightSample");
+            k->addImage(pixelColor, "pixelColor");
+        }
+        pathBounce.addInOut(color, "colorState").addInOut(weight, "weightState").addOutput(rayOrigin).addOutput(rayDir);
+        pathBounce.addInOut(pathState, "pathStateIn");
+        pathPack.addInput(color, "colorState").addInput(weight, "weightState").addInput(pathState, "pathStateIn");
+        pathPack.addImage(nextOrigin, "nextOrigin").addImage(nextDir, "nextDir").addImage(nextWeight, "nextWeight");
+        pathPack.addImage(nextState, "nextState").addImage(nextColor, "nextColor").addImage(pathCount, "pathCount");
+        pathPack.addOutput(pathLives);
+        pathDeposit.addInput(color, "colorState").addInput(weight, "weightState").addInput(pathState, "pathStateIn");
+        pathDeposit.addImage(pixelColor, "pixelColor").addOutput(pathLives);
+        pathAccumulate.addInput(pixelColor, "colorState").addInOut(sampleSum, "sumState");
         for (GPUKernel* k : {&pathTrace, &pathTraceAny})
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addOutput(voxel).addOutput(hit);
         pathTrace.setMask(&aliveMask, false);
@@ -168,10 +197,10 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 22> allKernels() {
+    std::array<GPUKernel*, 25> allKernels() {
         return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
                 &accumulate, &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight,
-                &pathEmitterShadowgen, &pathBounce, &pathTrace, &pathTraceAny, &trace, &traceAny,
+                &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit, &pathAccumulate, &pathTrace, &pathTraceAny, &trace, &traceAny,
                 &traceCamera};
     }
 
@@ -192,11 +221,22 @@ struct GpuPipeline {
         return defines;
     }
 
+    // The path rounds' passes over the first `rows` rows only, where the live paths are packed
+    // (std::nullopt: all rows again).
+    void setPathRows(std::optional<int> rows) {
+        const std::optional<StreamRect> rect =
+            rows ? std::optional<StreamRect>(StreamRect{0, 0, width, *rows}) : std::nullopt;
+        for (GPUKernel* k : {&trace, &traceAny, &pathTrace, &pathTraceAny, &pathSurface, &pathShadowgen, &pathLight,
+                             &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit})
+            k->setRect(rect);
+    }
+
     // The path rounds' shading passes under the masks (GpuTracerOptions::maskPaths), or not.
     void maskPaths(bool on) {
         // The bounce pass ends the paths that missed: it runs for all paths alive in the round.
         pathSurface.setMask(on ? &aliveMask : nullptr, false);
         pathBounce.setMask(on ? &aliveMask : nullptr, false);
+        pathPack.setMask(on ? &aliveMask : nullptr, false);
         for (GPUKernel* k : {&pathShadowgen, &pathLight, &pathEmitterShadowgen})
             k->setMask(on ? &surfaceMask : nullptr, false);
     }
@@ -217,7 +257,7 @@ struct GpuPipeline {
 
     // The sample that raygen's rays go through: sample s of n (n = 1: the pixel centre).
     void setSample(uint32_t s, uint32_t n, uint32_t seed) {
-        for (GPUKernel* k : {&raygen, &emitterShadowgen, &pathEmitterShadowgen, &pathBounce})
+        for (GPUKernel* k : {&raygen, &emitterShadowgen, &pathEmitterShadowgen, &pathBounce, &pathPack})
             k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
     }
 

@@ -49,13 +49,14 @@ int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths) {
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height ||
-        pipeline_->stackSlots != stackSlots) {
+        pipeline_->stackSlots != stackSlots || pipeline_->paths != paths) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         const int steps = options_.traverseSteps;
-        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps, stackSlots);
+        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps,
+                                                  stackSlots, paths);
         if (options_.maxCellSteps > 0)
             for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
     }
@@ -125,7 +126,8 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const int maxBounces = std::max(0, settings.maxBounces);
-    GpuPipeline& p = pipeline(camera.width, camera.height, stackSlots(maxBounces));
+    const bool paths = settings.integrator == Integrator::Path;
+    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(maxBounces), paths);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.height;
@@ -141,7 +143,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (uint32_t s = 0; s < samples; ++s) {
         p.setSample(s, samples, settings.seed);
         traceIntegrator(p, lights, settings, samples == 1, out);
-        p.accumulate.dispatch();
+        (paths ? p.pathAccumulate : p.accumulate).dispatch();
     }
     out.stats.samples = uint64_t(camera.width) * uint64_t(camera.height) * samples;
     out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
@@ -186,12 +188,15 @@ void GpuTracer::traceIntegrator(GpuPipeline& p, const std::vector<PointLight>& l
     else traceSample(p, lights, bounces, readAovs, out);
 }
 
-// Round b traces the rays of the paths alive at depth b (round 0: the camera rays), and its count
-// ends the loop when no path is left; then, as CpuTracer::pathSample: the surface pass (emission
-// weighed against next-event estimation, the background on a miss), below the last depth a shadow
-// trace and light pass per point light and one for an emitter point, and the bounce pass that
-// samples each path's next direction. A path that has ended carries no ray: the trace skips it
-// (GPURT_NO_RAY) and every later pass leaves it at once.
+// Round b traces the rays of the paths alive at depth b (round 0: the camera rays, one an element
+// in image order), and its count ends the loop when no path is left; then, as
+// CpuTracer::pathSample: the surface pass (emission weighed against next-event estimation, the
+// background on a miss), below the last depth a shadow trace and light pass per point light and
+// one for an emitter point, and the bounce pass, which samples each path's next direction and
+// packs the paths that go on to the front of the streams (stream compaction, Purcell et al.
+// 2002): the next round's passes cover only the rows they fill, so ended paths cost nothing. A
+// path leaves its colour in its pixel's element of pixelColor when it ends (the deposit pass for
+// those alive after the last round).
 void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights, int maxDepth, bool readAovs,
                           RenderOutput& out) {
     RenderStats& stats = out.stats;
@@ -208,7 +213,10 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
     p.color.fill(0.0f);
     p.weight.fill(1.0f);
     p.pathState.fill(0.0f);  // the camera rays: their emission counts in full
+    p.pixelColor.fill(0.0f);
     p.raygen.dispatch();
+    int rows = p.height;  // the rows that hold the live paths
+    p.setPathRows(rows);
     for (int b = 0; b <= maxDepth; ++b) {
         if (masked) p.aliveMask.update();
         const uint64_t rays = traceRound(false);
@@ -219,7 +227,10 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
         if (masked) p.surfacePoint.fill(-1.0f);  // no surface for the paths the mask leaves out
         p.pathSurface.dispatch();
         if (b == 0 && readAovs) readNormalAov(p, out);
-        if (b == maxDepth) break;  // the last depth: its emission only
+        if (b == maxDepth) {  // the last depth: its emission only
+            p.pathDeposit.setUniform("depth", b).dispatch();
+            break;
+        }
         if (masked) p.surfaceMask.update();
         for (const PointLight& l : lights) {
             p.pathShadowgen.setUniform("lightPosition", l.position).dispatch();
@@ -233,8 +244,28 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
             p.pathEmitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();
             stats.shadowRays += traceRound(true);  // lit in the bounce pass
         }
-        p.pathBounce.setUniform("depth", b).dispatch();
+        // Packing costs (an atomic counter and five stores a path): only from the depth on which
+        // Russian roulette ends many paths, or once the rows in use are half empty.
+        if (b < GPURT_RR_DEPTH && 2 * rays > uint64_t(rows) * uint64_t(p.width)) {
+            p.pathBounce.setUniform("depth", b).dispatch();
+            continue;
+        }
+        // The packed streams start empty: no ray, no throughput beyond the paths written.
+        p.nextWeight.fill(0.0f);
+        p.nextDir.fill(GPURT_NO_RAY);
+        p.pathCount.fill(0.0f);
+        p.pathPack.setUniform("depth", b).dispatch();
+        const uint64_t live = p.pathCount.downloadUint()[0];
+        p.rayOrigin.copyFrom(p.nextOrigin);
+        p.rayDir.copyFrom(p.nextDir);
+        p.weight.copyFrom(p.nextWeight);
+        p.pathState.copyFrom(p.nextState);
+        p.color.copyFrom(p.nextColor);
+        if (live == 0) break;
+        rows = int((live + uint64_t(p.width) - 1) / uint64_t(p.width));
+        p.setPathRows(rows);
     }
+    p.setPathRows(std::nullopt);
 }
 
 void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
@@ -277,7 +308,8 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 }
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
-    GpuPipeline& p = pipeline(camera.width, camera.height, stackSlots(std::max(0, settings.maxBounces)));
+    const bool paths = settings.integrator == Integrator::Path;
+    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths);
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
     p.surface.setUniform("background", scene_.background);
@@ -295,7 +327,7 @@ void GpuTracer::addSample(uint32_t s, uint32_t n) {
     GpuPipeline& p = *pipeline_;
     p.setSample(s, n, progressive_.settings.seed);
     traceIntegrator(p, progressive_.lights, progressive_.settings, false, progressive_.output);
-    p.accumulate.dispatch();
+    (p.paths ? p.pathAccumulate : p.accumulate).dispatch();
     progressive_.output.stats.samples += uint64_t(p.width) * uint64_t(p.height);
 }
 

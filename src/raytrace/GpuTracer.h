@@ -82,7 +82,8 @@ class GpuTracer {
     void flushStats();
 
   private:
-    GpuPipeline& pipeline(int width, int height, int stackSlots = 0);
+    // The pipeline for this size, ray stacks and integrator (paths: the path integrator's streams).
+    GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
