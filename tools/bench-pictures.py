@@ -8,7 +8,6 @@ alternating (runs of each, the minimum of gpurt's --stats=json total_ms and of t
 Needs build/gpurt (./run.sh builds it) and ../shared/models. Standard library only.
 """
 
-import argparse
 import json
 import os
 import shutil
@@ -17,8 +16,7 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-GPURT = os.path.join(ROOT, "build", "gpurt")
+from benchrender import GPURT, ROOT, parse_args
 
 
 def run(scene, backend, size, extra):
@@ -31,12 +29,8 @@ def run(scene, backend, size, extra):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--size", default="512x512")
-    args = parser.parse_args()
-    if not os.path.exists(GPURT):
-        print("bench-pictures: build/gpurt is missing (run ./run.sh)", file=sys.stderr)
+    args = parse_args(__doc__, "bench-pictures")
+    if args is None:
         return 2
     # The Cornell box with its glass sphere made diffuse: the plain render of the same scene.
     folder = tempfile.mkdtemp(prefix="gpurt-bench-")
