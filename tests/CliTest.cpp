@@ -105,6 +105,24 @@ TEST_F(Cli, StatsJsonHasTheContractFields) {
     EXPECT_EQ(j["grid"].size(), 3u);
     EXPECT_EQ(j["passes"]["raygen"]["calls"], 1);
     EXPECT_EQ(j["passes"]["raygen"]["fragments"], 32 * 32);
+    // The phase breakdown: every phase, none negative; the passes' phases are the passes' times.
+    double passes = 0.0, traced = 0.0;
+    for (const auto& [name, p] : j["passes"].items()) {
+        passes += p["ms"].get<double>();
+        if (name.find("race") != std::string::npos) traced += p["ms"].get<double>();
+    }
+    const auto& ph = j["phases_ms"];
+    for (const char* key : {"load", "grid", "context", "upload", "compile", "trace", "shade", "read_back", "other", "write"}) {
+        ASSERT_TRUE(ph.contains(key)) << key;
+        EXPECT_GE(ph[key].get<double>(), 0.0) << key;
+    }
+    EXPECT_NEAR(ph["trace"].get<double>() + ph["shade"].get<double>(), passes, 1e-6 * passes + 1e-9);
+    EXPECT_NEAR(ph["trace"].get<double>(), traced, 1e-6 * traced + 1e-9);
+    EXPECT_GT(ph["context"].get<double>(), 0.0);
+    // The render's phases fit in its total.
+    const double render = ph["compile"].get<double>() + ph["trace"].get<double>() + ph["shade"].get<double>() +
+                          ph["read_back"].get<double>() + ph["other"].get<double>();
+    EXPECT_LE(render + ph["grid"].get<double>(), j["total_ms"].get<double>() * 1.001 + 0.01);
 }
 
 // The path integrator's statistics: samples, samples per second and the paths of each round,

@@ -17,11 +17,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace gpurt {
 
@@ -42,9 +44,27 @@ struct RenderOptions {
     ContextOptions context;
 };
 
+// Where a render's wall time goes (--stats): the phases in order, in milliseconds. trace and shade
+// are the kernel passes (traversal and intersection, the rest), compile the GL programs' builds
+// (llvmpipe generates a kernel's machine code at its first pass, which counts in that pass), other
+// the render's time outside passes, builds and read-backs (stream fills and copies, syncs); the
+// CPU backend's render is all trace.
+struct Phases {
+    double load = 0, grid = 0, context = 0, upload = 0, compile = 0, trace = 0, shade = 0, readBack = 0,
+           other = 0, write = 0;
+};
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 // `gridSource`: "built" or "packed" (the packed scene's own grid).
 void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid,
-                const char* gridSource, const RenderOutput& out, double totalMs) {
+                const char* gridSource, const RenderOutput& out, double totalMs, const Phases& ph) {
+    const std::pair<const char*, double> phases[] = {
+        {"load", ph.load},       {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
+        {"compile", ph.compile}, {"trace", ph.trace}, {"shade", ph.shade},     {"read_back", ph.readBack},
+        {"other", ph.other},     {"write", ph.write}};
     const RenderStats& s = out.stats;
     const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
     const double mrays = totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0;
@@ -68,6 +88,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
         j["samples"] = s.samples;  // pixel samples: width x height x spp
         j["samples_per_s"] = samplesPerS;
         if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
+        j["phases_ms"] = nlohmann::json::object();
+        for (const auto& [name, ms] : phases) j["phases_ms"][name] = ms;
         std::printf("%s\n", j.dump().c_str());
         return;
     }
@@ -90,6 +112,9 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
             std::printf("%-16s %8llu %14llu %10.2f\n", name.c_str(), (unsigned long long)p.calls,
                         (unsigned long long)p.fragments, p.gpuMs);
     }
+    std::printf("phases    ");
+    for (const auto& [name, ms] : phases) std::printf(" %s %.1f", name, ms);
+    std::printf(" ms\n");
     std::printf("total      %.1f ms, %.2f Mrays/s\n", totalMs, mrays);
 }
 
@@ -113,8 +138,11 @@ int runRender(const RenderOptions& o) {
     const ColourSettings& colour = picture.colour;
     const GpuTracerOptions tracerOptions = o.tracer.options();
 
+    Phases phases;
+    auto phaseStart = std::chrono::steady_clock::now();
     int scaleExponent = 0;  // depths are scaled back below
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
+    phases.load = msSince(phaseStart);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, o.backend != "cpu", picture.integrator == Integrator::Path);
@@ -130,23 +158,42 @@ int runRender(const RenderOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const std::optional<UniformGrid> built = o.grid.build(loaded);
     const UniformGrid& grid = built ? *built : *loaded.grid;
+    phases.grid = msSince(start);
     RenderOutput out;
     if (o.backend == "cpu") {
+        phaseStart = std::chrono::steady_clock::now();
         out = CpuTracer(scene, grid).render(camera, settings);
+        phases.trace = msSince(phaseStart);
     } else {
+        phaseStart = std::chrono::steady_clock::now();
         GLContext context = o.context.makeContext();
-        KernelStats::global().setTiming(o.statsGiven);
+        phases.context = msSince(phaseStart);
+        KernelStats& kernels = KernelStats::global();
+        kernels.setTiming(o.statsGiven);
+        phaseStart = std::chrono::steady_clock::now();
         GpuTracer tracer(scene, grid, tracerOptions);
+        phases.upload = msSince(phaseStart);
+        phaseStart = std::chrono::steady_clock::now();
+        const double compileBefore = kernels.compileMs, readBackBefore = kernels.readBackMs;
         out = tracer.render(camera, settings);
+        const double renderMs = msSince(phaseStart);
+        phases.compile = kernels.compileMs - compileBefore;
+        phases.readBack = kernels.readBackMs - readBackBefore;
+        for (const auto& [name, p] : kernels.passes()) {
+            const bool tracing = name.find("trace") != std::string::npos || name.find("Trace") != std::string::npos ||
+                                 name == "precalc" || name == "traverse" || name == "intersect";
+            (tracing ? phases.trace : phases.shade) += p.gpuMs;
+        }
+        phases.other = std::max(0.0, renderMs - phases.compile - phases.readBack - phases.trace - phases.shade);
     }
-    const double totalMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double totalMs = msSince(start);
     unscaleDepth(out.depth, scaleExponent);
     if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
         std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
                      "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
                      grid.maxCellSteps());
 
+    const auto writeStart = std::chrono::steady_clock::now();
     AtomicFileSet outputs;  // the PNG and the AOVs appear together or not at all
     writePng(outputs, o.output, out.width, out.height, toneMapImage(out.color, colour));
     for (const auto& [name, file] : aovs) {
@@ -162,7 +209,8 @@ int runRender(const RenderOptions& o) {
         }
     }
     outputs.commit();
-    if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs);
+    phases.write = msSince(writeStart);
+    if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs, phases);
     return 0;
 }
 

@@ -1,7 +1,9 @@
 #include "stream/GPUFloatArray.h"
 
+#include "stream/KernelStats.h"
 #include "stream/StreamErrors.h"
 
+#include <chrono>
 #include <utility>
 
 namespace gpurt {
@@ -169,6 +171,7 @@ void GPUFloatArray::uploadRows(int y, int rows, std::span<const uint32_t> data) 
 }
 
 void GPUFloatArray::downloadRaw(GPUScalar scalar, void* data, size_t bytes) const {
+    const auto start = std::chrono::steady_clock::now();
     const FormatInfo f = info(format_);
     if (scalar != f.scalar)
         throw UsageError("stream '" + name_ + "': downloading a " + scalarName(f.scalar) +
@@ -180,6 +183,8 @@ void GPUFloatArray::downloadRaw(GPUScalar scalar, void* data, size_t bytes) cons
         glGetTextureImage(texture_, 0, f.pixelFormat, f.type, GLsizei(bytes), data);
     }
     GPURT_CHECK_GL("download");
+    KernelStats::global().readBackMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<float> GPUFloatArray::download() const {

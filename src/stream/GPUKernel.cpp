@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <utility>
 
@@ -133,7 +134,10 @@ void GPUKernel::build() {
         preamble += wrapping.preamble;
         epilogue = wrapping.epilogue;
     }
+    const auto start = std::chrono::steady_clock::now();
     program_.emplace(name_, fragmentPath_, preamble, epilogue);
+    KernelStats::global().compileMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     builtFor_ = mode;
     for (size_t i = 0; i < inputs_.size(); ++i)
         glProgramUniform1i(program_->id(), program_->uniformLocation(inputs_[i].sampler), GLint(i));

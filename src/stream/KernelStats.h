@@ -25,7 +25,15 @@ class KernelStats {
 
     PassStats& operator[](const std::string& kernelName) { return passes_[kernelName]; }
     const std::map<std::string, PassStats>& passes() const { return passes_; }
-    void reset() { passes_.clear(); }
+    void reset() {
+        passes_.clear();
+        compileMs = readBackMs = 0.0;
+    }
+
+    // Wall time outside the passes (milliseconds, always measured): building the kernels'
+    // programs (compiling on first use) and reading streams back (which waits for the passes
+    // before it).
+    double compileMs = 0.0, readBackMs = 0.0;
 
   private:
     std::map<std::string, PassStats> passes_;
