@@ -29,9 +29,11 @@ struct GpuPipeline {
     // of pending rays, `stackSlots` slots of image size one above the other.
     GPUFloatArray pathState;
     // The pixel-centre AOVs kept for a viewer's display modes while the samples reuse the ray and
-    // surface streams: the primary hits, cell counts and facing normals.
+    // surface streams: the primary hits, cell counts and facing normals (1 x 1 unless
+    // `progressive`: streams nobody uses cost their allocation).
+    bool progressive;
     GPUFloatArray aovHit, aovCells, aovNormal;
-    int stackSlots;
+    int stackSlots;  // 0: the stacks are 1 x 1
     GPUFloatArray stackOrigin, stackDir, stackWeight;
     // The path integrator (1 x 1 unless `paths`): the live paths packed for the next round (ray,
     // throughput, path state, colour so far), their counter, each pixel's colour once its path has
@@ -58,7 +60,7 @@ struct GpuPipeline {
     // fused kernels, 0 for the whole traversal in one pass. stackSlots: rays a pixel's stack can
     // hold (0 where nothing spawns two rays: a scene without glass).
     GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
-                int fusedSteps = 0, int slots = 0, bool pathStreams = false)
+                int fusedSteps = 0, int slots = 0, bool pathStreams = false, bool progressiveAovs = false)
         : width(w),
           height(h),
           rayOrigin(w, h, 4, "rayOrigin"),
@@ -76,13 +78,14 @@ struct GpuPipeline {
           sampleSum(w, h, 4, "sampleSum"),
           lightSample(w, h, 4, "lightSample"),
           pathState(w, h, 4, "pathState"),
-          aovHit(w, h, 4, "aovHit"),
-          aovCells(w, h, GPUFormat::RGBA32I, "aovCells"),
-          aovNormal(w, h, 4, "aovNormal"),
+          progressive(progressiveAovs),
+          aovHit(progressive ? w : 1, progressive ? h : 1, 4, "aovHit"),
+          aovCells(progressive ? w : 1, progressive ? h : 1, GPUFormat::RGBA32I, "aovCells"),
+          aovNormal(progressive ? w : 1, progressive ? h : 1, 4, "aovNormal"),
           stackSlots(slots),
-          stackOrigin(w, h * std::max(1, slots), 4, "stackOrigin"),
-          stackDir(w, h * std::max(1, slots), 4, "stackDir"),
-          stackWeight(w, h * std::max(1, slots), 4, "stackWeight"),
+          stackOrigin(slots > 0 ? w : 1, slots > 0 ? h * slots : 1, 4, "stackOrigin"),
+          stackDir(slots > 0 ? w : 1, slots > 0 ? h * slots : 1, 4, "stackDir"),
+          stackWeight(slots > 0 ? w : 1, slots > 0 ? h * slots : 1, 4, "stackWeight"),
           paths(pathStreams),
           nextOrigin(paths ? w : 1, paths ? h : 1, 4, "nextOrigin"),
           nextDir(paths ? w : 1, paths ? h : 1, 4, "nextDir"),

@@ -49,14 +49,14 @@ int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive) {
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height ||
-        pipeline_->stackSlots != stackSlots || pipeline_->paths != paths) {
+        pipeline_->stackSlots != stackSlots || pipeline_->paths != paths || pipeline_->progressive != progressive) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         const int steps = options_.traverseSteps;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps,
-                                                  stackSlots, paths);
+                                                  stackSlots, paths, progressive);
         if (options_.maxCellSteps > 0)
             for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
     }
@@ -309,7 +309,8 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths);
+    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths,
+                              true);
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
     p.surface.setUniform("background", scene_.background);
