@@ -159,9 +159,10 @@ TEST_F(Paths, CornellBoxAgreesAcrossBackends) {
     EXPECT_LT(gl.back(), gl[3] / 2);  // Russian roulette from depth 3 on
 }
 
-// Masking the rounds' passes to the live paths (--mask-paths) changes the cost, not the image:
-// under a grey sky, so that the paths that leave the box must end where they miss.
-TEST_F(Paths, MaskedRoundsGiveTheSameImage) {
+// Masking the rounds' passes to the live paths (--mask-paths), or tracing them with the split
+// kernels, changes the cost, not the image: under a grey sky, so that the paths that leave the
+// box must end where they miss.
+TEST_F(Paths, MaskedRoundsAndSplitKernelsGiveTheSameImage) {
     LoadedScene loaded = loadScene("scenes/cornell_blocks.json");
     loaded.scene.background = glm::vec3(0.3f);
     const UniformGrid grid = buildGrid(loaded.scene, GridOptions{});
@@ -178,6 +179,11 @@ TEST_F(Paths, MaskedRoundsGiveTheSameImage) {
     EXPECT_EQ(a.stats.livePaths, b.stats.livePaths);
     EXPECT_EQ(a.stats.shadowRays, b.stats.shadowRays);
     EXPECT_LT(a.stats.livePaths[1], a.stats.livePaths[0]);  // some paths left through the open side
+    GpuTracerOptions split;
+    split.kernel = TraceKernel::Split;
+    const RenderOutput c = GpuTracer(loaded.scene, grid, split).render(camera, settings);
+    EXPECT_EQ(a.color, c.color);
+    EXPECT_EQ(a.stats.livePaths, c.stats.livePaths);
 }
 
 // The Cornell box converges: the RMS error against a long render (another seed, so its own noise
