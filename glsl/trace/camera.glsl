@@ -13,9 +13,10 @@ uniform uint sampleIndex;  // the sample of this pass
 uniform uint sampleCount;  // --spp (1: the pixel centre)
 uniform uint seed;         // --seed
 
-// The direction of this fragment's primary ray (stream row y = image row from the top).
+// The direction of this fragment's primary ray (stream row y = image row tileRow + y from the
+// top; scene.glsl imagePixel).
 vec3 primaryDirection() {
-    vec2 pixel = floor(gl_FragCoord.xy);
+    vec2 pixel = vec2(imagePixel());
     return cameraRayDirection(forward, right, upOrtho, tanHalf, aspect, pixel.x, pixel.y,
                               imageSize.x, imageSize.y);
 }
@@ -23,7 +24,7 @@ vec3 primaryDirection() {
 // The direction of this fragment's ray for sample sampleIndex of sampleCount (Camera.cpp
 // sampleDirection on the CPU).
 vec3 sampleDirection() {
-    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uvec2 pixel = imagePixel();
     vec2 offset = pixelSampleOffset(pixel.x, pixel.y, sampleIndex, sampleCount, seed);
     return cameraRayThrough(forward, right, upOrtho, tanHalf, aspect, float(pixel.x) + offset.x,
                             float(pixel.y) + offset.y, imageSize.x, imageSize.y);

@@ -109,7 +109,7 @@ void main() {
     float pdf;
     // A path that missed in this round (its background added by the surface pass) ends.
     if (s.w < 0.0f || !nextRay(s, w.xyz, pixel, color, throughput, o, dir, pdf)) {
-        imageStore(pixelColor, pixel, vec4(color, 0.0f));
+        imageStore(pixelColor, pixel - ivec2(0, tileRow), vec4(color, 0.0f));  // the stream element of the pixel
         return;
     }
     vec4 origin = vec4(o, GPURT_FAR);

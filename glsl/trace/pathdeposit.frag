@@ -14,5 +14,5 @@ layout(location = 0) out vec4 lives;
 void main() {
     lives = vec4(0.0f);
     if (readStream(weightState).w == 0.0f) return;
-    imageStore(pixelColor, pathPixel(readStream(pathStateIn), depth), vec4(readStream(colorState).xyz, 0.0f));
+    imageStore(pixelColor, pathPixel(readStream(pathStateIn), depth) - ivec2(0, tileRow), vec4(readStream(colorState).xyz, 0.0f));
 }

@@ -20,6 +20,11 @@ uniform vec3 cellSize;
 uniform ivec3 gridRes;
 uniform float cellTolerance;  // a hit up to this far beyond the cell's exit still counts in it
 uniform int maxCellSteps;     // more cells than a ray can cross: RAY_OVERFLOW
+uniform int tileRow;          // the image row of the streams' row 0 (--tile; 0 for the whole image)
+
+// The image pixel (column, row from the top) of this stream element, where the streams hold the
+// image's rows from tileRow on.
+uvec2 imagePixel() { return uvec2(gl_FragCoord.xy) + uvec2(0u, uint(tileRow)); }
 
 // (start, count) of the triangle list of cell v.
 uvec2 cellRange(ivec3 v) {

@@ -50,7 +50,7 @@ void main() {
 #ifdef PATH
     uvec2 pixel = uvec2(pathPixel(readStream(pathState), int(bounce)));
 #else
-    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uvec2 pixel = imagePixel();
 #endif
     vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + bounce));
     int k = pickEmitter(u.x);

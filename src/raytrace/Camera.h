@@ -2,6 +2,8 @@
 // contract's order so that both backends and outside checks shoot the same primary rays.
 #pragma once
 
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "raytrace/Scene.h"
@@ -13,7 +15,19 @@ struct CameraBasis {
     float tanHalf;  // float(tan(fovy * pi / 360)), computed in double
     float aspect;   // float(width) / float(height)
     int width, height;
+    // The rows rendered (--tile): rowCount rows from rowBegin of the width x height image; the
+    // render's output is width x rows(). rowCount 0: all of them.
+    int rowBegin = 0, rowCount = 0;
+
+    int rows() const { return rowCount > 0 ? rowCount : height; }
 };
+
+// Tile i of n of an image `height` rows high (--tile i/n, 0 <= i < n <= height): rows
+// [floor(i H / n), floor((i + 1) H / n)), so that the tiles' heights differ by at most one row.
+inline void tileRows(int height, int i, int n, int& begin, int& count) {
+    begin = int(int64_t(i) * height / n);
+    count = int(int64_t(i + 1) * height / n) - begin;
+}
 
 // Throws InputError for fovy outside (0, 180), eye == target, up parallel to the view direction,
 // non-finite values or a size below 1x1; the message starts with the option's name ("--fovy: ...").

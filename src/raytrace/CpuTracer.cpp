@@ -218,8 +218,9 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const auto start = std::chrono::steady_clock::now();
     RenderOutput out;
     out.width = camera.width;
-    out.height = camera.height;
-    const size_t pixels = size_t(camera.width) * size_t(camera.height);
+    out.height = camera.rows();  // image rows camera.rowBegin on (pixel (i, j) of the camera is
+                                 // element (i, j - rowBegin) of the output)
+    const size_t pixels = size_t(camera.width) * size_t(out.height);
     out.color.assign(pixels, glm::vec3(0.0f));
     out.depth.assign(pixels, std::numeric_limits<float>::infinity());
     out.prim.assign(pixels, -1.0f);
@@ -237,7 +238,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const int stackSlots = std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
     auto shadeSample = [&](int i, int j, uint32_t sample, uint32_t samples, glm::vec3 d,
                            int maxBounces, bool readAovs, RenderStats& stats) {
-        const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
+        const size_t pixel = size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i);
         glm::vec3 o = camera.eye;
         glm::vec3 color(0.0f);
         glm::vec3 weight(1.0f);
@@ -346,7 +347,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     auto shadePixel = [&](int i, int j, RenderStats& stats) {
         if (samples > 1) shadeSample(i, j, 0, 1, primaryDirection(camera, i, j), -1, true, stats);
         glm::vec3 sum(0.0f);
-        const size_t pixel = size_t(j) * size_t(camera.width) + size_t(i);
+        const size_t pixel = size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i);
         for (uint32_t s = 0; s < samples && path; ++s)
             sum += pathSample(i, j, s, samples, camera.eye, sampleDirection(camera, i, j, s, samples, settings.seed),
                               settings, lights, samples == 1 ? &out : nullptr, pixel, stats);
@@ -357,10 +358,10 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     };
 
     // Rows are handed out one at a time: cost varies strongly across the image.
-    const int threads = std::min(resolveThreads(settings.threads), std::max(1, camera.height));
+    const int threads = std::min(resolveThreads(settings.threads), std::max(1, out.height));
     std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
-    parallelChunks(size_t(camera.height), 1, threads, [&](size_t row, size_t, size_t worker) {
-        for (int i = 0; i < camera.width; ++i) shadePixel(i, int(row), threadStats[worker]);
+    parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
+        for (int i = 0; i < camera.width; ++i) shadePixel(i, camera.rowBegin + int(row), threadStats[worker]);
     });
     for (const RenderStats& s : threadStats) {
         out.stats.primaryRays += s.primaryRays;

@@ -248,6 +248,9 @@ struct GpuPipeline {
     // through the pixel centres until setSample).
     void setCamera(const CameraBasis& c) {
         setSample(0, 1, 0);
+        // The image row of the streams' row 0 (--tile): the kernels that key samples by pixel or
+        // aim the camera add it (scene.glsl imagePixel).
+        for (GPUKernel* k : allKernels()) k->setUniform("tileRow", c.rowBegin);
         for (GPUKernel* k : {&raygen, &traceCamera})
             k->setUniform("eye", c.eye)
                 .setUniform("forward", c.forward)

@@ -127,10 +127,10 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const auto start = std::chrono::steady_clock::now();
     const int maxBounces = std::max(0, settings.maxBounces);
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(maxBounces), paths);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), paths ? 0 : stackSlots(maxBounces), paths);
     RenderOutput out;
     out.width = camera.width;
-    out.height = camera.height;
+    out.height = camera.rows();
 
     const std::vector<PointLight> lights =
         lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
@@ -145,7 +145,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         traceIntegrator(p, lights, settings, samples == 1, out);
         (paths ? p.pathAccumulate : p.accumulate).dispatch();
     }
-    out.stats.samples = uint64_t(camera.width) * uint64_t(camera.height) * samples;
+    out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows()) * samples;
     out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
     for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     flushStats();
@@ -309,7 +309,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.height, paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths,
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths,
                               true);
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
@@ -333,7 +333,7 @@ void GpuTracer::addSample(uint32_t s, uint32_t n) {
 }
 
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
-    GpuPipeline& p = pipeline(camera.width, camera.height);
+    GpuPipeline& p = pipeline(camera.width, camera.rows());
     p.setCamera(camera);
     uint64_t rays = 0;
     if (onePassTrace()) {
