@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <algorithm>
 #include <regex>
@@ -527,6 +528,73 @@ TEST_F(Cli, BenchRefusesBadOptions) {
     expectRefused("bench " + kTeapot + " --rays sideways", "--rays");
     expectRefused("bench " + kTeapot + " --backend optix", "--backend");
     expectRefused("bench " + path("missing.obj"), "missing.obj");
+}
+
+}  // namespace
+
+namespace {
+
+// The outputs of a render: the PNG and every AOV, named after `stem`.
+std::string renderOutputs(const std::function<std::string(const std::string&)>& path, const std::string& stem) {
+    std::string args = " -o " + path(stem + ".png");
+    for (const char* aov : {"depth", "prim", "normal", "steps", "color"})
+        args += std::string(" --aov ") + aov + "=" + path(stem + "_" + aov + ".pfm");
+    return args;
+}
+
+// Tiles (--tile I/N) stitched together are the whole render, byte for byte, for every output, on
+// both backends, with samples, for N that do and do not divide the height (37 rows).
+TEST_F(Cli, StitchedTilesAreTheWholeRenderByteForByte) {
+    auto p = [this](const std::string& name) { return path(name); };
+    const std::string scene = "render scenes/cornell.json --size 30x37 --spp 4";
+    const std::vector<std::string> outputs = {".png", "_depth.pfm", "_prim.pfm", "_normal.pfm", "_steps.pfm", "_color.pfm"};
+    for (const char* backend : {"gl", "cpu"}) {
+        const std::string options = std::string(" --backend ") + backend;
+        ASSERT_EQ(gpurt(scene + options + renderOutputs(p, "whole")).code, 0);
+        for (int n : {1, 3, 4, 7}) {
+            SCOPED_TRACE(std::string(backend) + ", " + std::to_string(n) + " tiles");
+            for (int i = n - 1; i >= 0; --i) {  // in any order
+                const Result r = gpurt(scene + options + " --tile " + std::to_string(i) + "/" + std::to_string(n) +
+                                       renderOutputs(p, "t" + std::to_string(i)));
+                ASSERT_EQ(r.code, 0) << r.err;
+            }
+            for (const std::string& output : outputs) {
+                std::string tiles;
+                for (int i = 0; i < n; ++i) tiles += " " + path("t" + std::to_string(i) + output);
+                const Result r = gpurt("stitch -o " + path("stitched" + output) + tiles);
+                ASSERT_EQ(r.code, 0) << output << ": " << r.err;
+                EXPECT_EQ(slurp(dir / ("stitched" + output)), slurp(dir / ("whole" + output))) << output;
+            }
+        }
+    }
+}
+
+// Stitch refuses, with exit 1 and one line naming the tile, a missing, repeated, foreign or
+// damaged tile, and a file that is not a tile; it writes nothing then.
+TEST_F(Cli, StitchRefusesMissingRepeatedForeignAndDamagedTiles) {
+    const std::string scene = "render scenes/cornell_blocks.json --size 16x12 --spp 2";
+    for (int i = 0; i < 3; ++i)
+        ASSERT_EQ(gpurt(scene + " --tile " + std::to_string(i) + "/3 -o " + path("t" + std::to_string(i) + ".png") +
+                        " --aov depth=" + path("d" + std::to_string(i) + ".pfm")).code, 0);
+    ASSERT_EQ(gpurt(scene + " --seed 7 --tile 1/3 -o " + path("other1.png")).code, 0);
+    ASSERT_EQ(gpurt("render scenes/cornell_blocks.json --size 16x12 -o " + path("plain.png")).code, 0);
+    const std::string out = " -o " + path("out.png");
+    expectRefused("stitch" + out + " " + path("t0.png") + " " + path("t2.png"), "tile 1/3");
+    expectRefused("stitch" + out + " " + path("t0.png") + " " + path("t1.png") + " " + path("t1.png") + " " + path("t2.png"),
+                  "t1.png: tile 1 given twice");
+    expectRefused("stitch" + out + " " + path("t0.png") + " " + path("other1.png") + " " + path("t2.png"), "other1.png");
+    expectRefused("stitch" + out + " " + path("plain.png"), "plain.png");
+    expectRefused("stitch" + out + " " + path("d0.pfm") + " " + path("d1.pfm") + " " + path("d2.pfm"), "d0.pfm");
+    // A value of a tile changed after it was written.
+    std::string bytes = slurp(dir / "d1.pfm");
+    bytes[bytes.size() - 3] ^= 0x40;
+    std::ofstream(dir / "d1.pfm", std::ios::binary) << bytes;
+    expectRefused("stitch -o " + path("out.pfm") + " " + path("d0.pfm") + " " + path("d1.pfm") + " " + path("d2.pfm"),
+                  "d1.pfm: damaged");
+    EXPECT_FALSE(fs::exists(dir / "out.pfm"));
+    // --tile itself: N beyond the height, I beyond N, not I/N.
+    for (const char* bad : {"--tile 0/13", "--tile 3/3", "--tile 1", "--tile a/b", "--tile -1/2"})
+        expectRefused(scene + " -o " + path("out.png") + " " + bad, "--tile");
 }
 
 }  // namespace

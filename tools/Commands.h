@@ -13,5 +13,6 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run);
 void addBenchCommand(CLI::App& app, std::function<int()>& run);
 void addPackCommand(CLI::App& app, std::function<int()>& run);
 void addViewCommand(CLI::App& app, std::function<int()>& run);
+void addStitchCommand(CLI::App& app, std::function<int()>& run);
 
 }  // namespace gpurt

@@ -12,6 +12,7 @@
 #include "raytrace/ImageIO.h"
 #include "raytrace/SceneScale.h"
 #include "raytrace/SmoothNormals.h"
+#include "raytrace/Tiles.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/KernelStats.h"
 
@@ -39,10 +40,52 @@ struct RenderOptions {
     TracerCliOptions tracer;
     GridCliOptions grid;
     int bounces = -1;
+    std::string tile;  // --tile I/N
     PictureCliOptions picture;
     CameraOptions camera;
     ContextOptions context;
 };
+
+// --tile I/N: tile I of N of an image `height` rows high; InputError naming the option otherwise.
+void parseTile(const std::string& text, int height, int& index, int& count) {
+    const size_t slash = text.find('/');
+    if (slash == std::string::npos) throw InputError("--tile: '" + text + "' is not I/N");
+    count = int(parseCount("--tile", text.substr(slash + 1), 1, uint32_t(height)));
+    index = int(parseCount("--tile", text.substr(0, slash), 0, uint32_t(count - 1)));
+}
+
+// A fingerprint of everything that decides a render's pixels: the scene as loaded, the camera and
+// image size, the grid, the samples and the picture options, the backend. Tiles of one image
+// share it (stitch refuses others).
+std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, const UniformGrid& grid,
+                              const RenderSettings& settings, const PictureCliOptions& picture,
+                              const std::string& backend) {
+    uint32_t crc = 0;
+    auto add = [&](const void* data, size_t bytes) { crc = crc32Of(data, bytes, crc); };
+    add(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+    add(scene.materialIds.data(), scene.materialIds.size() * sizeof(uint32_t));
+    add(scene.normals.data(), scene.normals.size() * sizeof(TriangleNormals));
+    for (const Material& m : scene.materials) {
+        const float v[] = {m.diffuse.x, m.diffuse.y, m.diffuse.z, m.specular.x, m.specular.y, m.specular.z,
+                           m.shininess, m.reflectivity.x, m.reflectivity.y, m.reflectivity.z, m.emission.x,
+                           m.emission.y, m.emission.z, m.ior, m.transmission.x, m.transmission.y, m.transmission.z};
+        add(v, sizeof(v));
+    }
+    add(scene.lights.data(), scene.lights.size() * sizeof(PointLight));
+    add(&scene.background, sizeof(scene.background));
+    const float c[] = {camera.eye.x, camera.eye.y, camera.eye.z, camera.forward.x, camera.forward.y, camera.forward.z,
+                       camera.right.x, camera.right.y, camera.right.z, camera.upOrtho.x, camera.upOrtho.y,
+                       camera.upOrtho.z, camera.tanHalf, camera.aspect};
+    add(c, sizeof(c));
+    const int ints[] = {camera.width, camera.height, grid.resolution.x, grid.resolution.y, grid.resolution.z,
+                        settings.maxBounces, int(settings.integrator), int(settings.samples), int(settings.seed)};
+    add(ints, sizeof(ints));
+    const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend;
+    add(text.data(), text.size());
+    char hex[9];
+    std::snprintf(hex, sizeof(hex), "%08x", crc);
+    return hex;
+}
 
 // Where a render's wall time goes (--stats): the phases in order, in milliseconds. trace and shade
 // are the kernel passes (traversal and intersection, the rest), compile the GL programs' builds
@@ -146,7 +189,17 @@ int runRender(const RenderOptions& o) {
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, o.backend != "cpu", picture.integrator == Integrator::Path);
-    const CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
+    CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
+    TileInfo tile;
+    const bool tiled = !o.tile.empty();
+    if (tiled) {
+        parseTile(o.tile, size.y, tile.tile, tile.tiles);
+        tileRows(size.y, tile.tile, tile.tiles, camera.rowBegin, camera.rowCount);
+        tile.width = size.x;
+        tile.height = size.y;
+        tile.row = camera.rowBegin;
+        tile.rows = camera.rowCount;
+    }
     RenderSettings settings;
     settings.width = size.x;
     settings.height = size.y;
@@ -194,18 +247,35 @@ int runRender(const RenderOptions& o) {
                      grid.maxCellSteps());
 
     const auto writeStart = std::chrono::steady_clock::now();
-    AtomicFileSet outputs;  // the PNG and the AOVs appear together or not at all
-    writePng(outputs, o.output, out.width, out.height, toneMapImage(out.color, colour));
+    AtomicFileSet outputs;  // the PNG and the AOVs (and their tile sidecars) appear together or not at all
+    if (tiled) tile.fingerprint = renderFingerprint(scene, camera, grid, settings, o.picture, o.backend);
+    const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
+    writePng(outputs, o.output, out.width, out.height, display);
+    if (tiled) {
+        std::vector<unsigned char> rgb;
+        rgb.reserve(display.size() * 3);
+        for (const glm::vec3& c : display) rgb.insert(rgb.end(), {linearToSrgb8(c.x), linearToSrgb8(c.y), linearToSrgb8(c.z)});
+        tile.output = "png";
+        tile.crc = crc32Of(rgb.data(), rgb.size());
+        addTileSidecar(outputs, o.output, tile);
+    }
     for (const auto& [name, file] : aovs) {
-        if (name == "depth") writePfm(outputs, file, out.width, out.height, 1, out.depth);
-        if (name == "prim") writePfm(outputs, file, out.width, out.height, 1, out.prim);
-        if (name == "steps") writePfm(outputs, file, out.width, out.height, 1, out.steps);
+        std::vector<float> flat;
+        int channels = 1;
+        if (name == "depth") flat = out.depth;
+        if (name == "prim") flat = out.prim;
+        if (name == "steps") flat = out.steps;
         if (name == "normal" || name == "color") {
             const std::vector<glm::vec3>& values = name == "normal" ? out.normal : out.color;
-            std::vector<float> flat;
             flat.reserve(values.size() * 3);
             for (const glm::vec3& n : values) flat.insert(flat.end(), {n.x, n.y, n.z});
-            writePfm(outputs, file, out.width, out.height, 3, flat);
+            channels = 3;
+        }
+        writePfm(outputs, file, out.width, out.height, channels, flat);
+        if (tiled) {
+            tile.output = name;
+            tile.crc = crc32Of(flat.data(), flat.size() * sizeof(float));
+            addTileSidecar(outputs, file, tile);
         }
     }
     outputs.commit();
@@ -227,6 +297,10 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")
                       ->expected(0, 1)
                       ->check(CLI::IsMember({"", "text", "json"}));
+    cmd->add_option("--tile", o->tile,
+                    "Render only tile I of N (rows of the image in N balanced bands) with the whole image's "
+                    "camera and samples; each output gets a FILE.tile sidecar for gpurt stitch")
+        ->check(kNotEmpty);
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")
         ->check(CLI::Range(0, 64));
     o->picture.add(*cmd);

@@ -159,6 +159,25 @@ void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width
     });
 }
 
+std::vector<unsigned char> readPngRgb8(const std::filesystem::path& path, int& width, int& height) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot open file (" + errnoText() + ")");
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
+        throw InputError(path.string() + ": not a readable PNG (" + image.message + ")");
+    image.format = PNG_FORMAT_RGB;
+    std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(image));
+    if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) {
+        png_image_free(&image);
+        throw InputError(path.string() + ": not a readable PNG (" + image.message + ")");
+    }
+    width = int(image.width);
+    height = int(image.height);
+    return pixels;
+}
+
 std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,
                            int& channels) {
     const std::string name = path.string();

@@ -33,6 +33,10 @@ void writePfm(AtomicFileSet& files, const std::filesystem::path& path, int width
 void writePngRgb8(const std::filesystem::path& path, int width, int height,
                   const std::vector<unsigned char>& rgbTopFirst);
 
+// Reads an 8-bit PNG back as RGB, top row first (libpng). Throws InputError naming the file when
+// it is not a readable PNG.
+std::vector<unsigned char> readPngRgb8(const std::filesystem::path& path, int& width, int& height);
+
 // Reads a PFM (either byte order) back into top-first rows. Throws InputError on a malformed file.
 std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& height,
                            int& channels);

@@ -1,0 +1,139 @@
+#include "raytrace/Tiles.h"
+
+#include "raytrace/AtomicFile.h"
+#include "raytrace/ImageIO.h"
+#include "raytrace/InputError.h"
+
+#include <nlohmann/json.hpp>
+#include <zlib.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace gpurt {
+
+std::filesystem::path tileSidecar(const std::filesystem::path& file) { return file.string() + ".tile"; }
+
+uint32_t crc32Of(const void* data, size_t bytes, uint32_t crc) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    while (bytes > 0) {  // zlib takes lengths as uInt
+        const uInt n = uInt(std::min<size_t>(bytes, 1u << 30));
+        crc = uint32_t(crc32(crc, p, n));
+        p += n;
+        bytes -= n;
+    }
+    return crc;
+}
+
+void addTileSidecar(AtomicFileSet& files, const std::filesystem::path& file, const TileInfo& t) {
+    nlohmann::json j;
+    j["gpurt_tile"] = 1;
+    j["output"] = t.output;
+    j["tile"] = t.tile;
+    j["tiles"] = t.tiles;
+    j["width"] = t.width;
+    j["height"] = t.height;
+    j["row"] = t.row;
+    j["rows"] = t.rows;
+    j["fingerprint"] = t.fingerprint;
+    j["crc32"] = t.crc;
+    const std::string text = j.dump(1) + "\n";
+    files.add(tileSidecar(file), [&](std::FILE* f) {
+        if (std::fwrite(text.data(), 1, text.size(), f) != text.size())
+            throw InputError(tileSidecar(file).string() + ": cannot write");
+    });
+}
+
+namespace {
+
+TileInfo readSidecar(const std::filesystem::path& tile) {
+    const std::filesystem::path side = tileSidecar(tile);
+    std::ifstream in(side, std::ios::binary);
+    if (!in) throw InputError(tile.string() + ": not a tile (no " + side.filename().string() + " beside it)");
+    std::stringstream text;
+    text << in.rdbuf();
+    TileInfo t;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(text.str());
+        if (j.at("gpurt_tile").get<int>() != 1) throw std::runtime_error("unknown version");
+        t.output = j.at("output").get<std::string>();
+        t.tile = j.at("tile").get<int>();
+        t.tiles = j.at("tiles").get<int>();
+        t.width = j.at("width").get<int>();
+        t.height = j.at("height").get<int>();
+        t.row = j.at("row").get<int>();
+        t.rows = j.at("rows").get<int>();
+        t.fingerprint = j.at("fingerprint").get<std::string>();
+        t.crc = j.at("crc32").get<uint32_t>();
+    } catch (const std::exception& e) {
+        throw InputError(side.string() + ": not a tile description (" + e.what() + ")");
+    }
+    if (t.tiles < 1 || t.tile < 0 || t.tile >= t.tiles || t.width < 1 || t.height < t.tiles || t.row < 0 ||
+        t.rows < 1 || t.row + t.rows > t.height)
+        throw InputError(side.string() + ": tile " + std::to_string(t.tile) + "/" + std::to_string(t.tiles) +
+                         " does not fit its image");
+    return t;
+}
+
+}  // namespace
+
+void stitchTiles(const std::filesystem::path& output, const std::vector<std::filesystem::path>& tiles) {
+    if (tiles.empty()) throw InputError("stitch: no tiles given");
+    const bool png = output.extension() == ".png";
+    if (!png && output.extension() != ".pfm") throw InputError(output.string() + ": stitch writes .png or .pfm");
+    checkOutputPath(output);
+    TileInfo first;
+    std::map<int, std::filesystem::path> byIndex;
+    std::vector<unsigned char> rgb;
+    std::vector<float> values;
+    int channels = 0;
+    for (size_t k = 0; k < tiles.size(); ++k) {
+        const std::filesystem::path& tile = tiles[k];
+        const TileInfo t = readSidecar(tile);
+        if (k == 0) first = t;
+        if (t.fingerprint != first.fingerprint || t.width != first.width || t.height != first.height ||
+            t.tiles != first.tiles || t.output != first.output)
+            throw InputError(tile.string() + ": a tile of another image or output than " + tiles[0].string());
+        if ((t.output == "png") != png)
+            throw InputError(tile.string() + ": a " + (png ? "PFM" : "PNG") + " tile for " + output.string());
+        if (!byIndex.emplace(t.tile, tile).second)
+            throw InputError(tile.string() + ": tile " + std::to_string(t.tile) + " given twice (also " +
+                             byIndex[t.tile].string() + ")");
+        if (png) {
+            int w = 0, h = 0;
+            const std::vector<unsigned char> pixels = readPngRgb8(tile, w, h);
+            if (w != t.width || h != t.rows || crc32Of(pixels.data(), pixels.size()) != t.crc)
+                throw InputError(tile.string() + ": damaged (its pixels do not match its " +
+                                 tileSidecar(tile).filename().string() + ")");
+            rgb.resize(size_t(t.width) * size_t(t.height) * 3);
+            std::copy(pixels.begin(), pixels.end(), rgb.begin() + std::ptrdiff_t(size_t(t.row) * size_t(t.width) * 3));
+        } else {
+            int w = 0, h = 0, c = 0;
+            const std::vector<float> v = readPfm(tile, w, h, c);
+            if (w != t.width || h != t.rows || (channels != 0 && c != channels) ||
+                crc32Of(v.data(), v.size() * sizeof(float)) != t.crc)
+                throw InputError(tile.string() + ": damaged (its values do not match its " +
+                                 tileSidecar(tile).filename().string() + ")");
+            channels = c;
+            values.resize(size_t(t.width) * size_t(t.height) * size_t(c));
+            std::copy(v.begin(), v.end(), values.begin() + std::ptrdiff_t(size_t(t.row) * size_t(t.width) * size_t(c)));
+        }
+    }
+    for (int i = 0; i < first.tiles; ++i)
+        if (!byIndex.count(i))
+            throw InputError("stitch: tile " + std::to_string(i) + "/" + std::to_string(first.tiles) + " of " +
+                             tiles[0].string() + "'s image is missing");
+    // The tiles' rows must be the balanced bands of --tile: together exactly the image, each once.
+    int next = 0;
+    for (const auto& [index, tile] : byIndex) {
+        const TileInfo t = readSidecar(tile);
+        if (t.row != next) throw InputError(tile.string() + ": its rows do not follow the tile before it");
+        next = t.row + t.rows;
+    }
+    if (next != first.height) throw InputError(byIndex.rbegin()->second.string() + ": the tiles do not cover the image");
+    if (png) writePngRgb8(output, first.width, first.height, rgb);
+    else writePfm(output, first.width, first.height, channels, values);
+}
+
+}  // namespace gpurt
