@@ -6,7 +6,7 @@
 #                         build-sanitize/ (tests/sanitize/: options and leak suppressions)
 #   ./test.sh --fuzz      only the fuzz targets
 #   ./test.sh -R PATTERN  only the tests whose names match (other arguments go to ctest); no fuzzing
-# GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10; three targets).
+# GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10; four targets).
 set -euo pipefail
 cd "$(dirname "$0")"
 ./tools/install-deps.sh
