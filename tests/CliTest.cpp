@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -567,6 +568,23 @@ TEST_F(Cli, StitchedTilesAreTheWholeRenderByteForByte) {
             }
         }
     }
+}
+
+// The GNU parallel driver (tools/farm/gpurt-parallel.sh) renders a 4-tile image with real GNU
+// parallel on this machine's cores; stitched, it is the whole render. A run whose tiles fail exits
+// non-zero and writes no image.
+TEST_F(Cli, GnuParallelDriverRendersTheWholeImage) {
+    const std::string driver = "tools/farm/gpurt-parallel.sh --gpurt " + std::string(GPURT_BINARY);
+    const std::string scene = " scenes/cornell_blocks.json --size 32x26 --spp 2";
+    const std::string command = driver + " --tiles 4 --jobs 2 -o " + path("farm.png") + scene + " 2>" + path("farm.err");
+    const int code = std::system(command.c_str());
+    ASSERT_EQ(code, 0) << command << "\n" << slurp(dir / "farm.err");
+    ASSERT_EQ(gpurt("render" + scene + " -o " + path("whole.png")).code, 0);
+    EXPECT_EQ(slurp(dir / "farm.png"), slurp(dir / "whole.png"));
+    const std::string failing = driver + " --tiles 3 -o " + path("bad.png") + scene + " --spp 0 2>" + path("bad.err");
+    EXPECT_NE(std::system(failing.c_str()), 0);
+    EXPECT_FALSE(fs::exists(dir / "bad.png"));
+    EXPECT_NE(slurp(dir / "bad.err").find("--resume"), std::string::npos) << slurp(dir / "bad.err");
 }
 
 // Stitch refuses, with exit 1 and one line naming the tile, a missing, repeated, foreign or
