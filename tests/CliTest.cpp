@@ -585,6 +585,16 @@ TEST_F(Cli, GnuParallelDriverRendersTheWholeImage) {
     EXPECT_NE(std::system(failing.c_str()), 0);
     EXPECT_FALSE(fs::exists(dir / "bad.png"));
     EXPECT_NE(slurp(dir / "bad.err").find("--resume"), std::string::npos) << slurp(dir / "bad.err");
+    // One tile fails (its file's name is taken by a folder); --resume then re-runs that tile alone.
+    fs::create_directories(dir / "again.png.tiles" / "tile2.png");
+    const std::string again = driver + " --tiles 4 -o " + path("again.png");  // the driver's options before the scene
+    EXPECT_NE(std::system((again + scene + " 2>" + path("again.err")).c_str()), 0);
+    EXPECT_FALSE(fs::exists(dir / "again.png"));
+    fs::remove(dir / "again.png.tiles" / "tile2.png");
+    const auto firstTile = fs::last_write_time(dir / "again.png.tiles" / "tile0.png");
+    ASSERT_EQ(std::system((again + " --resume" + scene + " 2>" + path("again.err")).c_str()), 0) << slurp(dir / "again.err");
+    EXPECT_EQ(slurp(dir / "again.png"), slurp(dir / "whole.png"));
+    EXPECT_EQ(fs::last_write_time(dir / "again.png.tiles" / "tile0.png"), firstTile);  // not rendered again
 }
 
 // Stitch refuses, with exit 1 and one line naming the tile, a missing, repeated, foreign or
