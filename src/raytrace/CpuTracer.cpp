@@ -122,6 +122,29 @@ bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderSt
     return blocker.prim < 0;
 }
 
+bool CpuTracer::lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, RenderStats& stats) const {
+    if (!lightInFront(p, n, lightPos)) return false;
+    glm::vec3 origin, dir;
+    float limit;
+    shadowRay(p, n, rayOffset_, lightPos, origin, dir, limit);
+    return unblocked(origin, dir, limit, stats);
+}
+
+bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
+                               glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const {
+    if (emitters_.empty()) return false;
+    const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), seed, GPURT_DIM_EMITTER + uint32_t(depth)));
+    const size_t k = emitters_.pick(u.x);
+    id = emitters_.triangles[k];
+    const PreparedTriangle& e = triangles_[id];
+    q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
+    if (!lightInFront(p, n, q)) return false;
+    glm::vec3 origin, dir;
+    float limit;
+    emitterShadowRay(p, n, rayOffset_, q, origin, dir, limit);
+    return unblocked(origin, dir, limit, stats);
+}
+
 // Round b of GpuTracer::tracePath is iteration b here, in the same order of operations: the hit's
 // emission (weighed against next-event estimation), then below the last depth the point lights
 // and one emitter point, each with a shadow ray, then the next direction and Russian roulette.
@@ -164,32 +187,18 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
                                : vec3(0.0f);
         if (probs.x + probs.y > 0.0f) {  // next-event estimation (shadowgen.frag, light.frag PATH)
             glm::vec3 local(0.0f);
-            for (const PointLight& light : lights) {
-                if (!lightInFront(p, n, light.position)) continue;
-                glm::vec3 so, sd;
-                float limit;
-                shadowRay(p, n, rayOffset_, light.position, so, sd, limit);
-                if (unblocked(so, sd, limit, stats))
+            for (const PointLight& light : lights)
+                if (lightVisible(p, n, light.position, stats))
                     local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, light.position,
                                                    light.color, light.intensity);
-            }
-            if (!emitters_.empty()) {
-                const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed,
-                                                                        GPURT_DIM_EMITTER + uint32_t(b)));
-                const size_t k = emitters_.pick(u.x);
-                const uint32_t id = emitters_.triangles[k];
+            vec3 q;
+            uint32_t id;
+            if (emitterVisible(i, j, sample, samples, settings.seed, b, p, n, stats, q, id)) {
                 const PreparedTriangle& e = triangles_[id];
-                const vec3 q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
-                if (lightInFront(p, n, q)) {
-                    glm::vec3 so, sd;
-                    float limit;
-                    emitterShadowRay(p, n, rayOffset_, q, so, sd, limit);
-                    if (unblocked(so, sd, limit, stats))
-                        local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, q,
-                                                       scene_.materials[scene_.materialIds[id]].emission,
-                                                       emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea)) *
-                                 emitterSampleWeight(p, q, e.e1, e.e2, emitters_.totalArea, probs, m.shininess, ns, d);
-                }
+                local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, q,
+                                               scene_.materials[scene_.materialIds[id]].emission,
+                                               emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea)) *
+                         emitterSampleWeight(p, q, e.e1, e.e2, emitters_.totalArea, probs, m.shininess, ns, d);
             }
             color += weight * local;
         }
@@ -279,33 +288,17 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             if (maxBounces < 0) break;
 
             glm::vec3 local = ambientColor(material.diffuse);
-            for (const PointLight& light : lights) {
-                if (!lightInFront(p, n, light.position)) continue;
-                glm::vec3 shadowOrigin, shadowDir;
-                float shadowLimit;
-                shadowRay(p, n, rayOffset_, light.position, shadowOrigin, shadowDir, shadowLimit);
-                if (!unblocked(shadowOrigin, shadowDir, shadowLimit, stats)) continue;
-                local += lightContribution(p, ns, d, material.diffuse, material.specular,
-                                           material.shininess, light.position, light.color,
-                                           light.intensity);
-            }
-            if (!emitters_.empty()) {
-                // The sample's point of the emitters (shadowgen.frag EMITTER, light.frag EMITTER).
-                const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), settings.seed,
-                                                                        GPURT_DIM_EMITTER + uint32_t(bounce)));
-                const size_t k = emitters_.pick(u.x);
-                const uint32_t id = emitters_.triangles[k];
+            for (const PointLight& light : lights)
+                if (lightVisible(p, n, light.position, stats))
+                    local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess,
+                                               light.position, light.color, light.intensity);
+            vec3 q;  // the sample's point of the emitters (shadowgen.frag EMITTER, light.frag EMITTER)
+            uint32_t id;
+            if (emitterVisible(i, j, sample, samples, settings.seed, bounce, p, n, stats, q, id)) {
                 const PreparedTriangle& e = triangles_[id];
-                const vec3 q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
-                if (lightInFront(p, n, q)) {
-                    glm::vec3 shadowOrigin, shadowDir;
-                    float shadowLimit;
-                    emitterShadowRay(p, n, rayOffset_, q, shadowOrigin, shadowDir, shadowLimit);
-                    if (unblocked(shadowOrigin, shadowDir, shadowLimit, stats))
-                        local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
-                                                   scene_.materials[scene_.materialIds[id]].emission,
-                                                   emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
-                }
+                local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
+                                           scene_.materials[scene_.materialIds[id]].emission,
+                                           emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
             }
             color += weight * local;
 

@@ -53,6 +53,14 @@ class CpuTracer {
                          RenderOutput* aovs, size_t pixel, RenderStats& stats) const;
     // Traces one shadow ray (counted in stats); true when nothing blocks it.
     bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
+    // Whether the point light at lightPos lights the hit p (facing normal n): in front of it and
+    // its shadow ray unblocked (shadowgen.frag, the trace, light.frag).
+    bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, RenderStats& stats) const;
+    // The emitter point q (on triangle id) that sample `sample` of `samples` of pixel (i, j) takes
+    // at hit depth `depth` (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in
+    // front and unblocked (shadowgen.frag EMITTER). False without emitters.
+    bool emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
+                        glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const;
 
     template <bool AnyHit>
     TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;

@@ -41,8 +41,9 @@ bool GpuTracer::onePassTrace() const {
     return options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0;
 }
 
-int GpuTracer::stackSlots(int maxBounces) const {
-    return hasDielectric_ ? std::min(maxBounces, GPURT_STACK_SLOTS) : 0;
+int GpuTracer::stackSlots(const RenderSettings& settings) const {
+    if (!hasDielectric_ || settings.integrator == Integrator::Path) return 0;
+    return std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
 }
 
 int GpuTracer::cellLimit() const {
@@ -125,15 +126,13 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 // sample's when spp = 1, else a primary trace and surface pass of their own before the samples.
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
-    const int maxBounces = std::max(0, settings.maxBounces);
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), paths ? 0 : stackSlots(maxBounces), paths);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.rows();
 
-    const std::vector<PointLight> lights =
-        lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, paths);
     const uint32_t samples = std::max(1u, settings.samples);
     p.surface.setUniform("background", scene_.background);
     p.pathSurface.setUniform("background", scene_.background);
@@ -154,9 +153,6 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     return out;
 }
 
-// One sample of every pixel through the chain into p.color, from the rays of raygen's current
-// sample, with up to maxBounces mirror bounces (< 0: only the primary trace and surface pass, for
-// the AOVs). With readAovs, reads the primary AOVs into `out`; the rays traced count in out.stats.
 void GpuTracer::readHitAovs(GpuPipeline& p, RenderOutput& out) {
     const size_t pixels = size_t(p.width) * size_t(p.height);
     const auto hits = p.hit.download();
@@ -268,6 +264,9 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
     p.setPathRows(std::nullopt);
 }
 
+// One sample of every pixel through the chain into p.color, from the rays of raygen's current
+// sample, with up to maxBounces mirror bounces (< 0: only the primary trace and surface pass, for
+// the AOVs). With readAovs, reads the primary AOVs into `out`; the rays traced count in out.stats.
 void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                             bool readAovs, RenderOutput& out) {
     RenderStats& stats = out.stats;
@@ -309,10 +308,9 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), paths ? 0 : stackSlots(std::max(0, settings.maxBounces)), paths,
-                              true);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true);
     progressive_.settings = settings;
-    progressive_.lights = lightsOrHeadlight(scene_, camera.eye, settings.integrator == Integrator::Path);
+    progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
     p.surface.setUniform("background", scene_.background);
     p.pathSurface.setUniform("background", scene_.background);
     p.setCamera(camera);

@@ -100,8 +100,9 @@ class GpuTracer {
     void readHitAovs(GpuPipeline& p, RenderOutput& out);
     void readNormalAov(GpuPipeline& p, RenderOutput& out);
     int cellLimit() const;  // options_.maxCellSteps or the grid's
-    // Rays a pixel's stack holds for the ray tree (0 without glass: nothing splits).
-    int stackSlots(int maxBounces) const;
+    // Rays a pixel's stack holds for Whitted's ray tree (0 without glass, where nothing splits,
+    // and for the path integrator, which takes one direction a hit).
+    int stackSlots(const RenderSettings& settings) const;
     // The fused kernel from the start with the whole traversal in one pass (the default).
     bool onePassTrace() const;
 

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace gpurt {
 
@@ -84,7 +85,7 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
     if (!png && output.extension() != ".pfm") throw InputError(output.string() + ": stitch writes .png or .pfm");
     checkOutputPath(output);
     TileInfo first;
-    std::map<int, std::filesystem::path> byIndex;
+    std::map<int, std::pair<std::filesystem::path, TileInfo>> byIndex;
     std::vector<unsigned char> rgb;
     std::vector<float> values;
     int channels = 0;
@@ -97,9 +98,9 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
             throw InputError(tile.string() + ": a tile of another image or output than " + tiles[0].string());
         if ((t.output == "png") != png)
             throw InputError(tile.string() + ": a " + (png ? "PFM" : "PNG") + " tile for " + output.string());
-        if (!byIndex.emplace(t.tile, tile).second)
+        if (!byIndex.emplace(t.tile, std::make_pair(tile, t)).second)
             throw InputError(tile.string() + ": tile " + std::to_string(t.tile) + " given twice (also " +
-                             byIndex[t.tile].string() + ")");
+                             byIndex[t.tile].first.string() + ")");
         if (png) {
             int w = 0, h = 0;
             const std::vector<unsigned char> pixels = readPngRgb8(tile, w, h);
@@ -126,12 +127,13 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
                              tiles[0].string() + "'s image is missing");
     // The tiles' rows must be the balanced bands of --tile: together exactly the image, each once.
     int next = 0;
-    for (const auto& [index, tile] : byIndex) {
-        const TileInfo t = readSidecar(tile);
+    for (const auto& [index, entry] : byIndex) {
+        const auto& [tile, t] = entry;
         if (t.row != next) throw InputError(tile.string() + ": its rows do not follow the tile before it");
         next = t.row + t.rows;
     }
-    if (next != first.height) throw InputError(byIndex.rbegin()->second.string() + ": the tiles do not cover the image");
+    if (next != first.height)
+        throw InputError(byIndex.rbegin()->second.first.string() + ": the tiles do not cover the image");
     if (png) writePngRgb8(output, first.width, first.height, rgb);
     else writePfm(output, first.width, first.height, channels, values);
 }
