@@ -35,6 +35,21 @@ inline std::string shellQuote(const std::string& text) {
     return out + "'";
 }
 
+// Programs that are not gpurt (bash, GNU parallel, Slurm's daemons) must not inherit the sanitizer
+// build's preloads: LeakSanitizer would report their own leaks and fail them. `foreign(command)`
+// runs a shell command without them; `gpurtKeepingPreloads(folder)` writes a script into folder
+// that starts gpurt with them again, for such programs to run.
+inline std::string foreign(const std::string& command) { return "env -u LD_PRELOAD " + command; }
+inline std::string gpurtKeepingPreloads(const fs::path& folder) {
+    const fs::path script = folder / "gpurt-preloaded";
+    const char* preload = std::getenv("LD_PRELOAD");
+    std::ofstream(script) << "#!/bin/sh\n"
+                          << (preload ? "export LD_PRELOAD=" + shellQuote(preload) + "\n" : std::string())
+                          << "exec " << shellQuote(GPURT_BINARY) << " \"$@\"\n";
+    fs::permissions(script, fs::perms::owner_all, fs::perm_options::add);
+    return script.string();
+}
+
 // A fresh folder for each test (named after it), removed afterwards; runs gpurt with its output
 // captured in files outside that folder, so that the folder holds only what gpurt wrote.
 class GpurtTest : public ::testing::Test {

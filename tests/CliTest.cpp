@@ -17,7 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "CliRunner.h"
+
 namespace {
+
+using gpurt::test::foreign;
+using gpurt::test::gpurtKeepingPreloads;
 
 namespace fs = std::filesystem;
 
@@ -574,7 +579,7 @@ TEST_F(Cli, StitchedTilesAreTheWholeRenderByteForByte) {
 // parallel on this machine's cores; stitched, it is the whole render. A run whose tiles fail exits
 // non-zero and writes no image.
 TEST_F(Cli, GnuParallelDriverRendersTheWholeImage) {
-    const std::string driver = "tools/farm/gpurt-parallel.sh --gpurt " + std::string(GPURT_BINARY);
+    const std::string driver = foreign("tools/farm/gpurt-parallel.sh --gpurt " + gpurtKeepingPreloads(dir));
     const std::string scene = " scenes/cornell_blocks.json --size 32x26 --spp 2";
     const std::string command = driver + " --tiles 4 --jobs 2 -o " + path("farm.png") + scene + " 2>" + path("farm.err");
     const int code = std::system(command.c_str());
