@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -600,6 +601,202 @@ TEST_F(Cli, GnuParallelDriverRendersTheWholeImage) {
     ASSERT_EQ(std::system((again + " --resume" + scene + " 2>" + path("again.err")).c_str()), 0) << slurp(dir / "again.err");
     EXPECT_EQ(slurp(dir / "again.png"), slurp(dir / "whole.png"));
     EXPECT_EQ(fs::last_write_time(dir / "again.png.tiles" / "tile0.png"), firstTile);  // not rendered again
+}
+
+// A one-node Slurm on this machine (tests/farm/slurm-localhost.sh: its own munge, slurm.conf,
+// state and ports in a scratch folder), started for the test and stopped by its daemons' process
+// ids afterwards, whatever the test's outcome.
+class SlurmCluster {
+  public:
+    explicit SlurmCluster(const fs::path& folder) : folder_(folder) {
+        const fs::path log = folder_.string() + ".log";
+        const int status = std::system(foreign("tests/farm/slurm-localhost.sh start " + folder_.string() + " >" +
+                                               log.string() + " 2>&1").c_str());
+        started_ = status == 0;
+        std::ifstream in(log);
+        log_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        fs::remove(log);
+    }
+    ~SlurmCluster() {
+        std::system(foreign("tests/farm/slurm-localhost.sh stop " + folder_.string() + " >/dev/null 2>&1").c_str());
+        fs::remove_all(folder_);
+    }
+    bool started() const { return started_; }
+    const std::string& log() const { return log_; }
+    // A command run as a client of this cluster (SLURM_CONF), without the sanitizer's preloads.
+    std::string client(const std::string& command) const {
+        return foreign("SLURM_CONF=" + (folder_ / "slurm.conf").string() + " " + command);
+    }
+
+  private:
+    fs::path folder_;
+    bool started_ = false;
+    std::string log_;
+};
+
+// The Slurm driver (tools/farm/gpurt-slurm.sh) against a real one-node Slurm: a 4-tile image (a job
+// array and a stitch job after it) and a 3-frame animation of the packed scene equal the whole
+// renders; a failed tile fails --wait, naming it, and --resume re-runs that tile alone.
+TEST_F(Cli, SlurmDriverRendersTilesAndFramesOnARealCluster) {
+    // Short and without spaces: slurm.conf cannot quote paths, munge's socket path is limited.
+    const SlurmCluster cluster(fs::temp_directory_path() / ("gpurt-slurm-" + std::to_string(::getpid())));
+    ASSERT_TRUE(cluster.started()) << "the one-node Slurm did not start:\n" << cluster.log();
+    const std::string driver = cluster.client("tools/farm/gpurt-slurm.sh --wait --gpurt " + gpurtKeepingPreloads(dir));
+    const std::string scene = " scenes/cornell_blocks.json --size 32x26 --spp 2";
+    auto run = [&](const std::string& command) {
+        const int status = std::system((command + " >" + path("slurm.out") + " 2>" + path("slurm.err")).c_str());
+        return std::pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "slurm.out") + slurp(dir / "slurm.err"));
+    };
+    ASSERT_EQ(gpurt("render" + scene + " -o " + path("whole.png")).code, 0);
+    {
+        const auto [code, log] = run(driver + " --tiles 4 -o " + path("farm.png") + scene);
+        ASSERT_EQ(code, 0) << log;
+        EXPECT_EQ(slurp(dir / "farm.png"), slurp(dir / "whole.png"));
+    }
+    {  // Tile 2 fails (its file's name is taken by a folder); --resume runs it alone, then the stitch.
+        fs::create_directories(dir / "again.png.tiles" / "tile2.png");
+        const auto [code, log] = run(driver + " --tiles 4 -o " + path("again.png") + scene);
+        EXPECT_NE(code, 0) << log;
+        EXPECT_NE(log.find("tile 2 failed"), std::string::npos) << log;
+        EXPECT_FALSE(fs::exists(dir / "again.png"));
+        fs::remove(dir / "again.png.tiles" / "tile2.png");
+        const auto firstTile = fs::last_write_time(dir / "again.png.tiles" / "tile0.png");
+        const auto [again, resumed] = run(driver + " --resume --tiles 4 -o " + path("again.png") + scene);
+        ASSERT_EQ(again, 0) << resumed;
+        EXPECT_NE(resumed.find("tiles 2: job"), std::string::npos) << resumed;
+        EXPECT_EQ(slurp(dir / "again.png"), slurp(dir / "whole.png"));
+        EXPECT_EQ(fs::last_write_time(dir / "again.png.tiles" / "tile0.png"), firstTile);
+    }
+    {  // Frames of the packed scene, one task each.
+        ASSERT_EQ(gpurt("pack scenes/cornell_flythrough.json -o " + path("fly.gpscene")).code, 0);
+        const std::string frames = " --size 24x24 --spp 2";
+        ASSERT_EQ(gpurt("render scenes/cornell_flythrough.json --frames 0:2 -o " + path("whole%d.png") + frames).code, 0);
+        const auto [code, log] = run(driver + " --frames 0:2 -o " + path("fly%04d.png") + " " + path("fly.gpscene") + frames);
+        ASSERT_EQ(code, 0) << log;
+        for (int f = 0; f <= 2; ++f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "fly%04d.png", f);
+            EXPECT_EQ(slurp(dir / name), slurp(dir / ("whole" + std::to_string(f) + ".png"))) << name;
+        }
+    }
+}
+
+// --frames A:B renders frames A..B of a JSON scene's camera animation: frame f's image is the
+// render with the camera interpolated linearly at time f / fps (computed here, in double, from the
+// keys) given on the command line; the packed scene carries the animation. One JSON object of
+// statistics per frame.
+TEST_F(Cli, FramesAreTheAnimationsCamerasRenderedOneByOne) {
+    const std::string mesh = fs::absolute("scenes/cornell_blocks.obj").string();
+    struct Key {
+        double time, eye[3], target[3], up[3], fovy;
+    };
+    const Key keys[] = {{0.0, {278, 273, -800}, {278, 273, 0}, {0, 1, 0}, 39},
+                        {1.0, {350, 300, -300}, {250, 200, 100}, {0.2, 1, 0}, 55},
+                        {1.5, {400, 330, -100}, {250, 160, 280}, {0, 1, 0}, 70}};
+    const double fps = 4;
+    std::string json = "{\"meshes\": [{\"file\": \"" + mesh + "\"}], \"background\": [0, 0, 0], "
+                       "\"animation\": {\"fps\": 4, \"camera\": [";
+    auto vec = [](const double* v) {
+        return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + "]";
+    };
+    for (const Key& k : keys)
+        json += std::string(&k == keys ? "" : ", ") + "{\"time\": " + std::to_string(k.time) + ", \"eye\": " +
+                vec(k.eye) + ", \"target\": " + vec(k.target) + ", \"up\": " + vec(k.up) +
+                ", \"fovy\": " + std::to_string(k.fovy) + "}";
+    write("anim.json", json + "]}}");
+    const std::string scene = "render " + path("anim.json") + " --size 24x20 --spp 2";
+    const Result r = gpurt(scene + " --frames 1:7 -o " + path("f%04d.png") + " --aov depth=" + path("d%d.pfm") +
+                           " --stats=json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    for (int frame = 1; frame <= 7; ++frame) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        ASSERT_TRUE(std::getline(lines, line));
+        EXPECT_EQ(nlohmann::json::parse(line)["frame"], frame);
+        const double t = frame / fps;
+        size_t k = 0;
+        while (k + 2 < std::size(keys) && keys[k + 1].time < t) ++k;
+        const Key &a = keys[k], &b = keys[k + 1];
+        const double s = std::clamp((t - a.time) / (b.time - a.time), 0.0, 1.0);
+        auto at = [&](const double* p, const double* q) {
+            char text[128];
+            std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", double(float(p[0] + (q[0] - p[0]) * s)),
+                          double(float(p[1] + (q[1] - p[1]) * s)), double(float(p[2] + (q[2] - p[2]) * s)));
+            return std::string(text);
+        };
+        char fovy[32];
+        std::snprintf(fovy, sizeof fovy, "%.9g", double(float(a.fovy + (b.fovy - a.fovy) * s)));
+        const Result one = gpurt(scene + " --eye " + at(a.eye, b.eye) + " --target " + at(a.target, b.target) +
+                                 " --up " + at(a.up, b.up) + " --fovy " + fovy + " -o " + path("one.png") +
+                                 " --aov depth=" + path("one.pfm"));
+        ASSERT_EQ(one.code, 0) << one.err;
+        char name[32];
+        std::snprintf(name, sizeof name, "f%04d.png", frame);
+        EXPECT_EQ(slurp(dir / name), slurp(dir / "one.png"));
+        EXPECT_EQ(slurp(dir / ("d" + std::to_string(frame) + ".pfm")), slurp(dir / "one.pfm"));
+    }
+    EXPECT_FALSE(std::getline(lines, line)) << line;
+    EXPECT_FALSE(fs::exists(dir / "f0000.png"));
+    EXPECT_FALSE(fs::exists(dir / "f0008.png"));
+    // What workers get: the packed scene, with its animation.
+    ASSERT_EQ(gpurt("pack " + path("anim.json") + " -o " + path("anim.gpscene")).code, 0);
+    ASSERT_EQ(gpurt("render " + path("anim.gpscene") + " --size 24x20 --spp 2 --frames 3:3 -o " + path("p%02d.png")).code, 0);
+    EXPECT_EQ(slurp(dir / "p03.png"), slurp(dir / "f0003.png"));
+    // And a frame of a tile: rows of that frame.
+    ASSERT_EQ(gpurt(scene + " --frames 5:5 --tile 1/2 -o " + path("t1_%d.png")).code, 0);
+    ASSERT_EQ(gpurt(scene + " --frames 5:5 --tile 0/2 -o " + path("t0_%d.png")).code, 0);
+    ASSERT_EQ(gpurt("stitch -o " + path("s5.png") + " " + path("t0_5.png") + " " + path("t1_5.png")).code, 0);
+    EXPECT_EQ(slurp(dir / "s5.png"), slurp(dir / "f0005.png"));
+}
+
+TEST_F(Cli, FramesRefuseScenesWithoutAnimationAndNamesWithoutTheNumber) {
+    const std::string mesh = fs::absolute("scenes/cornell_blocks.obj").string();
+    // The up vector turns over between the keys: at frame 1 (t = 0.5) it is zero.
+    write("flip.json", "{\"meshes\": [{\"file\": \"" + mesh + "\"}], \"animation\": {\"fps\": 2, \"camera\": ["
+                       "{\"time\": 0, \"eye\": [278, 273, -800], \"target\": [278, 273, 0], \"up\": [0, 1, 0]},"
+                       "{\"time\": 1, \"eye\": [278, 273, -800], \"target\": [278, 273, 0], \"up\": [0, -1, 0]}]}}");
+    const std::string out = " --size 8x8 -o " + path("f%04d.png");
+    expectRefused("render " + path("flip.json") + " --frames 0:2" + out, "flip.json: frame 1:");
+    EXPECT_FALSE(fs::exists(dir / "f0000.png"));  // nothing written, not even the good frames
+    expectRefused("render scenes/cornell_blocks.json --frames 0:2" + out, "has no camera animation");
+    expectRefused("render " + path("flip.json") + " --frames 0:0 --size 8x8 -o " + path("out.png"), "-o: '");
+    expectRefused("render " + path("flip.json") + " --frames 0:0" + out + " --aov depth=" + path("d.pfm"), "--aov depth");
+    expectRefused("render " + path("flip.json") + " --frames 2:0" + out, "--frames");
+    expectRefused("render " + path("flip.json") + " --frames 0-2" + out, "--frames");
+    // With --up given, every frame has a camera.
+    EXPECT_EQ(gpurt("render " + path("flip.json") + " --frames 0:2 --up 1,0,0" + out).code, 0);
+    EXPECT_TRUE(fs::exists(dir / "f0002.png"));
+}
+
+// A task killed at any moment (SIGKILL, as a scheduler kills a task past its time) leaves its
+// outputs whole or absent: each file appears by a rename of a finished temporary file, in the order
+// PNG, its sidecar, the AOV, its sidecar, so what a kill leaves is a prefix of that list (almost
+// always all or nothing), and a tile with its sidecar is one stitch accepts. The drivers count a
+// tile done only with its sidecar.
+TEST_F(Cli, AKilledTaskLeavesNoHalfWrittenOutput) {
+    const std::string render = "render scenes/cornell_blocks.json --size 200x160 --spp 2 --tile 0/1 -o " +
+                               path("t.png") + " --aov depth=" + path("t.pfm");
+    const auto start = std::chrono::steady_clock::now();
+    ASSERT_EQ(gpurt(render).code, 0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    int whole = 0, none = 0;
+    for (int k = 1; k <= 16; ++k) {
+        for (const char* name : {"t.png", "t.png.tile", "t.pfm", "t.pfm.tile"}) fs::remove(dir / name);
+        char delay[32];
+        std::snprintf(delay, sizeof delay, "%.3f", seconds * k / 14.0);
+        std::system(foreign("timeout -s KILL " + std::string(delay) + " " + gpurtKeepingPreloads(dir) + " " + render +
+                            " 2>/dev/null").c_str());
+        const bool png = fs::exists(dir / "t.png"), sidecar = fs::exists(dir / "t.png.tile"),
+                   depth = fs::exists(dir / "t.pfm"), depthSidecar = fs::exists(dir / "t.pfm.tile");
+        SCOPED_TRACE(std::string("killed after ") + delay + " s");
+        EXPECT_TRUE(png >= sidecar && sidecar >= depth && depth >= depthSidecar);
+        if (sidecar) EXPECT_EQ(gpurt("stitch -o " + path("s.png") + " " + path("t.png")).code, 0);
+        if (depthSidecar) EXPECT_EQ(gpurt("stitch -o " + path("s.pfm") + " " + path("t.pfm")).code, 0);
+        (depthSidecar ? whole : none) += png == depthSidecar;
+    }
+    EXPECT_GT(none, 0);  // some kills came before the end
+    EXPECT_GT(whole, 0);  // and some after
 }
 
 // Stitch refuses, with exit 1 and one line naming the tile, a missing, repeated, foreign or

@@ -4,7 +4,11 @@
 #include "GLTest.h"
 #include "TestScenes.h"
 
+#include "raytrace/InputError.h"
 #include "raytrace/SceneLoader.h"
+#include "raytrace/Tiles.h"
+
+#include <cstdio>
 
 namespace gpurt::test {
 namespace {
@@ -73,6 +77,34 @@ TEST(TileRows, TilesCoverTheImageInBalancedBands) {
             }
             EXPECT_EQ(next, height);
         }
+}
+
+// Frame file names (--frames): the number as printf's %0Nd and %d would write it (checked against
+// snprintf), %% a percent sign, anything else with a '%' refused.
+TEST(FramePatterns, NameEachFrameAsPrintfWould) {
+    char expected[64];
+    for (int frame : {0, 7, 42, 12345, 999999}) {
+        std::snprintf(expected, sizeof expected, "out/f%04d.png", frame);
+        EXPECT_EQ(frameFileName("out/f%04d.png", frame), expected);
+        std::snprintf(expected, sizeof expected, "%d_100%%.pfm", frame);
+        EXPECT_EQ(frameFileName("%d_100%%.pfm", frame), expected);
+        std::snprintf(expected, sizeof expected, "a%%b%09d", frame);
+        EXPECT_EQ(frameFileName("a%%b%09d", frame), expected);
+    }
+    for (const char* bad : {"f.png", "f%04d_%04d.png", "f%s.png", "f%5d.png", "f%0d.png", "f%.png", "100%", "%%d"}) {
+        try {
+            checkFramePattern("-o", bad);
+            ADD_FAILURE() << bad << " accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(std::string("-o: '") + bad + "'", 0), 0u) << e.what();
+        }
+    }
+    int first = 0, last = 0;
+    parseFrames("3:17", first, last);
+    EXPECT_EQ(first, 3);
+    EXPECT_EQ(last, 17);
+    for (const char* bad : {"3", "5:4", "-1:2", "a:b", "1:", ":2", "0:1000000", "1.5:2"})
+        EXPECT_THROW(parseFrames(bad, first, last), InputError) << bad;
 }
 
 }  // namespace

@@ -99,12 +99,14 @@ glm::ivec2 CameraOptions::imageSize(std::optional<glm::ivec2> sceneSize) const {
     return sceneSize.value_or(glm::ivec2(512, 512));
 }
 
-CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int scaleExponent) const {
-    const CameraSpec s = spec(scene, imageSize, scaleExponent);
+CameraBasis CameraOptions::camera(const Scene& scene, glm::ivec2 imageSize, int scaleExponent,
+                                  std::optional<int> frame) const {
+    const CameraSpec s = spec(scene, imageSize, scaleExponent, frame);
     return makeCamera(s, imageSize.x, imageSize.y);
 }
 
-CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int scaleExponent) const {
+CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int scaleExponent,
+                               std::optional<int> frame) const {
     CameraSpec spec;
     if (!fovy.empty()) {
         float f = 0.0f;
@@ -112,9 +114,13 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
         spec.fovy = f;
         if (!(f > 0.0f && f < 180.0f)) throw InputError("--fovy: " + fovy + " is outside (0, 180)");
     }
-    if (scene.camera) {
+    const std::optional<CameraSpec> given =
+        frame ? scene.animation->at(*frame) : scene.camera ? scene.camera
+                                            : scene.animation ? std::optional(scene.animation->at(0))
+                                                              : std::nullopt;
+    if (given) {
         const float f = spec.fovy;
-        spec = *scene.camera;
+        spec = *given;
         if (!fovy.empty()) spec.fovy = f;
     } else if (eye.empty() || target.empty()) {
         const float f = spec.fovy;

@@ -75,13 +75,16 @@ struct CameraOptions {
     }
     // The image size: --size, else the scene file's, else 512x512.
     glm::ivec2 imageSize(std::optional<glm::ivec2> sceneSize) const;
-    // The camera: the scene's (or the contract's default camera for its bounds), with each
-    // option given overriding its part. Throws InputError for an unusable camera.
+    // The camera: the scene's (its camera, else its animation's first frame, else the contract's
+    // default camera for its bounds), or frame `frame` of its animation, with each option given
+    // overriding its part. Throws InputError for an unusable camera.
     // `scaleExponent`: the scene was rescaled by 2^-scaleExponent for rendering (SceneScale.h);
     // --eye and --target, given in the scene file's units, are rescaled alike.
-    CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
+    CameraBasis camera(const Scene& scene, glm::ivec2 size, int scaleExponent = 0,
+                       std::optional<int> frame = std::nullopt) const;
     // The same before it is made a basis (unchecked; makeCamera checks it).
-    CameraSpec spec(const Scene& scene, glm::ivec2 size, int scaleExponent = 0) const;
+    CameraSpec spec(const Scene& scene, glm::ivec2 size, int scaleExponent = 0,
+                    std::optional<int> frame = std::nullopt) const;
 };
 
 // The picture options of render and view: --spp, --seed, --exposure, --tonemap, --smooth.

@@ -41,6 +41,7 @@ struct RenderOptions {
     GridCliOptions grid;
     int bounces = -1;
     std::string tile;  // --tile I/N
+    std::string frames;  // --frames A:B
     PictureCliOptions picture;
     CameraOptions camera;
     ContextOptions context;
@@ -102,8 +103,10 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }
 
 // `gridSource`: "built" or "packed" (the packed scene's own grid).
+// `frame`: the frame of an animation (--frames prints one line or block per frame).
 void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid,
-                const char* gridSource, const RenderOutput& out, double totalMs, const Phases& ph) {
+                const char* gridSource, const RenderOutput& out, double totalMs, const Phases& ph,
+                std::optional<int> frame) {
     const std::pair<const char*, double> phases[] = {
         {"load", ph.load},       {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
         {"compile", ph.compile}, {"trace", ph.trace}, {"shade", ph.shade},     {"read_back", ph.readBack},
@@ -114,6 +117,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
     const double samplesPerS = totalMs > 0 ? double(s.samples) / (totalMs * 1e-3) : 0.0;
     if (o.stats == "json") {
         nlohmann::json j;
+        if (frame) j["frame"] = *frame;
         j["width"] = out.width;
         j["height"] = out.height;
         j["triangles"] = scene.triangles.size();
@@ -136,6 +140,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
         std::printf("%s\n", j.dump().c_str());
         return;
     }
+    if (frame) std::printf("frame      %d\n", *frame);
     std::printf("image      %dx%d\n", out.width, out.height);
     std::printf("triangles  %zu\n", scene.triangles.size());
     std::printf("grid       %dx%dx%d (%s)\n", grid.resolution.x, grid.resolution.y,
@@ -161,9 +166,51 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
     std::printf("total      %.1f ms, %.2f Mrays/s\n", totalMs, mrays);
 }
 
+// The files of one frame (or of the only image): the PNG, then each AOV's.
+struct OutputFiles {
+    std::string png;
+    std::map<std::string, std::string> aovs;
+};
+
+// Writes a render's outputs (and their tile sidecars when `tile`) together: all appear or none.
+void writeOutputs(const OutputFiles& files, const RenderOutput& out, const ColourSettings& colour, TileInfo* tile) {
+    AtomicFileSet outputs;
+    const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
+    writePng(outputs, files.png, out.width, out.height, display);
+    if (tile) {
+        std::vector<unsigned char> rgb;
+        rgb.reserve(display.size() * 3);
+        for (const glm::vec3& c : display) rgb.insert(rgb.end(), {linearToSrgb8(c.x), linearToSrgb8(c.y), linearToSrgb8(c.z)});
+        tile->output = "png";
+        tile->crc = crc32Of(rgb.data(), rgb.size());
+        addTileSidecar(outputs, files.png, *tile);
+    }
+    for (const auto& [name, file] : files.aovs) {
+        std::vector<float> flat;
+        int channels = 1;
+        if (name == "depth") flat = out.depth;
+        if (name == "prim") flat = out.prim;
+        if (name == "steps") flat = out.steps;
+        if (name == "normal" || name == "color") {
+            const std::vector<glm::vec3>& values = name == "normal" ? out.normal : out.color;
+            flat.reserve(values.size() * 3);
+            for (const glm::vec3& n : values) flat.insert(flat.end(), {n.x, n.y, n.z});
+            channels = 3;
+        }
+        writePfm(outputs, file, out.width, out.height, channels, flat);
+        if (tile) {
+            tile->output = name;
+            tile->crc = crc32Of(flat.data(), flat.size() * sizeof(float));
+            addTileSidecar(outputs, file, *tile);
+        }
+    }
+    outputs.commit();
+}
+
 int runRender(const RenderOptions& o) {
     // Everything that can be refused is checked before anything is rendered or written.
-    std::map<std::string, std::string> aovs;
+    OutputFiles names;
+    names.png = o.output;
     for (const std::string& a : o.aovs) {
         const size_t eq = a.find('=');
         const std::string name = a.substr(0, eq);
@@ -171,12 +218,29 @@ int runRender(const RenderOptions& o) {
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
         if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color")
             throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color)");
-        if (aovs.count(name)) throw InputError("--aov: " + name + " given twice");
-        aovs[name] = a.substr(eq + 1);
+        if (names.aovs.count(name)) throw InputError("--aov: " + name + " given twice");
+        names.aovs[name] = a.substr(eq + 1);
     }
-    std::vector<std::filesystem::path> outputPaths = {o.output};
-    for (const auto& [name, file] : aovs) outputPaths.push_back(file);
-    checkOutputPaths(outputPaths);
+    // --frames: every output name holds the frame number; the first frame's names are checked.
+    const bool animated = !o.frames.empty();
+    int firstFrame = 0, lastFrame = 0;
+    if (animated) {
+        parseFrames(o.frames, firstFrame, lastFrame);
+        checkFramePattern("-o", names.png);
+        for (const auto& [name, file] : names.aovs) checkFramePattern("--aov " + name, file);
+    }
+    auto frameFiles = [&](int frame) {
+        if (!animated) return names;
+        OutputFiles files{frameFileName(names.png, frame), {}};
+        for (const auto& [name, file] : names.aovs) files.aovs[name] = frameFileName(file, frame);
+        return files;
+    };
+    {
+        const OutputFiles first = frameFiles(firstFrame);
+        std::vector<std::filesystem::path> outputPaths = {first.png};
+        for (const auto& [name, file] : first.aovs) outputPaths.push_back(file);
+        checkOutputPaths(outputPaths);
+    }
     const PictureCliOptions::Values picture = o.picture.values();
     const ColourSettings& colour = picture.colour;
     const GpuTracerOptions tracerOptions = o.tracer.options();
@@ -187,18 +251,29 @@ int runRender(const RenderOptions& o) {
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     phases.load = msSince(phaseStart);
     const Scene& scene = loaded.scene;
+    if (animated && !scene.animation)
+        throw InputError("--frames: " + o.scene + " has no camera animation (a JSON scene's \"animation\")");
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, o.backend != "cpu", picture.integrator == Integrator::Path);
-    CameraBasis camera = o.camera.camera(scene, size, scaleExponent);
     TileInfo tile;
     const bool tiled = !o.tile.empty();
+    if (tiled) parseTile(o.tile, size.y, tile.tile, tile.tiles);
+    // Every frame's camera, before anything is rendered: an interpolated camera can be unusable.
+    std::vector<CameraBasis> cameras;
+    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
+        try {
+            cameras.push_back(o.camera.camera(scene, size, scaleExponent, animated ? std::optional(frame) : std::nullopt));
+        } catch (const InputError& e) {
+            if (!animated) throw;
+            throw InputError(o.scene + ": frame " + std::to_string(frame) + ": " + e.what());
+        }
+        if (tiled) tileRows(size.y, tile.tile, tile.tiles, cameras.back().rowBegin, cameras.back().rowCount);
+    }
     if (tiled) {
-        parseTile(o.tile, size.y, tile.tile, tile.tiles);
-        tileRows(size.y, tile.tile, tile.tiles, camera.rowBegin, camera.rowCount);
         tile.width = size.x;
         tile.height = size.y;
-        tile.row = camera.rowBegin;
-        tile.rows = camera.rowCount;
+        tile.row = cameras.front().rowBegin;
+        tile.rows = cameras.front().rowCount;
     }
     RenderSettings settings;
     settings.width = size.x;
@@ -212,75 +287,60 @@ int runRender(const RenderOptions& o) {
     const std::optional<UniformGrid> built = o.grid.build(loaded);
     const UniformGrid& grid = built ? *built : *loaded.grid;
     phases.grid = msSince(start);
-    RenderOutput out;
-    if (o.backend == "cpu") {
+    // The GL context, the kernels and the scene textures serve every frame.
+    std::optional<GLContext> context;
+    std::unique_ptr<GpuTracer> tracer;
+    KernelStats& kernels = KernelStats::global();
+    if (o.backend != "cpu") {
         phaseStart = std::chrono::steady_clock::now();
-        out = CpuTracer(scene, grid).render(camera, settings);
-        phases.trace = msSince(phaseStart);
-    } else {
-        phaseStart = std::chrono::steady_clock::now();
-        GLContext context = o.context.makeContext();
+        context.emplace(o.context.makeContext());
         phases.context = msSince(phaseStart);
-        KernelStats& kernels = KernelStats::global();
         kernels.setTiming(o.statsGiven);
         phaseStart = std::chrono::steady_clock::now();
-        GpuTracer tracer(scene, grid, tracerOptions);
+        tracer = std::make_unique<GpuTracer>(scene, grid, tracerOptions);
         phases.upload = msSince(phaseStart);
-        phaseStart = std::chrono::steady_clock::now();
-        const double compileBefore = kernels.compileMs, readBackBefore = kernels.readBackMs;
-        out = tracer.render(camera, settings);
-        const double renderMs = msSince(phaseStart);
-        phases.compile = kernels.compileMs - compileBefore;
-        phases.readBack = kernels.readBackMs - readBackBefore;
-        for (const auto& [name, p] : kernels.passes()) {
-            const bool tracing = name.find("trace") != std::string::npos || name.find("Trace") != std::string::npos ||
-                                 name == "precalc" || name == "traverse" || name == "intersect";
-            (tracing ? phases.trace : phases.shade) += p.gpuMs;
-        }
-        phases.other = std::max(0.0, renderMs - phases.compile - phases.readBack - phases.trace - phases.shade);
     }
-    const double totalMs = msSince(start);
-    unscaleDepth(out.depth, scaleExponent);
-    if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
-        std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
-                     "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
-                     grid.maxCellSteps());
+    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
+        const CameraBasis& camera = cameras[size_t(frame - firstFrame)];
+        const auto frameStart = std::chrono::steady_clock::now();
+        RenderOutput out;
+        if (!tracer) {
+            phaseStart = std::chrono::steady_clock::now();
+            out = CpuTracer(scene, grid).render(camera, settings);
+            phases.trace = msSince(phaseStart);
+        } else {
+            kernels.reset();
+            phaseStart = std::chrono::steady_clock::now();
+            const double compileBefore = kernels.compileMs, readBackBefore = kernels.readBackMs;
+            out = tracer->render(camera, settings);
+            const double renderMs = msSince(phaseStart);
+            phases.compile = kernels.compileMs - compileBefore;
+            phases.readBack = kernels.readBackMs - readBackBefore;
+            phases.trace = phases.shade = 0;
+            for (const auto& [name, p] : kernels.passes()) {
+                const bool tracing = name.find("trace") != std::string::npos || name.find("Trace") != std::string::npos ||
+                                     name == "precalc" || name == "traverse" || name == "intersect";
+                (tracing ? phases.trace : phases.shade) += p.gpuMs;
+            }
+            phases.other = std::max(0.0, renderMs - phases.compile - phases.readBack - phases.trace - phases.shade);
+        }
+        // The first frame's total counts the set-up (grid, context, upload); later frames their own.
+        const double totalMs = msSince(frame == firstFrame ? start : frameStart);
+        unscaleDepth(out.depth, scaleExponent);
+        if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
+            std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
+                         "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
+                         grid.maxCellSteps());
 
-    const auto writeStart = std::chrono::steady_clock::now();
-    AtomicFileSet outputs;  // the PNG and the AOVs (and their tile sidecars) appear together or not at all
-    if (tiled) tile.fingerprint = renderFingerprint(scene, camera, grid, settings, o.picture, o.backend);
-    const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
-    writePng(outputs, o.output, out.width, out.height, display);
-    if (tiled) {
-        std::vector<unsigned char> rgb;
-        rgb.reserve(display.size() * 3);
-        for (const glm::vec3& c : display) rgb.insert(rgb.end(), {linearToSrgb8(c.x), linearToSrgb8(c.y), linearToSrgb8(c.z)});
-        tile.output = "png";
-        tile.crc = crc32Of(rgb.data(), rgb.size());
-        addTileSidecar(outputs, o.output, tile);
+        const auto writeStart = std::chrono::steady_clock::now();
+        if (tiled) tile.fingerprint = renderFingerprint(scene, camera, grid, settings, o.picture, o.backend);
+        writeOutputs(frameFiles(frame), out, colour, tiled ? &tile : nullptr);
+        phases.write = msSince(writeStart);
+        if (o.statsGiven)
+            printStats(o, scene, grid, built ? "built" : "packed", out, totalMs, phases,
+                       animated ? std::optional(frame) : std::nullopt);
+        phases = Phases{};
     }
-    for (const auto& [name, file] : aovs) {
-        std::vector<float> flat;
-        int channels = 1;
-        if (name == "depth") flat = out.depth;
-        if (name == "prim") flat = out.prim;
-        if (name == "steps") flat = out.steps;
-        if (name == "normal" || name == "color") {
-            const std::vector<glm::vec3>& values = name == "normal" ? out.normal : out.color;
-            flat.reserve(values.size() * 3);
-            for (const glm::vec3& n : values) flat.insert(flat.end(), {n.x, n.y, n.z});
-            channels = 3;
-        }
-        writePfm(outputs, file, out.width, out.height, channels, flat);
-        if (tiled) {
-            tile.output = name;
-            tile.crc = crc32Of(flat.data(), flat.size() * sizeof(float));
-            addTileSidecar(outputs, file, tile);
-        }
-    }
-    outputs.commit();
-    phases.write = msSince(writeStart);
-    if (o.statsGiven) printStats(o, scene, grid, built ? "built" : "packed", out, totalMs, phases);
     return 0;
 }
 
@@ -300,6 +360,10 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--tile", o->tile,
                     "Render only tile I of N (rows of the image in N balanced bands) with the whole image's "
                     "camera and samples; each output gets a FILE.tile sidecar for gpurt stitch")
+        ->check(kNotEmpty);
+    cmd->add_option("--frames", o->frames,
+                    "Render frames A to B of the scene's camera animation; -o and each --aov file hold the "
+                    "frame number as %04d (or %d)")
         ->check(kNotEmpty);
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")
         ->check(CLI::Range(0, 64));

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages gpurt builds and tests with (only those missing): toolchain,
 # glad (GL loader generator), EGL + Mesa llvmpipe + OSMesa, GLFW, GLM, glslang, GoogleTest,
-# Xvfb and xdotool (the viewer's window tests: a real X server, real input), GNU parallel (the
-# farm driver's test),
+# Xvfb and xdotool (the viewer's window tests: a real X server, real input), GNU parallel and
+# Slurm with munge (the farm drivers' tests run both for real, tests/farm/slurm-localhost.sh),
 # tinyobjloader, nlohmann-json, libpng, zlib (CRC-32 of packed scenes) and Embree (benchmark
 # baseline, test cross-checks); clang with its libFuzzer and sanitizer runtimes and llvm-symbolizer
 # for the fuzz targets.
@@ -12,6 +12,7 @@ packages=(
   build-essential cmake pkg-config python3 python3-glad
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
   libglfw3-dev libglm-dev glslang-tools libglx-mesa0 xvfb xdotool parallel
+  slurmctld slurmd slurm-client munge iproute2
   libgtest-dev libgmock-dev
   libtinyobjloader-dev nlohmann-json3-dev libpng-dev zlib1g-dev libcli11-dev
   libembree-dev

@@ -175,7 +175,7 @@ class SceneReader {
 
     JsonSceneFile read(const json& root) {
         const Pointer top;
-        requireObject(root, top, {"meshes", "lights", "camera", "background", "render"});
+        requireObject(root, top, {"meshes", "lights", "camera", "animation", "background", "render"});
         JsonSceneFile result;
         Scene& scene = result.scene;
 
@@ -194,6 +194,8 @@ class SceneReader {
         }
         if (const json* camera = find(root, "camera"))
             scene.camera = readCamera(*camera, top / "camera");
+        if (const json* animation = find(root, "animation"))
+            scene.animation = readAnimation(*animation, top / "animation");
         if (const json* background = find(root, "background"))
             scene.background = color(*background, top / "background");
         if (const json* render = find(root, "render")) {
@@ -507,8 +509,39 @@ class SceneReader {
         return light;
     }
 
-    CameraSpec readCamera(const json& value, const Pointer& at) const {
-        requireObject(value, at, {"eye", "target", "up", "fovy"});
+    // {"fps": F, "camera": [KEY, ...]}: a key is a camera object with its "time" in seconds.
+    CameraAnimation readAnimation(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"fps", "camera"});
+        CameraAnimation animation;
+        if (const json* fps = find(value, "fps")) {
+            const double f = number(*fps, at / "fps");
+            if (!(f > 0.0 && f <= 1000.0)) fail(at / "fps", "must be in (0, 1000], got " + formatNumber(f));
+            animation.fps = static_cast<float>(f);
+        }
+        const Pointer keysAt = at / "camera";
+        const json& keys = require(value, at, "camera");
+        requireArray(keys, keysAt);
+        if (keys.empty()) fail(keysAt, "needs at least one key");
+        for (size_t i = 0; i < keys.size(); ++i) {
+            const Pointer keyAt = keysAt / i;
+            if (!keys[i].is_object()) fail(keyAt, std::string("expected an object, got ") + keys[i].type_name());
+            CameraKey key;
+            key.time = static_cast<float>(number(require(keys[i], keyAt, "time"), keyAt / "time"));
+            if (i > 0 && !(key.time > animation.keys.back().time))
+                fail(keyAt / "time", "must be later than the key before (" +
+                                         formatNumber(animation.keys.back().time) + "), got " + formatNumber(key.time));
+            key.camera = readCamera(keys[i], keyAt, true);
+            animation.keys.push_back(key);
+        }
+        return animation;
+    }
+
+    // `keyed`: an animation key, which also has a "time".
+    CameraSpec readCamera(const json& value, const Pointer& at, bool keyed = false) const {
+        if (keyed)
+            requireObject(value, at, {"time", "eye", "target", "up", "fovy"});
+        else
+            requireObject(value, at, {"eye", "target", "up", "fovy"});
         CameraSpec camera;
         camera.eye = glm::vec3(vector3(require(value, at, "eye"), at / "eye"));
         camera.target = glm::vec3(vector3(require(value, at, "target"), at / "target"));

@@ -30,22 +30,34 @@ constexpr char kTriangles[] = "TRIS";
 constexpr char kMaterials[] = "MATS";
 constexpr char kLights[] = "LGTS";
 constexpr char kCamera[] = "CAMR";
+constexpr char kAnimation[] = "ANIM";
 constexpr char kBackground[] = "BKGD";
 constexpr char kRender[] = "RNDR";
 constexpr char kGrid[] = "GRID";
 constexpr char kCellStart[] = "CELL";
 constexpr char kCellList[] = "LIST";
 constexpr char kNormals[] = "NRML";
-// In the order the writer stores them; all but the camera and the normals are required.
-constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,  kBackground,
-                                         kRender,    kGrid,      kCellStart, kCellList, kNormals};
-constexpr bool optionalSection(std::string_view tag) { return tag == kCamera || tag == kNormals; }
+// In the order the writer stores them; all but the camera, its animation and the normals are
+// required.
+constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,   kBackground, kRender,
+                                         kGrid,      kCellStart, kCellList, kNormals, kAnimation};
+constexpr bool optionalSection(std::string_view tag) {
+    return tag == kCamera || tag == kNormals || tag == kAnimation;
+}
+bool hasSection(const LoadedScene& loaded, std::string_view tag) {
+    if (tag == kCamera) return bool(loaded.scene.camera);
+    if (tag == kNormals) return !loaded.scene.normals.empty();
+    if (tag == kAnimation) return bool(loaded.scene.animation);
+    return true;
+}
 constexpr size_t kNormalsBytes = 9 * 4;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 constexpr size_t kLightBytes = 7 * 4;
 constexpr size_t kCameraBytes = 10 * 4;
+constexpr size_t kAnimationKeyBytes = 11 * 4;  // the time, then a camera
+constexpr uint64_t kMaxAnimationKeys = 1 << 20;
 constexpr size_t kBackgroundBytes = 3 * 4;
 constexpr size_t kRenderBytes = 4 * 4;
 constexpr size_t kGridBytes = 3 * 4 + 9 * 4;
@@ -217,21 +229,30 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
         if (!nonNegative(light.color) || !(light.intensity >= 0.0f))
             fail("light " + std::to_string(l) + ": colour and intensity must be >= 0");
     }
-    if (scene.camera) {
-        // The checks of a JSON scene's camera: the contract's basis must exist.
-        const CameraSpec& c = *scene.camera;
-        if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up))
-            fail("camera: values are not finite");
+    // The checks of a JSON scene's camera: the contract's basis must exist.
+    auto checkCamera = [&](const CameraSpec& c, const std::string& what) {
+        if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up)) fail(what + ": values are not finite");
         if (!(c.fovy > 0.0f && c.fovy < 180.0f))
-            fail("camera: fovy " + formatFloat(c.fovy) + " is outside (0, 180)");
+            fail(what + ": fovy " + formatFloat(c.fovy) + " is outside (0, 180)");
         const glm::vec3 forward = c.target - c.eye;
         const float forwardLength2 = glm::dot(forward, forward);
         if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
-            fail("camera: target - eye must be a non-zero vector of finite length");
+            fail(what + ": target - eye must be a non-zero vector of finite length");
         const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), c.up);
         const float rightLength2 = glm::dot(right, right);
         if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
-            fail("camera: up must be non-zero and not parallel to target - eye");
+            fail(what + ": up must be non-zero and not parallel to target - eye");
+    };
+    if (scene.camera) checkCamera(*scene.camera, "camera");
+    if (const std::optional<CameraAnimation>& a = scene.animation) {
+        if (!(a->fps > 0.0f && a->fps <= 1000.0f)) fail("animation: fps " + formatFloat(a->fps) + " is outside (0, 1000]");
+        if (a->keys.empty()) fail("animation: no keys");
+        for (size_t k = 0; k < a->keys.size(); ++k) {
+            const std::string what = "animation key " + std::to_string(k);
+            if (!std::isfinite(a->keys[k].time)) fail(what + ": time is not finite");
+            if (k > 0 && !(a->keys[k].time > a->keys[k - 1].time)) fail(what + ": time is not after the key before");
+            checkCamera(a->keys[k].camera, what);
+        }
     }
     if (!isFinite(scene.background)) fail("background colour is not finite");
     if (!nonNegative(scene.background)) fail("background colour must be >= 0");
@@ -416,6 +437,27 @@ class SectionDecoder {
         scene.camera = c;
     }
 
+    // The keys (count, then each key's time and camera), then the frame rate.
+    void animation(const Section& s, Scene& scene) const {
+        if (s.size < 12) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
+        ByteReader in = reader(s);
+        const uint64_t n = in.u64();
+        if (n < 1 || n > kMaxAnimationKeys || 12 + n * kAnimationKeyBytes != s.size)
+            fail("section " + s.tag + ": " + std::to_string(n) + " keys of " + std::to_string(kAnimationKeyBytes) +
+                 " bytes do not fill its " + std::to_string(s.size) + " bytes");
+        CameraAnimation a;
+        a.keys.resize(size_t(n));
+        for (CameraKey& key : a.keys) {
+            key.time = in.f32();
+            key.camera.eye = in.vec3();
+            key.camera.target = in.vec3();
+            key.camera.up = in.vec3();
+            key.camera.fovy = in.f32();
+        }
+        a.fps = in.f32();
+        scene.animation = std::move(a);
+    }
+
     void background(const Section& s, Scene& scene) const {
         fixedSize(s, kBackgroundBytes);
         ByteReader in = reader(s);
@@ -503,7 +545,7 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
     out.u64(0);  // file size, patched last
     std::vector<const char*> tags;
     for (const char* tag : kSectionOrder)
-        if ((tag != kCamera || scene.camera) && (tag != kNormals || !scene.normals.empty())) tags.push_back(tag);
+        if (hasSection(loaded, tag)) tags.push_back(tag);
     out.u32(static_cast<uint32_t>(tags.size()));
     out.u32(0);
     const size_t table = out.size();
@@ -554,6 +596,16 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
             out.vec3(scene.camera->target);
             out.vec3(scene.camera->up);
             out.f32(scene.camera->fovy);
+        } else if (tag == kAnimation) {
+            out.u64(scene.animation->keys.size());
+            for (const CameraKey& key : scene.animation->keys) {
+                out.f32(key.time);
+                out.vec3(key.camera.eye);
+                out.vec3(key.camera.target);
+                out.vec3(key.camera.up);
+                out.f32(key.camera.fovy);
+            }
+            out.f32(scene.animation->fps);
         } else if (tag == kBackground) {
             out.vec3(scene.background);
         } else if (tag == kRender) {
@@ -687,6 +739,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     decoder.cellStart(**slotOf(kCellStart), grid);
     decoder.cellList(**slotOf(kCellList), grid);
     if (*slotOf(kNormals)) decoder.normals(**slotOf(kNormals), loaded.scene);
+    if (*slotOf(kAnimation)) decoder.animation(**slotOf(kAnimation), loaded.scene);
 
     validateScene(name, loaded, grid);
     // The skip distances are derived from cellStart (computeSkip) rather than stored.

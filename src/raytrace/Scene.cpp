@@ -16,6 +16,24 @@ glm::vec3 Bounds::center() const { return (min + max) * 0.5f; }
 
 glm::vec3 Bounds::halfExtent() const { return (max - min) * 0.5f; }
 
+CameraSpec CameraAnimation::at(int frame) const {
+    const double t = timeOf(frame);
+    if (t <= keys.front().time) return keys.front().camera;
+    if (t >= keys.back().time) return keys.back().camera;
+    size_t k = 1;
+    while (keys[k].time < t) ++k;
+    const CameraKey& a = keys[k - 1];
+    const CameraKey& b = keys[k];
+    const double s = (t - a.time) / (double(b.time) - a.time);
+    auto mix = [s](glm::vec3 p, glm::vec3 q) { return glm::vec3(glm::dvec3(p) + (glm::dvec3(q) - glm::dvec3(p)) * s); };
+    CameraSpec c;
+    c.eye = mix(a.camera.eye, b.camera.eye);
+    c.target = mix(a.camera.target, b.camera.target);
+    c.up = mix(a.camera.up, b.camera.up);
+    c.fovy = float(a.camera.fovy + (double(b.camera.fovy) - a.camera.fovy) * s);
+    return c;
+}
+
 Bounds Scene::bounds() const {
     Bounds b;
     for (const Triangle& t : triangles) {

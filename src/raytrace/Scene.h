@@ -45,6 +45,22 @@ struct CameraSpec {
     float fovy = 45.0f;
 };
 
+// A camera animated by keyframes (a JSON scene's "animation"): frame f is at time f / fps seconds.
+// Between two keys each of eye, target, up and fovy is interpolated linearly (in double, then
+// rounded to float); before the first key and after the last the camera is that key's.
+struct CameraKey {
+    float time = 0.0f;
+    CameraSpec camera;
+};
+
+struct CameraAnimation {
+    float fps = 24.0f;
+    std::vector<CameraKey> keys;  // at least one, times strictly increasing
+
+    double timeOf(int frame) const { return double(frame) / double(fps); }
+    CameraSpec at(int frame) const;
+};
+
 struct Triangle {
     glm::vec3 v0, v1, v2;
 };
@@ -79,6 +95,7 @@ struct Scene {
     // May be empty: renderers then add a headlight (lightsOrHeadlight).
     std::vector<PointLight> lights;
     std::optional<CameraSpec> camera;  // OBJ: none
+    std::optional<CameraAnimation> animation;  // JSON "animation"; none elsewhere
     glm::vec3 background{0.05f, 0.05f, 0.08f};
     int maxBounces = 3;
 

@@ -52,6 +52,11 @@ void rescaleScene(Scene& scene, int exponent) {
         scene.camera->eye = rescalePoint(scene.camera->eye, exponent);
         scene.camera->target = rescalePoint(scene.camera->target, exponent);
     }
+    if (scene.animation)
+        for (CameraKey& key : scene.animation->keys) {
+            key.camera.eye = rescalePoint(key.camera.eye, exponent);
+            key.camera.target = rescalePoint(key.camera.target, exponent);
+        }
 }
 
 void rescaleGrid(UniformGrid& grid, int exponent) {

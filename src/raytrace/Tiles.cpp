@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <zlib.h>
 
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -136,6 +137,75 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
         throw InputError(byIndex.rbegin()->second.first.string() + ": the tiles do not cover the image");
     if (png) writePngRgb8(output, first.width, first.height, rgb);
     else writePfm(output, first.width, first.height, channels, values);
+}
+
+void parseFrames(const std::string& text, int& first, int& last) {
+    auto number = [&](const std::string& digits) {
+        if (digits.empty() || digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string::npos)
+            throw InputError("--frames: '" + text + "' is not A:B with 0 <= A <= B <= 999999");
+        return std::stoi(digits);
+    };
+    const size_t colon = text.find(':');
+    if (colon == std::string::npos) throw InputError("--frames: '" + text + "' is not A:B");
+    first = number(text.substr(0, colon));
+    last = number(text.substr(colon + 1));
+    if (first > last) throw InputError("--frames: " + text + ": the first frame is after the last");
+}
+
+namespace {
+
+// The frame conversion in `pattern`: its position and length, the field width (0: none); throws
+// unless there is exactly one and every other '%' is "%%".
+struct FrameField {
+    size_t at = std::string::npos, length = 0;
+    int width = 0;
+};
+
+FrameField frameField(const std::string& option, const std::string& pattern) {
+    FrameField field;
+    auto refuse = [&](const std::string& why) {
+        throw InputError(option + ": '" + pattern + "' " + why + " (the frame number as %04d, %d; %% for %)");
+    };
+    for (size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') continue;
+        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+            ++i;
+            continue;
+        }
+        size_t j = i + 1;
+        int width = 0;
+        const bool zero = j < pattern.size() && pattern[j] == '0';
+        if (zero) ++j;
+        if (zero && j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9') width = pattern[j++] - '0';
+        if (j >= pattern.size() || pattern[j] != 'd' || (zero && width == 0))
+            refuse("has a '%' that is not a frame number");
+        if (field.at != std::string::npos) refuse("has more than one frame number");
+        field.at = i;
+        field.length = j + 1 - i;
+        field.width = width;
+        i = j;
+    }
+    if (field.at == std::string::npos) refuse("has no frame number");
+    return field;
+}
+
+}  // namespace
+
+void checkFramePattern(const std::string& option, const std::string& pattern) { frameField(option, pattern); }
+
+std::string frameFileName(const std::string& pattern, int frame) {
+    const FrameField field = frameField("frame pattern", pattern);
+    char number[16];
+    std::snprintf(number, sizeof number, "%0*d", field.width, frame);
+    auto unescape = [](const std::string& text) {
+        std::string out;
+        for (size_t i = 0; i < text.size(); ++i) {
+            out += text[i];
+            if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+        }
+        return out;
+    };
+    return unescape(pattern.substr(0, field.at)) + number + unescape(pattern.substr(field.at + field.length));
 }
 
 }  // namespace gpurt

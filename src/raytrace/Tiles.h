@@ -3,7 +3,8 @@
 // its place in the whole image, a fingerprint of everything that decides its pixels (scene,
 // camera, size, samples, options) and a CRC-32 of its pixel data; stitch refuses tiles that are
 // missing, repeated, of another image or damaged, and writes the whole image with the same
-// writers as a whole render, so the result is byte-identical to it.
+// writers as a whole render, so the result is byte-identical to it. Frames of an animation
+// (--frames A:B) are the other unit: each frame's files are named by a printf-style pattern.
 #pragma once
 
 #include <cstdint>
@@ -38,5 +39,14 @@ void addTileSidecar(AtomicFileSet& files, const std::filesystem::path& file, con
 // one image: a sidecar missing or malformed, a file damaged, tiles of another image, repeated or
 // missing tiles.
 void stitchTiles(const std::filesystem::path& output, const std::vector<std::filesystem::path>& tiles);
+
+// --frames A:B: 0 <= A <= B <= 999999 (both inclusive); InputError naming the option otherwise.
+void parseFrames(const std::string& text, int& first, int& last);
+
+// A file name pattern with exactly one frame number in printf's style, `%d` or `%0Nd` (N 1..9), and
+// `%%` for a percent sign: checked by checkFramePattern (InputError naming the pattern and
+// `option`), filled in by frameFileName.
+void checkFramePattern(const std::string& option, const std::string& pattern);
+std::string frameFileName(const std::string& pattern, int frame);
 
 }  // namespace gpurt

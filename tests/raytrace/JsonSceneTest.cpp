@@ -200,6 +200,55 @@ TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
     EXPECT_EQ(scene.maxBounces, 0);
 }
 
+// A camera animation: the keys as given (defaults as for the camera), frame f at time f / fps,
+// each value interpolated linearly between the keys around it (computed here in double), and the
+// first and last key's camera before and after them.
+TEST_F(JsonSceneTest, CameraAnimationInterpolatesItsKeysLinearly) {
+    const Scene scene = loadJsonSceneFile(write("scene.json", R"({"meshes": [],
+        "animation": {"fps": 10, "camera": [
+            {"time": 0.5, "eye": [0, 0, 10], "target": [0, 0, 0]},
+            {"time": 1.5, "eye": [10, 2, 0], "target": [1, 1, 1], "up": [1, 1, 0], "fovy": 85},
+            {"time": 1.7, "eye": [10, 2, -4], "target": [1, 1, 1], "up": [1, 1, 0], "fovy": 5}]}})")).scene;
+    ASSERT_TRUE(scene.animation.has_value());
+    EXPECT_FALSE(scene.camera.has_value());
+    const CameraAnimation& a = *scene.animation;
+    EXPECT_EQ(a.fps, 10.0f);
+    ASSERT_EQ(a.keys.size(), 3u);
+    EXPECT_EQ(a.keys[0].camera.up, glm::vec3(0, 1, 0));
+    EXPECT_EQ(a.keys[0].camera.fovy, 45.0f);
+    for (int frame : {0, 3, 5}) {  // up to the first key
+        const CameraSpec c = a.at(frame);
+        EXPECT_EQ(c.eye, glm::vec3(0, 0, 10)) << frame;
+        EXPECT_EQ(c.fovy, 45.0f) << frame;
+    }
+    for (int frame : {18, 1000}) EXPECT_EQ(a.at(frame).eye, glm::vec3(10, 2, -4)) << frame;
+    for (int frame = 5; frame <= 17; ++frame) {
+        const double t = frame / 10.0;
+        const int k = t <= 1.5 ? 0 : 1;
+        const double t0 = k == 0 ? 0.5 : 1.5, t1 = k == 0 ? 1.5 : 1.7;
+        const double s = (t - t0) / (double(float(t1)) - double(float(t0)));
+        const double eye0[2][3] = {{0, 0, 10}, {10, 2, 0}}, eye1[2][3] = {{10, 2, 0}, {10, 2, -4}};
+        const double fovy0[2] = {45, 85}, fovy1[2] = {85, 5};
+        const CameraSpec c = a.at(frame);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(c.eye[i], eye0[k][i] + (eye1[k][i] - eye0[k][i]) * s, 1e-5) << frame << " " << i;
+        EXPECT_NEAR(c.fovy, fovy0[k] + (fovy1[k] - fovy0[k]) * s, 1e-4) << frame;
+        EXPECT_NEAR(c.up.x, k == 0 ? s : 1.0, 1e-6) << frame;
+    }
+    const std::string keys = R"({"meshes": [], "animation": {"camera": [
+        {"time": 0, "eye": [0, 0, 1], "target": [0, 0, 0]}, )";
+    expectError(keys + R"({"time": 0, "eye": [0, 0, 2], "target": [0, 0, 0]}]}})",
+                {"/animation/camera/1/time: must be later than the key before (0), got 0"});
+    expectError(keys + R"({"eye": [0, 0, 2], "target": [0, 0, 0]}]}})", {"/animation/camera/1/time: missing required key"});
+    expectError(keys + R"({"time": 1, "eye": [0, 0, 2], "target": [0, 0, 2]}]}})", {"/animation/camera/1/target"});
+    expectError(keys + R"({"time": 1, "eye": [0, 0, 2], "target": [0, 0, 0], "roll": 3}]}})",
+                {"/animation/camera/1/roll: unknown key"});
+    expectError(R"({"meshes": [], "animation": {"camera": []}})", {"/animation/camera: needs at least one key"});
+    expectError(R"({"meshes": [], "animation": {"fps": 0, "camera": []}})", {"/animation/fps: must be in (0, 1000]"});
+    expectError(R"({"meshes": [], "animation": {"fps": 24}})", {"/animation/camera: missing required key"});
+    expectError(R"({"meshes": [], "animation": {"camera": [3]}})", {"/animation/camera/0: expected an object"});
+}
+
 TEST_F(JsonSceneTest, DefaultsWhenOptionalPartsAreMissing) {
     const JsonSceneFile file = loadJsonSceneFile(write("scene.json", R"({"meshes": [],
         "camera": {"eye": [0, 0, 1], "target": [0, 0, 0]}})"));

@@ -100,6 +100,11 @@ LoadedScene unusualScene() {
     s.lights.push_back({{-0.0f, 0.0f, 1e30f}, {0.0f, 0.0f, 0.0f}, 0.0f});
     s.camera =
         CameraSpec{{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 39.3077f};
+    CameraAnimation animation;
+    animation.fps = 23.976f;
+    animation.keys.push_back({-0.5f, CameraSpec{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 10.0f}});
+    animation.keys.push_back({0.25f, CameraSpec{{-1, 2, 3e10f}, {0, 0, -0.0f}, {1, 0, 0}, 170.0f}});
+    s.animation = animation;
     s.background = glm::vec3(0.125f, -0.0f, 3.5f);
     s.maxBounces = 7;
     loaded.size = glm::ivec2(321, 123);
@@ -140,6 +145,18 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.camera->target, y.camera->target));
         EXPECT_TRUE(sameBits(x.camera->up, y.camera->up));
         EXPECT_TRUE(sameBits(x.camera->fovy, y.camera->fovy));
+    }
+    ASSERT_EQ(x.animation.has_value(), y.animation.has_value());
+    if (x.animation) {
+        EXPECT_TRUE(sameBits(x.animation->fps, y.animation->fps));
+        ASSERT_EQ(x.animation->keys.size(), y.animation->keys.size());
+        for (size_t k = 0; k < x.animation->keys.size(); ++k) {
+            const CameraKey &p = x.animation->keys[k], &q = y.animation->keys[k];
+            EXPECT_TRUE(sameBits(p.time, q.time) && sameBits(p.camera.eye, q.camera.eye) &&
+                        sameBits(p.camera.target, q.camera.target) && sameBits(p.camera.up, q.camera.up) &&
+                        sameBits(p.camera.fovy, q.camera.fovy))
+                << "animation key " << k;
+        }
     }
     EXPECT_TRUE(sameBits(x.background, y.background));
     EXPECT_EQ(x.maxBounces, y.maxBounces);
@@ -443,7 +460,14 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
                    "does not fit");
     // The section table.
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, 0xffffffffu); }), "section table");
-    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, get32(b, 24) - 1); }), "is missing");
+    {  // the last section, when it is a required one (ANIM, optional, comes last when there is one)
+        LoadedScene still = source_;
+        still.scene.animation.reset();
+        Bytes b = encodePackedScene(still, grid_, "still");
+        put32(b, 24, get32(b, 24) - 1);
+        reseal(b);
+        EXPECT_REFUSED(b, "is missing");
+    }
     EXPECT_REFUSED(patched([&](Bytes& b) { std::memcpy(b.data() + tris.at, "TRIX", 4); }),
                    "unknown section 'TRIX'");
     EXPECT_REFUSED(
@@ -567,6 +591,17 @@ TEST_F(PackedSceneTest, RefusesBadValues) {
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 8, 0); }), "image size 0x123");
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 12, 16385); }), "image size");
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, render.offset + 4, 2); }), "flag");
+    // The animation: its key count against its size, then its values.
+    const Entry anim = section(bytes_, "ANIM");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset, 3); }), "keys of 44 bytes do not fill");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset, 0); }), "ANIM");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset + 8 + 44, get32(b, anim.offset + 8)); }),
+                   "animation key 1: time is not after the key before");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset + 8 + 44 + 40, std::bit_cast<uint32_t>(0.0f)); }),
+                   "animation key 1: fovy 0");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset + 8 + 2 * 44, std::bit_cast<uint32_t>(-24.0f)); }),
+                   "animation: fps -24");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, anim.offset + 8 + 4, nan); }), "animation key 0: values are not finite");
 }
 
 // Every truncation and, at every offset, flipped bits both as they are (the checksum catches
