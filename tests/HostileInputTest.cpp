@@ -147,6 +147,50 @@ TEST_F(ObjWarnings, MissingMtlIsAWarningAndTheDefaultMaterial) {
     EXPECT_EQ(readFile(dir / "out.png"), readFile(dir / "plain.png"));
 }
 
+// Files that are no scene of any kind: a text file without one OBJ statement, whatever its name,
+// and files named .gpscene, .ply, .glb or .gltf that are not that format (truncated, foreign).
+using NotScenes = HostileInput;
+
+TEST_F(NotScenes, TextFilesAndForeignFilesAreRefusedNamingThem) {
+    expectObjRefused("readme.txt", "\n# A comment\nThis is a README, not a scene.\nSecond line.\n", 3,
+                     "not a scene file: no OBJ statement in it (this line starts with 'This')");
+    expectObjRefused("notes.obj", "hello world\n", 1, "not a scene file");
+    // Named as a binary format: that format's reader says what is wrong.
+    write("cut.gpscene", "GPRTSC");
+    expectRefused(render("cut.gpscene"), {path("cut.gpscene") + ": ", "truncated"});
+    write("text.gpscene", kTriangle);
+    expectRefused(render("text.gpscene"), {path("text.gpscene") + ": ", "not a packed gpurt scene"});
+    write("mesh.ply", kTriangle);
+    expectRefused(render("mesh.ply"), {path("mesh.ply") + ": ", "not a PLY file"});
+    write("short.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                       "property float y\nproperty float z\nend_header\n" + std::string(35, '\0'));
+    expectRefused(render("short.ply"), {path("short.ply") + ":3: ", "vertex elements of at least 12 bytes, but only 35"});
+    write("model.glb", "glTF\x02\x00\x00\x00");
+    expectRefused(render("model.glb"), {path("model.glb") + ": ", "glTF"});
+    // An empty file, or one of comments only, is an empty OBJ (a scene of nothing), as before.
+    write("empty.obj", "# nothing yet\n");
+    EXPECT_EQ(gpurt(render("empty.obj")).code, 0);
+}
+
+// Statements OBJ has but gpurt does not use are read past silently; a line whose first word is no
+// OBJ statement is a warning naming its line, and the rest of the file renders.
+TEST_F(ObjWarnings, UnknownStatementsAreWarningsWithTheirLines) {
+    write("plain.obj", kTriangle);
+    ASSERT_EQ(gpurt("render " + quoted("plain.obj") + " -o " + quoted("plain.png") + " --size 24x16").code, 0);
+    write("odd.obj", "s 1\nvp 0.5\n" + kTriangle + "frobnicate 3\ncstype bspline\n");
+    const GpurtRun run = gpurt(render("odd.obj"));
+    ASSERT_EQ(run.code, 0) << run.err;
+    EXPECT_EQ(run.err, path("odd.obj") + ":7: warning: unknown statement 'frobnicate' ignored\n");
+    EXPECT_EQ(readFile(dir / "out.png"), readFile(dir / "plain.png"));
+    std::string many = kTriangle;
+    for (int k = 0; k < 9; ++k) many += "bogus\n";
+    write("many.obj", many);
+    const GpurtRun flood = gpurt(render("many.obj"));
+    ASSERT_EQ(flood.code, 0) << flood.err;
+    EXPECT_EQ(std::count(flood.err.begin(), flood.err.end(), '\n'), 6) << flood.err;  // 5, then how many more
+    EXPECT_NE(flood.err.find("4 more unknown statements ignored"), std::string::npos) << flood.err;
+}
+
 TEST_F(JsonErrors, SyntaxErrorsNameLineAndColumn) {
     write("comma.json", "{\n  \"meshes\": [\n    ,\n  ]\n}\n");
     expectRefused(render("comma.json"), {path("comma.json") + ":3:5: ", "syntax error"});

@@ -26,6 +26,7 @@
 
 #include "raytrace/InputError.h"
 #include "raytrace/ObjLoader.h"
+#include "raytrace/SceneLoader.h"
 
 namespace gpurt {
 namespace {
@@ -357,7 +358,7 @@ class SceneReader {
         // The same OBJ listed twice (e.g. with two transforms) is read once.
         const std::string key = objPath.lexically_normal().string();
         auto cached = objCache_.find(key);
-        if (cached == objCache_.end()) cached = objCache_.emplace(key, loadObj(objPath)).first;
+        if (cached == objCache_.end()) cached = objCache_.emplace(key, loadMesh(objPath)).first;
         const Scene& obj = cached->second;
 
         const uint32_t materialBase = static_cast<uint32_t>(scene.materials.size());

@@ -41,7 +41,22 @@ struct ObjPreScan {
     size_t vertices = 0, normals = 0, texcoords = 0;
     std::vector<uint32_t> faceSizes;   // vertex count of each `f` line, in file order
     std::vector<glm::vec3> positions;  // x y z of each `v` line, in file order
+    size_t statements = 0;              // lines with an OBJ keyword
+    std::vector<std::pair<size_t, std::string>> unknown;  // lines with another first word, and it
 };
+
+// Every keyword of the OBJ format (Wavefront's Appendix B1, including free-form geometry, which
+// gpurt ignores): any other first word of a line is not OBJ.
+bool isObjKeyword(std::string_view k) {
+    static const char* const kKeywords[] = {
+        "v",     "vt",   "vn",    "vp",       "f",        "l",    "p",        "g",      "o",       "s",
+        "mg",    "usemtl", "mtllib", "cstype", "deg",     "bmat", "step",     "curv",   "curv2",   "surf",
+        "parm",  "trim", "hole",  "scrv",     "sp",       "end",  "con",      "bevel",  "c_interp", "d_interp",
+        "lod",   "shadow_obj", "trace_obj", "ctech", "stech", "maplib", "usemap", "call", "csh", "res"};
+    for (const char* keyword : kKeywords)
+        if (k == keyword) return true;
+    return false;
+}
 
 // An index that refers forward (OBJ allows that for positive indices); checked at the end of
 // the file when the counts are known.
@@ -207,6 +222,10 @@ class ObjScanner {
         std::vector<std::string_view> tok = tokens(text);
         if (tok.empty() || tok[0][0] == '#') return true;
         const std::string_view keyword = tok[0];
+        if (isObjKeyword(keyword))
+            ++result.statements;
+        else
+            result.unknown.emplace_back(line, std::string(keyword.substr(0, 24)));
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
             float values[3] = {};
             for (size_t i = 1; i < tok.size(); ++i) {
@@ -398,6 +417,17 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
 
     ObjScanner scanner(name);
     const ObjPreScan scan = scanner.scan(text);
+    // A text file that is not OBJ at all is refused; unknown statements in an OBJ are warnings.
+    if (scan.statements == 0 && !scan.unknown.empty())
+        throw InputError(name + ":" + std::to_string(scan.unknown.front().first) +
+                         ": not a scene file: no OBJ statement in it (this line starts with " +
+                         quote(scan.unknown.front().second) + ")");
+    constexpr size_t kMaxWarnings = 5;
+    for (size_t k = 0; k < scan.unknown.size() && k < kMaxWarnings; ++k)
+        std::cerr << name << ":" << scan.unknown[k].first << ": warning: unknown statement "
+                  << quote(scan.unknown[k].second) << " ignored\n";
+    if (scan.unknown.size() > kMaxWarnings)
+        std::cerr << name << ": warning: " << scan.unknown.size() - kMaxWarnings << " more unknown statements ignored\n";
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

@@ -1,6 +1,7 @@
 // Scene format detection: a look at the first bytes, then the format's own loader.
 #include "raytrace/SceneLoader.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -10,11 +11,19 @@
 #include "raytrace/JsonScene.h"
 #include "raytrace/ObjLoader.h"
 #include "raytrace/PackedScene.h"
+#include "raytrace/PlyLoader.h"
 
 namespace gpurt {
 namespace {
 
-enum class SceneFormat { Obj, Json, Packed };
+enum class SceneFormat { Obj, Json, Packed, Ply };
+
+// The file's extension, lower case ("" when none).
+std::string extensionOf(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
 
 bool isJsonSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
@@ -42,6 +51,14 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     // reader then names a magic it does not know, which says more than an OBJ parse error.
     if (got >= magicSize - 1 && std::memcmp(head, kPackedSceneMagic, magicSize - 1) == 0)
         return SceneFormat::Packed;
+    if (looksLikePly(std::string(head, got))) return SceneFormat::Ply;
+    // A file named as one of the binary formats is that format's reader's to refuse ("not a PLY
+    // file", "wrong magic"): read as an OBJ it would give a less useful message.
+    const std::string ext = extensionOf(path);
+    if (ext == ".gpscene") return SceneFormat::Packed;
+    if (ext == ".ply") return SceneFormat::Ply;
+    if (ext == ".glb" || ext == ".gltf")
+        throw InputError(name + ": glTF scenes are not read by this version of gpurt yet (OBJ, PLY, JSON, .gpscene)");
 
     // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).
     std::string bytes(head, got);
@@ -68,10 +85,23 @@ LoadedScene loadScene(const std::filesystem::path& path) {
             JsonSceneFile file = loadJsonSceneFile(path);
             return LoadedScene{std::move(file.scene), file.size, std::nullopt};
         }
+        case SceneFormat::Ply:
+            return LoadedScene{loadPly(path), std::nullopt, std::nullopt};
         case SceneFormat::Obj:
             break;
     }
     return LoadedScene{loadObj(path), std::nullopt, std::nullopt};
+}
+
+Scene loadMesh(const std::filesystem::path& path) {
+    switch (detectFormat(path)) {
+        case SceneFormat::Ply:
+            return loadPly(path);
+        case SceneFormat::Obj:
+            return loadObj(path);
+        default:
+            throw InputError(path.string() + ": a mesh must be an OBJ or a PLY file");
+    }
 }
 
 }  // namespace gpurt

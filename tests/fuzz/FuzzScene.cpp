@@ -1,5 +1,6 @@
 #include "FuzzScene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -44,6 +45,9 @@ std::filesystem::path makeScratchFolder() {
           "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl glass\nf 1 2 3 4\n");
     write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
     write("empty.obj", "");
+    write("tri.ply",
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     std::atexit([] { std::filesystem::remove_all(scratchFolder()); });
     return folder;
 }
@@ -81,6 +85,19 @@ void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
     FUZZ_CHECK(grid.cellStart.back() == grid.cellTriangles.size());
 
     constexpr int kSize = 6;
+    // An animation's frames interpolate its keys: each either makes a camera or is refused, around
+    // and between the keys' times (frames from 0 up to past the last key).
+    if (scene.animation) {
+        const CameraAnimation& a = *scene.animation;
+        const double end = std::min(double(a.keys.back().time) * a.fps + 2.0, 50.0);
+        for (int frame = 0; frame <= int(std::max(end, 0.0)); ++frame) {
+            const CameraSpec c = a.at(frame);
+            try {
+                makeCamera(c, kSize, kSize);
+            } catch (const InputError&) {
+            }
+        }
+    }
     CameraBasis camera;
     if (scene.camera) {
         try {

@@ -1,0 +1,416 @@
+// PLY reading: the header into elements and properties, then the data through one reader per
+// encoding (ASCII tokens with line numbers, or binary values of either byte order), every count
+// checked against the bytes that are left before anything is allocated.
+#include "raytrace/PlyLoader.h"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "raytrace/InputError.h"
+
+namespace gpurt {
+namespace {
+
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+std::optional<Type> typeNamed(std::string_view name) {
+    static const std::pair<const char*, Type> kTypes[] = {
+        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},   {"uint8", Type::UInt8},
+        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16}, {"uint16", Type::UInt16},
+        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},   {"uint32", Type::UInt32},
+        {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
+    for (const auto& [n, t] : kTypes)
+        if (name == n) return t;
+    return std::nullopt;
+}
+
+size_t sizeOf(Type t) {
+    switch (t) {
+        case Type::Int8:
+        case Type::UInt8: return 1;
+        case Type::Int16:
+        case Type::UInt16: return 2;
+        case Type::Int32:
+        case Type::UInt32:
+        case Type::Float32: return 4;
+        case Type::Float64: return 8;
+    }
+    return 0;
+}
+
+bool isInteger(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+struct Property {
+    std::string name;
+    bool list = false;
+    Type countType = Type::UInt8;  // lists only
+    Type type = Type::Float32;     // the value's, or a list item's
+};
+
+struct Element {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<Property> properties;
+    size_t line = 0;  // of its header line
+
+    // The fewest bytes one element takes in a binary file (an empty list is its count alone).
+    uint64_t minBinaryBytes() const {
+        uint64_t bytes = 0;
+        for (const Property& p : properties) bytes += sizeOf(p.list ? p.countType : p.type);
+        return bytes;
+    }
+};
+
+enum class Format { Ascii, Little, Big };
+
+struct Header {
+    Format format = Format::Ascii;
+    std::vector<Element> elements;
+    size_t dataStart = 0;  // byte offset of the data
+    size_t lines = 0;      // header lines (the ASCII data's first line is lines + 1)
+};
+
+std::vector<std::string_view> words(std::string_view line) {
+    std::vector<std::string_view> out;
+    size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        const size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+        if (i > start) out.push_back(line.substr(start, i - start));
+    }
+    return out;
+}
+
+std::string shown(std::string_view text) {
+    std::string out = "'";
+    for (unsigned char c : text.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? char(c) : '?';
+    return out + (text.size() > 40 ? "...'" : "'");
+}
+
+Header readHeader(const std::string& bytes, const std::string& name) {
+    auto fail = [&](size_t line, const std::string& what) {
+        throw InputError(name + ":" + std::to_string(line) + ": " + what);
+    };
+    if (!looksLikePly(bytes)) throw InputError(name + ": not a PLY file (it does not start with 'ply')");
+    Header header;
+    bool haveFormat = false;
+    size_t pos = 0, line = 0;
+    while (true) {
+        const size_t end = bytes.find('\n', pos);
+        if (end == std::string::npos) fail(line + 1, "the header has no end_header line");
+        ++line;
+        std::string_view text(bytes.data() + pos, end - pos);
+        if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+        pos = end + 1;
+        for (unsigned char c : text)
+            if ((c < 0x20 && c != '\t') || c >= 0x7f) fail(line, "binary data in the header");
+        const std::vector<std::string_view> w = words(text);
+        if (line == 1) continue;  // "ply"
+        if (w.empty()) continue;
+        const std::string_view keyword = w[0];
+        if (keyword == "comment" || keyword == "obj_info") continue;
+        if (keyword == "end_header") {
+            if (w.size() != 1) fail(line, "end_header followed by " + shown(w[1]));
+            break;
+        }
+        if (keyword == "format") {
+            if (haveFormat) fail(line, "a second format line");
+            if (w.size() != 3) fail(line, "format needs an encoding and a version");
+            if (w[1] == "ascii") header.format = Format::Ascii;
+            else if (w[1] == "binary_little_endian") header.format = Format::Little;
+            else if (w[1] == "binary_big_endian") header.format = Format::Big;
+            else fail(line, "unknown format " + shown(w[1]) + " (ascii, binary_little_endian, binary_big_endian)");
+            if (w[2] != "1.0") fail(line, "unknown PLY version " + shown(w[2]) + " (1.0)");
+            haveFormat = true;
+        } else if (keyword == "element") {
+            if (!haveFormat) fail(line, "element before the format line");
+            if (w.size() != 3) fail(line, "element needs a name and a count");
+            Element e;
+            e.name = std::string(w[1]);
+            e.line = line;
+            const auto [p, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+            if (ec != std::errc() || p != w[2].data() + w[2].size())
+                fail(line, "element count " + shown(w[2]) + " is not a whole number");
+            for (const Element& other : header.elements)
+                if (other.name == e.name) fail(line, "element " + shown(e.name) + " declared twice");
+            header.elements.push_back(std::move(e));
+        } else if (keyword == "property") {
+            if (header.elements.empty()) fail(line, "property before any element");
+            Property p;
+            const bool list = w.size() >= 2 && w[1] == "list";
+            if (w.size() != (list ? 5u : 3u))
+                fail(line, list ? "property list needs a count type, an item type and a name"
+                                : "property needs a type and a name");
+            p.list = list;
+            if (list) {
+                const std::optional<Type> count = typeNamed(w[2]);
+                if (!count) fail(line, "unknown type " + shown(w[2]));
+                if (!isInteger(*count)) fail(line, "a list's count type must be an integer type, not " + shown(w[2]));
+                p.countType = *count;
+            }
+            const std::optional<Type> type = typeNamed(w[list ? 3 : 1]);
+            if (!type) fail(line, "unknown type " + shown(w[list ? 3 : 1]));
+            p.type = *type;
+            p.name = std::string(w.back());
+            for (const Property& other : header.elements.back().properties)
+                if (other.name == p.name) fail(line, "property " + shown(p.name) + " declared twice");
+            header.elements.back().properties.push_back(std::move(p));
+        } else {
+            fail(line, "unknown header line " + shown(keyword));
+        }
+    }
+    if (!haveFormat) fail(line, "the header has no format line");
+    header.dataStart = pos;
+    header.lines = line;
+    return header;
+}
+
+// Values of the data, in order, whatever the encoding; `where()` names the place for messages.
+class DataReader {
+  public:
+    DataReader(const std::string& bytes, const Header& header, const std::string& name)
+        : bytes_(bytes), format_(header.format), pos_(header.dataStart), line_(header.lines + 1), name_(name) {}
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + where() + ": " + what); }
+
+    // Before reading `count` elements of `e`: the bytes left can hold them (nothing is allocated
+    // for counts the file cannot back).
+    void checkRoom(const Element& e) const {
+        const uint64_t left = bytes_.size() - pos_;
+        // ASCII: at least one character and a separator per value.
+        const uint64_t each = format_ == Format::Ascii ? 2 * std::max<uint64_t>(e.properties.size(), 1) : e.minBinaryBytes();
+        const uint64_t room = format_ == Format::Ascii ? (left + 1) / each : left / std::max<uint64_t>(each, 1);
+        if (each > 0 && e.count > room)
+            throw InputError(name_ + ":" + std::to_string(e.line) + ": " + std::to_string(e.count) + " " + e.name +
+                             " elements of at least " + std::to_string(each) + " bytes, but only " +
+                             std::to_string(left) + " bytes of data follow (the header does not match the data)");
+    }
+
+    double value(Type type) {
+        return format_ == Format::Ascii ? asciiValue(type) : binaryValue(type);
+    }
+
+    // The end of the data: nothing but (ASCII) white space may follow.
+    void finish() {
+        if (format_ == Format::Ascii) {
+            skipSpace();
+            if (pos_ < bytes_.size()) fail("data after the last element (the header does not match the data)");
+        } else if (pos_ != bytes_.size()) {
+            fail(std::to_string(bytes_.size() - pos_) + " bytes after the last element (the header does not match the data)");
+        }
+    }
+
+    void setPlace(const Element& e, uint64_t index) {
+        element_ = &e;
+        index_ = index;
+    }
+
+  private:
+    std::string where() const {
+        if (format_ == Format::Ascii) return ":" + std::to_string(line_);
+        return element_ ? ": " + element_->name + " " + std::to_string(index_) + " (byte " + std::to_string(pos_) + ")"
+                        : std::string();
+    }
+
+    void skipSpace() {
+        while (pos_ < bytes_.size()) {
+            const char c = bytes_[pos_];
+            if (c == '\n') ++line_;
+            else if (c != ' ' && c != '\t' && c != '\r') break;
+            ++pos_;
+        }
+    }
+
+    double asciiValue(Type type) {
+        skipSpace();
+        if (pos_ >= bytes_.size()) fail("the data ends early (the header declares more)");
+        const size_t start = pos_;
+        while (pos_ < bytes_.size() && !std::strchr(" \t\r\n", bytes_[pos_])) ++pos_;
+        const char* first = bytes_.data() + start;
+        const char* last = bytes_.data() + pos_;
+        if (isInteger(type)) {
+            long long v = 0;
+            const auto [p, ec] = std::from_chars(first, last, v);
+            if (ec != std::errc() || p != last) fail(shown(std::string_view(first, size_t(last - first))) + " is not an integer");
+            if (!fits(type, double(v))) fail(std::to_string(v) + " does not fit its property's type");
+            return double(v);
+        }
+        double v = 0;
+        const auto [p, ec] = std::from_chars(first, last, v);
+        if ((ec != std::errc() && ec != std::errc::result_out_of_range) || p != last)
+            fail(shown(std::string_view(first, size_t(last - first))) + " is not a number");
+        if (ec == std::errc::result_out_of_range) fail(shown(std::string_view(first, size_t(last - first))) + " is out of range");
+        return type == Type::Float32 ? double(float(v)) : v;
+    }
+
+    static bool fits(Type type, double v) {
+        switch (type) {
+            case Type::Int8: return v >= -128 && v <= 127;
+            case Type::UInt8: return v >= 0 && v <= 255;
+            case Type::Int16: return v >= -32768 && v <= 32767;
+            case Type::UInt16: return v >= 0 && v <= 65535;
+            case Type::Int32: return v >= -2147483648.0 && v <= 2147483647.0;
+            case Type::UInt32: return v >= 0 && v <= 4294967295.0;
+            default: return true;
+        }
+    }
+
+    double binaryValue(Type type) {
+        const size_t n = sizeOf(type);
+        if (bytes_.size() - pos_ < n) fail("the data ends early (the header declares more)");
+        unsigned char b[8];
+        std::memcpy(b, bytes_.data() + pos_, n);
+        pos_ += n;
+        if ((format_ == Format::Big) == (std::endian::native == std::endian::little)) std::reverse(b, b + n);
+        switch (type) {
+            case Type::Int8: return double(std::bit_cast<int8_t>(b[0]));
+            case Type::UInt8: return double(b[0]);
+            case Type::Int16: { int16_t v; std::memcpy(&v, b, 2); return double(v); }
+            case Type::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return double(v); }
+            case Type::Int32: { int32_t v; std::memcpy(&v, b, 4); return double(v); }
+            case Type::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return double(v); }
+            case Type::Float32: { float v; std::memcpy(&v, b, 4); return double(v); }
+            case Type::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+        }
+        return 0;
+    }
+
+    const std::string& bytes_;
+    Format format_;
+    size_t pos_;
+    size_t line_;
+    const std::string& name_;
+    const Element* element_ = nullptr;
+    uint64_t index_ = 0;
+};
+
+// The index of the property called one of `names` in e, or -1.
+int propertyIndex(const Element& e, std::initializer_list<const char*> names) {
+    for (size_t k = 0; k < e.properties.size(); ++k)
+        for (const char* n : names)
+            if (e.properties[k].name == n) return int(k);
+    return -1;
+}
+
+}  // namespace
+
+bool looksLikePly(const std::string& head) {
+    return head.compare(0, 4, "ply\n") == 0 || head.compare(0, 5, "ply\r\n") == 0;
+}
+
+Scene parsePly(const std::string& bytes, const std::string& name) {
+    const Header header = readHeader(bytes, name);
+    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
+    const Element* vertex = nullptr;
+    const Element* face = nullptr;
+    for (const Element& e : header.elements) {
+        if (e.name == "vertex") vertex = &e;
+        if (e.name == "face") face = &e;
+    }
+    if (!vertex) fail("no vertex element");
+    int position[3], normal[3];
+    for (int a = 0; a < 3; ++a) {
+        const char* axis[] = {"x", "y", "z"};
+        const char* naxis[] = {"nx", "ny", "nz"};
+        position[a] = propertyIndex(*vertex, {axis[a]});
+        normal[a] = propertyIndex(*vertex, {naxis[a]});
+        if (position[a] < 0) fail(std::string("line ") + std::to_string(vertex->line) + ": the vertex element has no property " + axis[a]);
+        if (vertex->properties[size_t(position[a])].list) fail(std::string("the vertex property ") + axis[a] + " is a list");
+    }
+    const bool hasNormals = normal[0] >= 0 || normal[1] >= 0 || normal[2] >= 0;
+    if (hasNormals && (normal[0] < 0 || normal[1] < 0 || normal[2] < 0))
+        fail("the vertex element has some of nx, ny, nz but not all three");
+    const int indices = face ? propertyIndex(*face, {"vertex_indices", "vertex_index"}) : -1;
+    if (face && indices < 0) fail("the face element has no vertex_indices list");
+    if (face && (!face->properties[size_t(indices)].list || !isInteger(face->properties[size_t(indices)].type)))
+        fail("the face property " + face->properties[size_t(indices)].name + " is not a list of integers");
+
+    std::vector<glm::vec3> positions, normals;
+    std::vector<uint32_t> faceSizes;
+    std::vector<double> faceIndices;
+    DataReader in(bytes, header, name);
+    for (const Element& e : header.elements) {
+        in.checkRoom(e);
+        const bool isVertex = &e == vertex, isFace = &e == face;
+        if (isVertex) {
+            positions.resize(size_t(e.count));
+            if (hasNormals) normals.resize(size_t(e.count));
+        }
+        if (e.properties.empty()) continue;  // elements of nothing take no bytes
+        for (uint64_t i = 0; i < e.count; ++i) {
+            in.setPlace(e, i);
+            for (size_t k = 0; k < e.properties.size(); ++k) {
+                const Property& p = e.properties[k];
+                if (p.list) {
+                    const double n = in.value(p.countType);
+                    if (n < 0) in.fail("a list of " + std::to_string(int64_t(n)) + " items");
+                    if (isFace && int(k) == indices) {
+                        if (n < 3) in.fail("a face of " + std::to_string(int64_t(n)) + " vertices; a face needs at least 3");
+                        faceSizes.push_back(uint32_t(n));
+                        for (double j = 0; j < n; ++j) faceIndices.push_back(in.value(p.type));
+                    } else {
+                        for (double j = 0; j < n; ++j) in.value(p.type);
+                    }
+                    continue;
+                }
+                const double v = in.value(p.type);
+                if (!isVertex) continue;
+                for (int a = 0; a < 3; ++a) {
+                    if (int(k) == position[a]) {
+                        if (!std::isfinite(float(v))) in.fail("vertex coordinate is not a finite float");
+                        positions[size_t(i)][a] = float(v);
+                    }
+                    if (int(k) == normal[a]) {
+                        if (!std::isfinite(float(v))) in.fail("normal component is not a finite float");
+                        normals[size_t(i)][a] = float(v);
+                    }
+                }
+            }
+        }
+    }
+    in.finish();
+
+    Scene scene;
+    scene.materials.push_back(Material{});
+    size_t at = 0;
+    for (size_t f = 0; f < faceSizes.size(); ++f) {
+        const size_t n = faceSizes[f];
+        for (size_t j = 0; j < n; ++j) {
+            const double index = faceIndices[at + j];
+            if (index < 0 || index >= double(positions.size()))
+                fail("face " + std::to_string(f) + ": vertex index " + std::to_string(int64_t(index)) +
+                     " is out of range (" + std::to_string(positions.size()) + " vertices)");
+        }
+        const auto v = [&](size_t j) { return size_t(faceIndices[at + j]); };
+        for (size_t j = 1; j + 1 < n; ++j) {
+            scene.triangles.push_back({positions[v(0)], positions[v(j)], positions[v(j + 1)]});
+            scene.materialIds.push_back(0);
+            if (hasNormals) scene.normals.push_back({normals[v(0)], normals[v(j)], normals[v(j + 1)]});
+        }
+        at += n;
+    }
+    return scene;
+}
+
+Scene loadPly(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(name + ": cannot read file");
+    return parsePly(buffer.str(), name);
+}
+
+}  // namespace gpurt

@@ -1,0 +1,32 @@
+// Stanford PLY meshes (ASCII, binary little and big endian) into a Scene: vertex positions,
+// optional vertex normals, faces as index lists fanned as the contract says (CONTRACT.md, triangle
+// numbering: the faces in file order, (v0, vi, vi+1)). A small strict reader of our own: the
+// format is one page long, and the field's readers (Assimp, rply, tinyply, happly) accept headers
+// that do not match their data (short files padded with zeros, counts larger than the file,
+// trailing bytes), which gpurt must refuse with the file's name.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "raytrace/Scene.h"
+
+namespace gpurt {
+
+// Reads a PLY file: every element the header declares, in order, with every property (those gpurt
+// does not use, like the Stanford scans' confidence and intensity, or whole elements such as edges,
+// are read and skipped). Uses vertex x, y, z (required), nx, ny, nz (all three or none) and the
+// face list vertex_indices (or vertex_index). Every triangle gets the default material.
+// Throws InputError naming the file (and the header line, the ASCII line, or the element and
+// byte offset) for a file that is not PLY, a header that does not match its data (a short file,
+// trailing data, a count the file cannot hold), a face of fewer than 3 vertices, an index out of
+// range and non-finite positions or normals.
+Scene loadPly(const std::filesystem::path& path);
+
+// loadPly on bytes already in memory; `name` names the file in messages (the fuzz target).
+Scene parsePly(const std::string& bytes, const std::string& name);
+
+// Whether `bytes` start like a PLY file ("ply" and a line end).
+bool looksLikePly(const std::string& head);
+
+}  // namespace gpurt
