@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "raytrace/Camera.h"
-#include "raytrace/Colour.h"
-#include "raytrace/ImageIO.h"
-#include "raytrace/ObjLoader.h"
+#include "image/Colour.h"
+#include "image/ImageIO.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/UniformGrid.h"
 #ifdef GPURT_HAVE_EMBREE
 #include "raytrace/BenchRays.h"

@@ -6,7 +6,7 @@
 #include "GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/ObjLoader.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
 
 #include <cmath>

@@ -7,13 +7,13 @@
 #include "TestScenes.h"
 
 #include "raytrace/Camera.h"
-#include "raytrace/Colour.h"
+#include "image/Colour.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
-#include "raytrace/ImageIO.h"
-#include "raytrace/ObjLoader.h"
+#include "image/ImageIO.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
-#include "raytrace/SmoothNormals.h"
+#include "scene/SmoothNormals.h"
 #include "raytrace/UniformGrid.h"
 
 #include <cmath>

@@ -3,10 +3,10 @@
 #pragma once
 
 #include "raytrace/Camera.h"
-#include "raytrace/Colour.h"
+#include "image/Colour.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
-#include "raytrace/ImageIO.h"
+#include "image/ImageIO.h"
 #include "raytrace/UniformGrid.h"
 
 #include <gtest/gtest.h>

@@ -4,9 +4,9 @@
 #include "GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 #include "raytrace/SceneLoader.h"
-#include "raytrace/Tiles.h"
+#include "image/Tiles.h"
 
 #include <cstdio>
 

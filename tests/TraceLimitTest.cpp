@@ -6,7 +6,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
-#include "raytrace/ObjLoader.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt::test {

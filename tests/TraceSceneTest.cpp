@@ -6,7 +6,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
-#include "raytrace/ImageIO.h"
+#include "image/ImageIO.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/UniformGrid.h"
 

@@ -7,7 +7,7 @@
 #include "CliRunner.h"
 #include "PngPixels.h"
 
-#include "raytrace/ImageIO.h"
+#include "image/ImageIO.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>

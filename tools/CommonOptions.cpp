@@ -1,7 +1,7 @@
 #include "CommonOptions.h"
 
 #include "raytrace/SceneScale.h"
-#include "raytrace/SmoothNormals.h"
+#include "scene/SmoothNormals.h"
 #include "stream/StreamErrors.h"
 
 #include <cstdio>

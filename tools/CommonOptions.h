@@ -3,10 +3,10 @@
 #pragma once
 
 #include "raytrace/Camera.h"
-#include "raytrace/Colour.h"
-#include "raytrace/InputError.h"
+#include "image/Colour.h"
+#include "image/InputError.h"
 #include "raytrace/GpuTracer.h"
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/GLContext.h"

@@ -3,8 +3,8 @@
 // textures as PFM images and the grid's occupancy as PNG projections. CPU only: no GL context.
 #include "Commands.h"
 
-#include "raytrace/ImageIO.h"
-#include "raytrace/InputError.h"
+#include "image/ImageIO.h"
+#include "image/InputError.h"
 #include "raytrace/PackedScene.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/SceneTextureLayout.h"

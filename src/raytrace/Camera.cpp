@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 #include "raytrace/RayMath.h"
 
 namespace gpurt {

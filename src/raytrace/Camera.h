@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

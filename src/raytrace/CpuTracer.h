@@ -10,7 +10,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/EmitterTable.h"
 #include "raytrace/RenderTypes.h"
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt {

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

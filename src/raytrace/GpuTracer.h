@@ -6,7 +6,7 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/RenderTypes.h"
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/SceneTextures.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/GPUMask.h"

@@ -18,9 +18,10 @@
 
 #include <zlib.h>
 
-#include "raytrace/AtomicFile.h"
-#include "raytrace/InputError.h"
+#include "image/AtomicFile.h"
+#include "image/InputError.h"
 #include "raytrace/SceneTextureLayout.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -71,21 +72,6 @@ std::string hex32(uint32_t value) {
     char text[16];
     std::snprintf(text, sizeof text, "0x%08x", value);
     return text;
-}
-
-// A tag or other file bytes as one line of ASCII.
-std::string printable(std::string_view text) {
-    std::string out;
-    for (unsigned char c : text) {
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
-        } else {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", c);
-            out += hex;
-        }
-    }
-    return out;
 }
 
 std::string formatFloat(float value) {

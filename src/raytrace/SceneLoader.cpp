@@ -7,11 +7,11 @@
 #include <fstream>
 #include <string>
 
-#include "raytrace/InputError.h"
-#include "raytrace/JsonScene.h"
-#include "raytrace/ObjLoader.h"
+#include "image/InputError.h"
+#include "scene/JsonScene.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/PackedScene.h"
-#include "raytrace/PlyLoader.h"
+#include "scene/PlyLoader.h"
 
 namespace gpurt {
 namespace {
@@ -91,17 +91,6 @@ LoadedScene loadScene(const std::filesystem::path& path) {
             break;
     }
     return LoadedScene{loadObj(path), std::nullopt, std::nullopt};
-}
-
-Scene loadMesh(const std::filesystem::path& path) {
-    switch (detectFormat(path)) {
-        case SceneFormat::Ply:
-            return loadPly(path);
-        case SceneFormat::Obj:
-            return loadObj(path);
-        default:
-            throw InputError(path.string() + ": a mesh must be an OBJ or a PLY file");
-    }
 }
 
 }  // namespace gpurt

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt {
@@ -32,8 +32,5 @@ struct LoadedScene {
 // "FILE: is a directory ...", "FILE: cannot read ..." or the chosen loader's message
 // (readPackedScene, loadJsonSceneFile, loadObj).
 LoadedScene loadScene(const std::filesystem::path& path);
-
-// A mesh of a JSON scene: an OBJ or a PLY file (by content, or a .ply name), else InputError.
-Scene loadMesh(const std::filesystem::path& path);
 
 }  // namespace gpurt

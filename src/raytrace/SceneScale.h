@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raytrace/EmitterTable.h"
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt {

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "raytrace/EmitterTable.h"
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"

@@ -13,7 +13,7 @@
 #include <thread>
 #include <utility>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

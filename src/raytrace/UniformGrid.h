@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

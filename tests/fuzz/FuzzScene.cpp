@@ -12,7 +12,7 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 #include "raytrace/SceneScale.h"
 #include "raytrace/UniformGrid.h"
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 #include "raytrace/UniformGrid.h"
 
 namespace gpurt::fuzz {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "FuzzScene.h"
-#include "raytrace/InputError.h"
-#include "raytrace/JsonScene.h"
+#include "image/InputError.h"
+#include "scene/JsonScene.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     gpurt::fuzz::scratchFolder();

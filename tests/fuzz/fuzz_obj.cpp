@@ -10,8 +10,8 @@
 #include <string>
 
 #include "FuzzScene.h"
-#include "raytrace/InputError.h"
-#include "raytrace/ObjLoader.h"
+#include "image/InputError.h"
+#include "scene/ObjLoader.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     gpurt::fuzz::scratchFolder();

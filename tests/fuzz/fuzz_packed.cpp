@@ -12,7 +12,7 @@
 #include <zlib.h>
 
 #include "FuzzScene.h"
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 #include "raytrace/PackedScene.h"
 
 namespace {

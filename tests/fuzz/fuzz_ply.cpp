@@ -7,8 +7,8 @@
 #include <string>
 
 #include "FuzzScene.h"
-#include "raytrace/InputError.h"
-#include "raytrace/PlyLoader.h"
+#include "image/InputError.h"
+#include "scene/PlyLoader.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     gpurt::fuzz::silenceWarnings();

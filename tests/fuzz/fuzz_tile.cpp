@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "FuzzScene.h"
-#include "raytrace/ImageIO.h"
-#include "raytrace/InputError.h"
-#include "raytrace/Tiles.h"
+#include "image/ImageIO.h"
+#include "image/InputError.h"
+#include "image/Tiles.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/ObjLoader.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/RayMath.h"
 
 namespace gpurt {

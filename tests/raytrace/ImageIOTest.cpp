@@ -1,6 +1,6 @@
 // Image files: PFM round trip with the contract's bottom-to-top scanlines (checked on the raw
 // bytes), a big-endian PFM, PNG read back with libpng, and atomic writes.
-#include "raytrace/ImageIO.h"
+#include "image/ImageIO.h"
 
 #include <cmath>
 #include <cstring>
@@ -12,7 +12,7 @@
 #include <png.h>
 #include <unistd.h>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

@@ -1,7 +1,7 @@
 // JSON scene files (JsonScene.h) and format detection (SceneLoader.h): transforms against an
 // independent computation, numbering and materials across meshes, every kind of validation error,
 // and the shipped demo scenes.
-#include "raytrace/JsonScene.h"
+#include "scene/JsonScene.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "raytrace/InputError.h"
-#include "raytrace/ObjLoader.h"
+#include "image/InputError.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
 
 namespace gpurt {

@@ -1,6 +1,6 @@
 // OBJ loading: the contract's triangle numbering (file order, polygon fans), MTL materials, and
 // one InputError naming file and line for each kind of bad input tinyobjloader would accept.
-#include "raytrace/ObjLoader.h"
+#include "scene/ObjLoader.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

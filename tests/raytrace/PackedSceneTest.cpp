@@ -21,8 +21,8 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
-#include "raytrace/InputError.h"
-#include "raytrace/ObjLoader.h"
+#include "image/InputError.h"
+#include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/SceneTextureLayout.h"
 

@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/Colour.h"
+#include "image/Colour.h"
 #include "raytrace/RayMath.h"
-#include "raytrace/SmoothNormals.h"
+#include "scene/SmoothNormals.h"
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"

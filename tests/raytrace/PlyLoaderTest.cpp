@@ -2,7 +2,7 @@
 // every property type reads as the same triangles, fanned as the contract says; extra properties
 // and elements are skipped; every way a header can disagree with its data is refused, naming the
 // file and the place.
-#include "raytrace/PlyLoader.h"
+#include "scene/PlyLoader.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

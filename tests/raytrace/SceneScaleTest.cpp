@@ -9,8 +9,8 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
-#include "raytrace/JsonScene.h"
-#include "raytrace/ObjLoader.h"
+#include "scene/JsonScene.h"
+#include "scene/ObjLoader.h"
 
 namespace gpurt {
 namespace {

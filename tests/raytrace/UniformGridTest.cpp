@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/InputError.h"
-#include "raytrace/ObjLoader.h"
+#include "image/InputError.h"
+#include "scene/ObjLoader.h"
 
 namespace gpurt {
 namespace {

@@ -1,4 +1,4 @@
-#include "raytrace/SmoothNormals.h"
+#include "scene/SmoothNormals.h"
 
 #include <algorithm>
 #include <cmath>

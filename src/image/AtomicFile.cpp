@@ -1,5 +1,5 @@
 // Atomic output through mkstemp and rename (POSIX rename replaces the target in one step).
-#include "raytrace/AtomicFile.h"
+#include "image/AtomicFile.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

@@ -1,6 +1,6 @@
 // PNG (libpng) and PFM writing through a temporary file and rename, so that an output file
 // appears whole or not at all (CONTRACT.md, exit codes).
-#include "raytrace/ImageIO.h"
+#include "image/ImageIO.h"
 
 #include <algorithm>
 #include <bit>
@@ -16,9 +16,9 @@
 
 #include <png.h>
 
-#include "raytrace/AtomicFile.h"
-#include "raytrace/Colour.h"
-#include "raytrace/InputError.h"
+#include "image/AtomicFile.h"
+#include "image/Colour.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

@@ -1,5 +1,5 @@
 // Bounds helpers and the light list shared by both backends.
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 #include <cmath>
 

@@ -4,7 +4,7 @@
 // because tinyobjloader stores that count in an unsigned char, and the vertex positions, read
 // with strtof: tinyobjloader's own number parser loses values with very long mantissas or
 // exponents.
-#include "raytrace/ObjLoader.h"
+#include "scene/ObjLoader.h"
 
 #include <cctype>
 #include <cerrno>
@@ -23,7 +23,8 @@
 
 #include <tiny_obj_loader.h>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -286,10 +287,6 @@ class ObjScanner {
     std::string fileName_;
 };
 
-// A regular file or a pipe: a device such as /dev/zero would be read forever.
-bool isReadableKind(const std::filesystem::file_status& status) {
-    return std::filesystem::is_regular_file(status) || std::filesystem::is_fifo(status);
-}
 
 // Opens material libraries next to the OBJ file and remembers which could not be opened (the
 // stock MaterialFileReader splits its folder at ':' and only reports failures as text).

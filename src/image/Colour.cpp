@@ -1,10 +1,13 @@
-#include "raytrace/Colour.h"
+#include "image/Colour.h"
 
 #include <cmath>
 
-#include "raytrace/RayMath.h"
+#include <glm/glm.hpp>
 
+// The kernels' tone mapping, word for word (glsl/common: the C++/GLSL headers every folder shares).
 namespace gpurt::raymath {
+using namespace glm;
+#include "../../glsl/common/raymath.h"
 #include "../../glsl/common/colour.h"
 }  // namespace gpurt::raymath
 

@@ -5,7 +5,7 @@
 // edges while a scanned model turns smooth. Vertices are shared by position.
 #pragma once
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

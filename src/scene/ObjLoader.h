@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "raytrace/Scene.h"
+#include "scene/Scene.h"
 
 namespace gpurt {
 

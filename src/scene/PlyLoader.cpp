@@ -1,7 +1,7 @@
 // PLY reading: the header into elements and properties, then the data through one reader per
 // encoding (ASCII tokens with line numbers, or binary values of either byte order), every count
 // checked against the bytes that are left before anything is allocated.
-#include "raytrace/PlyLoader.h"
+#include "scene/PlyLoader.h"
 
 #include <algorithm>
 #include <bit>
@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "raytrace/InputError.h"
+#include "image/InputError.h"
 
 namespace gpurt {
 namespace {

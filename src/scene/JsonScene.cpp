@@ -1,7 +1,7 @@
 // JSON scene loading: nlohmann-json parses; SceneReader walks the document against the schema of
 // docs/SCENE_FORMAT.md, naming the JSON pointer of anything it refuses, and assembles the Scene
 // from the OBJ files the meshes name.
-#include "raytrace/JsonScene.h"
+#include "scene/JsonScene.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -24,9 +24,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "raytrace/InputError.h"
-#include "raytrace/ObjLoader.h"
-#include "raytrace/SceneLoader.h"
+#include "image/InputError.h"
+#include "scene/ObjLoader.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -46,29 +46,10 @@ std::string quote(std::string_view text) {
 }
 
 // Messages are one line of ASCII whatever the file holds: other bytes become \xNN.
-std::string printable(std::string_view text) {
-    std::string out;
-    for (unsigned char c : text) {
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
-        } else {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", c);
-            out += hex;
-        }
-    }
-    return out;
-}
-
 std::string formatNumber(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", value);
     return text;
-}
-
-// A regular file or a pipe: a device such as /dev/zero would be read forever.
-bool isReadableKind(const std::filesystem::file_status& status) {
-    return std::filesystem::is_regular_file(status) || std::filesystem::is_fifo(status);
 }
 
 std::string readSceneText(const std::filesystem::path& path) {

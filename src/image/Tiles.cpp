@@ -1,8 +1,8 @@
-#include "raytrace/Tiles.h"
+#include "image/Tiles.h"
 
-#include "raytrace/AtomicFile.h"
-#include "raytrace/ImageIO.h"
-#include "raytrace/InputError.h"
+#include "image/AtomicFile.h"
+#include "image/ImageIO.h"
+#include "image/InputError.h"
 
 #include <nlohmann/json.hpp>
 #include <zlib.h>

@@ -1,0 +1,24 @@
+// What every scene reader does before and around parsing: the checks that a path names a file a
+// reader can read, reading it whole, bytes shown as one printable line, and the mesh readers
+// chosen by content (OBJ or PLY).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "scene/Scene.h"
+
+namespace gpurt {
+
+// A regular file or a pipe: a device such as /dev/zero would be read forever.
+bool isReadableKind(const std::filesystem::file_status& status);
+
+// Text or file bytes as one line of ASCII: other bytes as \xNN.
+std::string printable(std::string_view text);
+
+// A mesh file (a JSON scene's mesh): a PLY by content ("ply" and a line end) or by a .ply name,
+// else an OBJ. Throws the reader's InputError.
+Scene loadMesh(const std::filesystem::path& path);
+
+}  // namespace gpurt
