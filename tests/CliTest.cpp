@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 #include <nlohmann/json.hpp>
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -834,6 +840,97 @@ TEST_F(Cli, AKilledTaskLeavesNoHalfWrittenOutput) {
     }
     EXPECT_GT(none, 0);  // some kills came before the end
     EXPECT_GT(whole, 0);  // and some after
+}
+
+// The layout's channels of an EXR file, read with OpenEXR itself, interleaved, top row first.
+std::vector<float> openExr(const fs::path& file, const std::vector<std::string>& channels, Imf::PixelType type,
+                           int& width, int& height) {
+    Imf::InputFile in(file.c_str());
+    const Imath::Box2i window = in.header().dataWindow();
+    width = window.max.x + 1;
+    height = window.max.y + 1;
+    EXPECT_EQ(window.min.x, 0);
+    EXPECT_EQ(window.min.y, 0);
+    const size_t n = channels.size();
+    std::vector<float> values(size_t(width) * size_t(height) * n);
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < n; ++c) {
+        const Imf::Channel* channel = in.header().channels().findChannel(channels[c]);
+        EXPECT_TRUE(channel && channel->type == type) << file << " " << channels[c];
+        frame.insert(channels[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() + c), n * sizeof(float),
+                                             n * sizeof(float) * size_t(width)));
+    }
+    in.setFrameBuffer(frame);
+    in.readPixels(0, height - 1);
+    return values;
+}
+
+// The PFM's values top row first (PFM stores the bottom row first).
+std::vector<float> topFirst(const Pfm& pfm) {
+    const size_t row = pfm.bottomFirst.size() / size_t(pfm.height);
+    std::vector<float> out;
+    for (int y = pfm.height - 1; y >= 0; --y)
+        out.insert(out.end(), pfm.bottomFirst.begin() + std::ptrdiff_t(size_t(y) * row),
+                   pfm.bottomFirst.begin() + std::ptrdiff_t(size_t(y + 1) * row));
+    return out;
+}
+
+// -o OUT.exr is the linear colour times 2^EV as half floats (R, G, B); AOVs named .exr are 32-bit
+// float channels (depth Z, prim, normal X Y Z, color R G B) with the PFM AOVs' very values.
+// Read back with OpenEXR's library and its exrheader tool.
+TEST_F(Cli, ExrOutputsReadBackWithOpenExr) {
+    const std::string render = "render " + kTeapot + " --size 40x30 --exposure 1";
+    std::string exr = " -o " + path("out.exr"), pfm = " -o " + path("out.png");
+    for (const char* aov : {"depth", "prim", "normal", "color"}) {
+        exr += std::string(" --aov ") + aov + "=" + path(std::string(aov) + ".exr");
+        pfm += std::string(" --aov ") + aov + "=" + path(std::string(aov) + ".pfm");
+    }
+    ASSERT_EQ(gpurt(render + exr).code, 0);
+    ASSERT_EQ(gpurt(render + pfm).code, 0);
+    const std::vector<float> color = topFirst(readPfm(dir / "color.pfm"));
+    int w = 0, h = 0;
+    const std::vector<float> image = openExr(dir / "out.exr", {"R", "G", "B"}, Imf::HALF, w, h);
+    EXPECT_EQ(w, 40);
+    EXPECT_EQ(h, 30);
+    ASSERT_EQ(image.size(), color.size());
+    size_t differ = 0;
+    for (size_t k = 0; k < image.size(); ++k) differ += image[k] != float(Imath::half(color[k] * 2.0f));
+    EXPECT_EQ(differ, 0u);
+    const std::pair<const char*, std::vector<std::string>> aovs[] = {
+        {"depth", {"Z"}}, {"prim", {"prim"}}, {"normal", {"X", "Y", "Z"}}, {"color", {"R", "G", "B"}}};
+    for (const auto& [aov, channels] : aovs) {
+        const std::vector<float> values = openExr(dir / (std::string(aov) + ".exr"), channels, Imf::FLOAT, w, h);
+        const std::vector<float> expected = topFirst(readPfm(dir / (std::string(aov) + ".pfm")));
+        ASSERT_EQ(values.size(), expected.size()) << aov;
+        EXPECT_EQ(std::memcmp(values.data(), expected.data(), values.size() * sizeof(float)), 0) << aov;
+    }
+    const std::string info = path("exrheader.txt");
+    ASSERT_EQ(std::system(("exrheader " + path("depth.exr") + " >" + info + " 2>&1").c_str()), 0) << slurp(info);
+    const std::string header = slurp(info);
+    EXPECT_NE(header.find("Z, 32-bit floating-point"), std::string::npos) << header;
+    EXPECT_NE(header.find("compression (type compression): zip"), std::string::npos) << header;
+    EXPECT_NE(header.find("dataWindow (type box2i): (0 0) - (39 29)"), std::string::npos) << header;
+}
+
+// EXR tiles stitch, as PNG and PFM tiles do, into the bytes of the whole render's EXR files; a
+// PNG tile is no tile of an EXR.
+TEST_F(Cli, StitchedExrTilesAreTheWholeRender) {
+    const std::string scene = "render scenes/cornell_blocks.json --size 20x17 --spp 2";
+    auto outputs = [&](const std::string& stem) {
+        return " -o " + path(stem + ".exr") + " --aov depth=" + path(stem + "_depth.exr") + " --aov normal=" +
+               path(stem + "_normal.exr");
+    };
+    ASSERT_EQ(gpurt(scene + outputs("whole")).code, 0);
+    for (int i = 0; i < 3; ++i)
+        ASSERT_EQ(gpurt(scene + " --tile " + std::to_string(i) + "/3" + outputs("t" + std::to_string(i))).code, 0);
+    for (const std::string suffix : {".exr", "_depth.exr", "_normal.exr"}) {
+        const Result r = gpurt("stitch -o " + path("s" + suffix) + " " + path("t2" + suffix) + " " + path("t0" + suffix) +
+                               " " + path("t1" + suffix));
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_EQ(slurp(dir / ("s" + suffix)), slurp(dir / ("whole" + suffix))) << suffix;
+    }
+    ASSERT_EQ(gpurt(scene + " --tile 0/1 -o " + path("png0.png")).code, 0);
+    expectRefused("stitch -o " + path("out.exr") + " " + path("png0.png"), "a PNG tile for");
 }
 
 // Stitch refuses, with exit 1 and one line naming the tile, a missing, repeated, foreign or

@@ -7,6 +7,7 @@
 
 #include "image/AtomicFile.h"
 #include "image/Colour.h"
+#include "image/ExrIO.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "image/ImageIO.h"
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -172,18 +174,47 @@ struct OutputFiles {
     std::map<std::string, std::string> aovs;
 };
 
+bool isExr(const std::string& file) {
+    std::string ext = std::filesystem::path(file).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr";
+}
+
 // Writes a render's outputs (and their tile sidecars when `tile`) together: all appear or none.
+// OUT.png: the tone-mapped sRGB picture; OUT.exr: the linear colour times 2^EV as half floats.
+// An AOV file: PFM, or EXR (32-bit float channels) by its name.
 void writeOutputs(const OutputFiles& files, const RenderOutput& out, const ColourSettings& colour, TileInfo* tile) {
     AtomicFileSet outputs;
-    const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
-    writePng(outputs, files.png, out.width, out.height, display);
-    if (tile) {
-        std::vector<unsigned char> rgb;
-        rgb.reserve(display.size() * 3);
-        for (const glm::vec3& c : display) rgb.insert(rgb.end(), {linearToSrgb8(c.x), linearToSrgb8(c.y), linearToSrgb8(c.z)});
-        tile->output = "png";
-        tile->crc = crc32Of(rgb.data(), rgb.size());
-        addTileSidecar(outputs, files.png, *tile);
+    auto flat3 = [](const std::vector<glm::vec3>& values, float scale) {
+        std::vector<float> flat;
+        flat.reserve(values.size() * 3);
+        for (const glm::vec3& v : values) flat.insert(flat.end(), {v.x * scale, v.y * scale, v.z * scale});
+        return flat;
+    };
+    // An EXR file and its sidecar, whose CRC covers the values as the file stores them.
+    auto exr = [&](const std::string& file, const std::string& output, const std::vector<float>& values) {
+        const ExrLayout layout = exrLayout(output);
+        writeExr(outputs, file, out.width, out.height, layout, values);
+        if (tile) {
+            const std::vector<float> stored = exrStored(layout, values);
+            tile->output = output;
+            tile->crc = crc32Of(stored.data(), stored.size() * sizeof(float));
+            addTileSidecar(outputs, file, *tile);
+        }
+    };
+    if (isExr(files.png)) {
+        exr(files.png, "exr", flat3(out.color, exposureScale(colour.exposure)));
+    } else {
+        const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
+        writePng(outputs, files.png, out.width, out.height, display);
+        if (tile) {
+            std::vector<unsigned char> rgb;
+            rgb.reserve(display.size() * 3);
+            for (const glm::vec3& c : display) rgb.insert(rgb.end(), {linearToSrgb8(c.x), linearToSrgb8(c.y), linearToSrgb8(c.z)});
+            tile->output = "png";
+            tile->crc = crc32Of(rgb.data(), rgb.size());
+            addTileSidecar(outputs, files.png, *tile);
+        }
     }
     for (const auto& [name, file] : files.aovs) {
         std::vector<float> flat;
@@ -192,10 +223,12 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         if (name == "prim") flat = out.prim;
         if (name == "steps") flat = out.steps;
         if (name == "normal" || name == "color") {
-            const std::vector<glm::vec3>& values = name == "normal" ? out.normal : out.color;
-            flat.reserve(values.size() * 3);
-            for (const glm::vec3& n : values) flat.insert(flat.end(), {n.x, n.y, n.z});
+            flat = flat3(name == "normal" ? out.normal : out.color, 1.0f);
             channels = 3;
+        }
+        if (isExr(file)) {
+            exr(file, name, flat);
+            continue;
         }
         writePfm(outputs, file, out.width, out.height, channels, flat);
         if (tile) {

@@ -1,6 +1,7 @@
 #include "image/Tiles.h"
 
 #include "image/AtomicFile.h"
+#include "image/ExrIO.h"
 #include "image/ImageIO.h"
 #include "image/InputError.h"
 
@@ -82,8 +83,9 @@ TileInfo readSidecar(const std::filesystem::path& tile) {
 
 void stitchTiles(const std::filesystem::path& output, const std::vector<std::filesystem::path>& tiles) {
     if (tiles.empty()) throw InputError("stitch: no tiles given");
-    const bool png = output.extension() == ".png";
-    if (!png && output.extension() != ".pfm") throw InputError(output.string() + ": stitch writes .png or .pfm");
+    const std::string ext = output.extension().string();
+    const bool png = ext == ".png", exr = ext == ".exr";
+    if (!png && !exr && ext != ".pfm") throw InputError(output.string() + ": stitch writes .png, .exr or .pfm");
     checkOutputPath(output);
     TileInfo first;
     std::map<int, std::pair<std::filesystem::path, TileInfo>> byIndex;
@@ -97,8 +99,9 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
         if (t.fingerprint != first.fingerprint || t.width != first.width || t.height != first.height ||
             t.tiles != first.tiles || t.output != first.output)
             throw InputError(tile.string() + ": a tile of another image or output than " + tiles[0].string());
-        if ((t.output == "png") != png)
-            throw InputError(tile.string() + ": a " + (png ? "PFM" : "PNG") + " tile for " + output.string());
+        const std::string kind = t.output == "png" ? "PNG" : tile.extension() == ".exr" ? "EXR" : "PFM";
+        if (kind != (png ? "PNG" : exr ? "EXR" : "PFM"))
+            throw InputError(tile.string() + ": a " + kind + " tile for " + output.string());
         if (!byIndex.emplace(t.tile, std::make_pair(tile, t)).second)
             throw InputError(tile.string() + ": tile " + std::to_string(t.tile) + " given twice (also " +
                              byIndex[t.tile].first.string() + ")");
@@ -112,7 +115,13 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
             std::copy(pixels.begin(), pixels.end(), rgb.begin() + std::ptrdiff_t(size_t(t.row) * size_t(t.width) * 3));
         } else {
             int w = 0, h = 0, c = 0;
-            const std::vector<float> v = readPfm(tile, w, h, c);
+            std::vector<float> v;
+            if (exr) {
+                v = readExr(tile, exrLayout(t.output), w, h);
+                c = int(exrLayout(t.output).channels.size());
+            } else {
+                v = readPfm(tile, w, h, c);
+            }
             if (w != t.width || h != t.rows || (channels != 0 && c != channels) ||
                 crc32Of(v.data(), v.size() * sizeof(float)) != t.crc)
                 throw InputError(tile.string() + ": damaged (its values do not match its " +
@@ -135,8 +144,15 @@ void stitchTiles(const std::filesystem::path& output, const std::vector<std::fil
     }
     if (next != first.height)
         throw InputError(byIndex.rbegin()->second.first.string() + ": the tiles do not cover the image");
-    if (png) writePngRgb8(output, first.width, first.height, rgb);
-    else writePfm(output, first.width, first.height, channels, values);
+    if (png) {
+        writePngRgb8(output, first.width, first.height, rgb);
+    } else if (exr) {
+        AtomicFileSet file;
+        writeExr(file, output, first.width, first.height, exrLayout(first.output), values);
+        file.commit();
+    } else {
+        writePfm(output, first.width, first.height, channels, values);
+    }
 }
 
 void parseFrames(const std::string& text, int& first, int& last) {
