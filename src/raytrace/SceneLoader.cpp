@@ -8,6 +8,7 @@
 #include <string>
 
 #include "image/InputError.h"
+#include "scene/GltfLoader.h"
 #include "scene/JsonScene.h"
 #include "scene/ObjLoader.h"
 #include "raytrace/PackedScene.h"
@@ -16,7 +17,7 @@
 namespace gpurt {
 namespace {
 
-enum class SceneFormat { Obj, Json, Packed, Ply };
+enum class SceneFormat { Obj, Json, Packed, Ply, Gltf };
 
 // The file's extension, lower case ("" when none).
 std::string extensionOf(const std::filesystem::path& path) {
@@ -52,13 +53,13 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     if (got >= magicSize - 1 && std::memcmp(head, kPackedSceneMagic, magicSize - 1) == 0)
         return SceneFormat::Packed;
     if (looksLikePly(std::string(head, got))) return SceneFormat::Ply;
+    if (looksLikeGlb(std::string(head, got))) return SceneFormat::Gltf;
     // A file named as one of the binary formats is that format's reader's to refuse ("not a PLY
     // file", "wrong magic"): read as an OBJ it would give a less useful message.
     const std::string ext = extensionOf(path);
     if (ext == ".gpscene") return SceneFormat::Packed;
     if (ext == ".ply") return SceneFormat::Ply;
-    if (ext == ".glb" || ext == ".gltf")
-        throw InputError(name + ": glTF scenes are not read by this version of gpurt yet (OBJ, PLY, JSON, .gpscene)");
+    if (ext == ".glb" || ext == ".gltf") return SceneFormat::Gltf;
 
     // First non-whitespace byte, skipping a UTF-8 byte order mark (nlohmann skips it too).
     std::string bytes(head, got);
@@ -87,6 +88,8 @@ LoadedScene loadScene(const std::filesystem::path& path) {
         }
         case SceneFormat::Ply:
             return LoadedScene{loadPly(path), std::nullopt, std::nullopt};
+        case SceneFormat::Gltf:
+            return LoadedScene{loadGltf(path), std::nullopt, std::nullopt};
         case SceneFormat::Obj:
             break;
     }

@@ -25,8 +25,8 @@ struct LoadedScene {
 
 // Reads a scene file: the packed magic at byte 0 -> packed scene (readPackedScene, with its
 // grid; "GPRTSCN" followed by another character too, which the reader refuses); "ply" and a line
-// end -> PLY (loadPly); a name ending .gpscene or .ply -> that reader, which refuses what is not
-// its format; .glb and .gltf -> refused (not read yet); a first non-whitespace byte '{' (after an
+// end -> PLY (loadPly); "glTF" -> binary glTF (loadGltf); a name ending .gpscene, .ply, .gltf or
+// .glb -> that reader, which refuses what is not its format; a first non-whitespace byte '{' (after an
 // optional UTF-8 byte order mark) -> JSON scene (loadJsonSceneFile); anything else -> OBJ (loadObj),
 // which refuses a text file without an OBJ statement. Throws InputError "FILE: no such file",
 // "FILE: is a directory ...", "FILE: cannot read ..." or the chosen loader's message

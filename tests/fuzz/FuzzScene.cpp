@@ -33,7 +33,7 @@ std::filesystem::path makeScratchFolder() {
     std::string pattern = (std::filesystem::temp_directory_path() / "gpurt-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) fail("cannot create a scratch folder");
     const std::filesystem::path folder(pattern);
-    auto write = [&](const char* name, const char* text) {
+    auto write = [&](const char* name, const std::string& text) {
         std::ofstream(folder / name, std::ios::binary) << text;
     };
     write("a.mtl",
@@ -45,6 +45,8 @@ std::filesystem::path makeScratchFolder() {
           "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl glass\nf 1 2 3 4\n");
     write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
     write("empty.obj", "");
+    const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};  // little endian, as glTF buffers
+    write("tri.bin", std::string(reinterpret_cast<const char*>(triangle), sizeof triangle));
     write("tri.ply",
           "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
           "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");

@@ -1,0 +1,426 @@
+// glTF reading: tinygltf parses the JSON (or the GLB container) and reads the buffers; every
+// accessor is then checked against its buffer view and buffer before a value is read, and the
+// default scene's nodes are walked depth-first with their world transforms.
+#include "scene/GltfLoader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "image/InputError.h"
+
+namespace gpurt {
+namespace {
+
+// More elements than this in one accessor is a damaged file, not a model (2^28 vertices).
+constexpr uint64_t kMaxAccessorCount = uint64_t(1) << 28;
+
+// Textures are not decoded (not used yet): tinygltf still reads image files, and says when one is
+// missing.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+std::string firstLine(const std::string& text) {
+    std::string line = text.substr(0, text.find('\n'));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    return line;
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+class GltfReader {
+  public:
+    GltfReader(const tinygltf::Model& model, const std::string& name) : m_(model), name_(name) {}
+
+    Scene read() {
+        Scene scene;
+        scene.materials.push_back(Material{});  // for primitives without a material
+        materialIds_.assign(m_.materials.size(), -1);
+        std::vector<int> roots;
+        if (!m_.scenes.empty()) {
+            const int s = m_.defaultScene >= 0 ? m_.defaultScene : 0;
+            if (s >= int(m_.scenes.size())) fail("scene " + std::to_string(s) + " does not exist");
+            roots = m_.scenes[size_t(s)].nodes;
+        } else {  // no scene: every root node, in order
+            std::vector<bool> child(m_.nodes.size(), false);
+            for (const tinygltf::Node& n : m_.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && c < int(m_.nodes.size())) child[size_t(c)] = true;
+            for (size_t n = 0; n < m_.nodes.size(); ++n)
+                if (!child[n]) roots.push_back(int(n));
+        }
+        for (int n : roots) visit(n, glm::dmat4(1.0), scene);
+        return scene;
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": " + what); }
+    void warn(const std::string& what) const { std::cerr << name_ << ": warning: " << what << "\n"; }
+
+    glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& at) const {
+        if (!node.matrix.empty()) {
+            if (node.matrix.size() != 16) fail(at + ": matrix of " + std::to_string(node.matrix.size()) + " numbers, not 16");
+            return glm::make_mat4(node.matrix.data());  // column-major, as glTF
+        }
+        glm::dmat4 t(1.0);
+        if (!node.translation.empty()) {
+            if (node.translation.size() != 3) fail(at + ": translation is not 3 numbers");
+            t = glm::translate(t, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        }
+        if (!node.rotation.empty()) {
+            if (node.rotation.size() != 4) fail(at + ": rotation is not 4 numbers");
+            const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // w, x, y, z
+            t = t * glm::mat4_cast(glm::normalize(q));
+        }
+        if (!node.scale.empty()) {
+            if (node.scale.size() != 3) fail(at + ": scale is not 3 numbers");
+            t = glm::scale(t, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+        }
+        return t;
+    }
+
+    void visit(int index, const glm::dmat4& parent, Scene& scene) {
+        if (index < 0 || index >= int(m_.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
+        if (!onPath_.insert(index).second) fail("node " + std::to_string(index) + " is its own ancestor");
+        const tinygltf::Node& node = m_.nodes[size_t(index)];
+        const std::string at = "node " + std::to_string(index);
+        const glm::dmat4 world = parent * localTransform(node, at);
+        for (int k = 0; k < 16; ++k)
+            if (!std::isfinite(glm::value_ptr(world)[k])) fail(at + ": its transform is not finite");
+        if (node.mesh >= 0) {
+            if (node.mesh >= int(m_.meshes.size())) fail(at + ": mesh " + std::to_string(node.mesh) + " does not exist");
+            const tinygltf::Mesh& mesh = m_.meshes[size_t(node.mesh)];
+            for (size_t p = 0; p < mesh.primitives.size(); ++p)
+                primitive(mesh.primitives[p], "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p), world,
+                          scene);
+        }
+        if (node.camera >= 0) camera(node.camera, world, at, scene);
+        const auto light = node.extensions.find("KHR_lights_punctual");
+        if (light != node.extensions.end() && light->second.Has("light")) pointLight(light->second.Get("light"), world, at, scene);
+        for (int child : node.children) visit(child, world, scene);
+        onPath_.erase(index);
+    }
+
+    // One component of an element, as a double (normalized integers mapped to [0, 1] or [-1, 1]).
+    static double component(const unsigned char* p, int type, bool normalized) {
+        switch (type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                int8_t v;
+                std::memcpy(&v, p, 1);
+                return normalized ? std::max(v / 127.0, -1.0) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+            case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                int16_t v;
+                std::memcpy(&v, p, 2);
+                return normalized ? std::max(v / 32767.0, -1.0) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t v;
+                std::memcpy(&v, p, 2);
+                return normalized ? v / 65535.0 : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+                uint32_t v;
+                std::memcpy(&v, p, 4);
+                return v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+                float v;
+                std::memcpy(&v, p, 4);
+                return v;
+            }
+        }
+        return 0.0;
+    }
+
+    // `count` elements of `components` values from a buffer view, each checked to lie inside the
+    // view and the buffer.
+    void readView(int viewIndex, size_t byteOffset, size_t count, int components, int type, bool normalized,
+                  const std::string& at, std::vector<double>& out, size_t stride = 0) const {
+        if (viewIndex < 0 || viewIndex >= int(m_.bufferViews.size()))
+            fail(at + ": buffer view " + std::to_string(viewIndex) + " does not exist");
+        const tinygltf::BufferView& view = m_.bufferViews[size_t(viewIndex)];
+        if (view.buffer < 0 || view.buffer >= int(m_.buffers.size()))
+            fail(at + ": buffer " + std::to_string(view.buffer) + " does not exist");
+        const std::vector<unsigned char>& data = m_.buffers[size_t(view.buffer)].data;
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(at + ": buffer view " + std::to_string(viewIndex) + " (" + std::to_string(view.byteLength) +
+                 " bytes at " + std::to_string(view.byteOffset) + ") runs past its buffer of " +
+                 std::to_string(data.size()) + " bytes");
+        const size_t size = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(type)));
+        const size_t element = size * size_t(components);
+        if (stride == 0) stride = view.byteStride ? view.byteStride : element;
+        if (stride < element || stride % size != 0)
+            fail(at + ": byte stride " + std::to_string(stride) + " does not fit elements of " + std::to_string(element) + " bytes");
+        if (count == 0) return;
+        // byteOffset + (count - 1) stride + element <= byteLength, without overflow.
+        const size_t room = byteOffset <= view.byteLength ? view.byteLength - byteOffset : 0;
+        if (byteOffset > view.byteLength || element > room || (count - 1) > (room - element) / stride)
+            fail(at + ": " + std::to_string(count) + " elements do not fit buffer view " + std::to_string(viewIndex) + " (" +
+                 std::to_string(view.byteLength) + " bytes)");
+        const unsigned char* base = data.data() + view.byteOffset + byteOffset;
+        out.resize(count * size_t(components));
+        for (size_t k = 0; k < count; ++k)
+            for (int c = 0; c < components; ++c)
+                out[k * size_t(components) + size_t(c)] = component(base + k * stride + size_t(c) * size, type, normalized);
+    }
+
+    // An accessor's values (count x components), sparse substitutions applied.
+    std::vector<double> values(int index, const std::string& at, int& components) const {
+        if (index < 0 || index >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+        const std::string where = at + " (accessor " + std::to_string(index) + ")";
+        components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+        if (components <= 0 || tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) <= 0)
+            fail(where + ": unknown type or component type");
+        if (a.count > kMaxAccessorCount) fail(where + ": " + std::to_string(a.count) + " elements");
+        std::vector<double> out;
+        if (a.bufferView >= 0) {
+            readView(a.bufferView, a.byteOffset, a.count, components, a.componentType, a.normalized, where, out);
+        } else {
+            if (!a.sparse.isSparse) fail(where + ": no buffer view and not sparse");
+            out.assign(a.count * size_t(components), 0.0);
+        }
+        if (a.sparse.isSparse) {
+            const size_t n = size_t(std::max(a.sparse.count, 0));
+            if (n > a.count) fail(where + ": " + std::to_string(n) + " sparse values for " + std::to_string(a.count) + " elements");
+            std::vector<double> indices, substitutes;
+            const int indexType = a.sparse.indices.componentType;
+            if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(where + ": sparse indices of component type " + std::to_string(indexType));
+            readView(a.sparse.indices.bufferView, size_t(std::max(a.sparse.indices.byteOffset, 0)), n, 1, indexType, false,
+                     where + " sparse indices", indices, size_t(tinygltf::GetComponentSizeInBytes(uint32_t(indexType))));
+            readView(a.sparse.values.bufferView, size_t(std::max(a.sparse.values.byteOffset, 0)), n, components,
+                     a.componentType, a.normalized, where + " sparse values", substitutes,
+                     size_t(components) * size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType))));
+            for (size_t k = 0; k < n; ++k) {
+                if (indices[k] >= double(a.count) || (k > 0 && !(indices[k] > indices[k - 1])))
+                    fail(where + ": sparse index " + std::to_string(uint64_t(indices[k])) + " out of range or order");
+                for (int c = 0; c < components; ++c)
+                    out[size_t(indices[k]) * size_t(components) + size_t(c)] = substitutes[k * size_t(components) + size_t(c)];
+            }
+        }
+        return out;
+    }
+
+    void primitive(const tinygltf::Primitive& prim, const std::string& at, const glm::dmat4& world, Scene& scene) {
+        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            fail(at + ": mode " + std::to_string(mode) + " (points or lines) is not triangles");
+        const auto position = prim.attributes.find("POSITION");
+        if (position == prim.attributes.end()) fail(at + ": no POSITION");
+        int components = 0;
+        const std::vector<double> p = values(position->second, at + " POSITION", components);
+        if (components != 3) fail(at + ": POSITION is not VEC3");
+        const size_t vertices = p.size() / 3;
+        std::vector<glm::vec3> positions(vertices);
+        for (size_t v = 0; v < vertices; ++v) {
+            const glm::dvec4 w = world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0);
+            positions[v] = glm::vec3(w);
+            if (!finite(positions[v])) fail(at + ": vertex " + std::to_string(v) + " is not finite (in float)");
+        }
+        std::vector<glm::vec3> normals;
+        const auto normal = prim.attributes.find("NORMAL");
+        if (normal != prim.attributes.end()) {
+            const std::vector<double> n = values(normal->second, at + " NORMAL", components);
+            if (components != 3 || n.size() != p.size()) fail(at + ": NORMAL is not VEC3 of one per vertex");
+            const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+            normals.resize(vertices);
+            for (size_t v = 0; v < vertices; ++v) {
+                const glm::dvec3 w = normalMatrix * glm::dvec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+                const double length = glm::length(w);
+                normals[v] = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
+            }
+        }
+        std::vector<uint32_t> index;
+        if (prim.indices >= 0) {
+            if (prim.indices >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(prim.indices) + " does not exist");
+            const tinygltf::Accessor& a = m_.accessors[size_t(prim.indices)];
+            if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(at + ": indices of component type " + std::to_string(a.componentType) + " (not an unsigned integer)");
+            const std::vector<double> i = values(prim.indices, at + " indices", components);
+            if (components != 1) fail(at + ": indices are not SCALAR");
+            index.reserve(i.size());
+            for (double v : i) {
+                if (v >= double(vertices))
+                    fail(at + ": index " + std::to_string(uint64_t(v)) + " out of range (" + std::to_string(vertices) + " vertices)");
+                index.push_back(uint32_t(v));
+            }
+        } else {
+            index.resize(vertices);
+            for (size_t v = 0; v < vertices; ++v) index[v] = uint32_t(v);
+        }
+        const uint32_t material = materialOf(prim.material, scene);
+        auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+            scene.triangles.push_back({positions[a], positions[b], positions[c]});
+            scene.materialIds.push_back(material);
+            if (!normals.empty()) {
+                if (scene.normals.size() + 1 < scene.triangles.size()) scene.normals.resize(scene.triangles.size() - 1);
+                scene.normals.push_back({normals[a], normals[b], normals[c]});
+            }
+        };
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (index.size() % 3 != 0) fail(at + ": " + std::to_string(index.size()) + " indices, not a multiple of 3");
+            for (size_t k = 0; k + 2 < index.size(); k += 3) emit(index[k], index[k + 1], index[k + 2]);
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (size_t k = 0; k + 2 < index.size(); ++k)  // every other triangle reversed, as the spec orders them
+                k % 2 == 0 ? emit(index[k], index[k + 1], index[k + 2]) : emit(index[k + 1], index[k], index[k + 2]);
+        } else {
+            for (size_t k = 1; k + 1 < index.size(); ++k) emit(index[0], index[k], index[k + 1]);
+        }
+        // Triangles of primitives without normals keep none (all zero), so that smoothing fills them.
+        if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());
+    }
+
+    static double number(const tinygltf::Value& object, const char* key, double fallback) {
+        if (!object.IsObject() || !object.Has(key)) return fallback;
+        const tinygltf::Value& v = object.Get(key);
+        return v.IsNumber() || v.IsInt() || v.IsReal() ? v.GetNumberAsDouble() : fallback;
+    }
+
+    // The scene material of glTF material `index` (made at its first use; -1: gpurt's default).
+    uint32_t materialOf(int index, Scene& scene) {
+        if (index < 0) return 0;
+        if (index >= int(m_.materials.size())) fail("material " + std::to_string(index) + " does not exist");
+        if (materialIds_[size_t(index)] >= 0) return uint32_t(materialIds_[size_t(index)]);
+        const tinygltf::Material& g = m_.materials[size_t(index)];
+        const std::string at = "material " + std::to_string(index);
+        const std::vector<double>& base = g.pbrMetallicRoughness.baseColorFactor;
+        if (base.size() != 4) fail(at + ": baseColorFactor is not 4 numbers");
+        const glm::vec3 colour{float(base[0]), float(base[1]), float(base[2])};
+        const double metallic = g.pbrMetallicRoughness.metallicFactor, roughness = g.pbrMetallicRoughness.roughnessFactor;
+        auto inUnit = [](double v) { return v >= 0.0 && v <= 1.0; };
+        if (!inUnit(base[0]) || !inUnit(base[1]) || !inUnit(base[2]) || !inUnit(metallic) || !inUnit(roughness))
+            fail(at + ": baseColorFactor, metallicFactor and roughnessFactor must be in [0, 1]");
+        Material m;
+        m.name = g.name.empty() ? at : g.name;
+        // Metals reflect (tinted by their colour); gpurt has no glossy lobe yet, so a rough metal
+        // is mostly diffuse and only a smooth one a mirror.
+        const float mirror = float(metallic * (1.0 - roughness));
+        m.reflectivity = colour * mirror;
+        m.diffuse = colour * (1.0f - mirror);
+        m.specular = glm::vec3(0.0f);
+        glm::dvec3 emissive(0.0);
+        if (g.emissiveFactor.size() == 3) emissive = glm::dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]);
+        const auto strength = g.extensions.find("KHR_materials_emissive_strength");
+        if (strength != g.extensions.end()) emissive *= number(strength->second, "emissiveStrength", 1.0);
+        m.emission = glm::vec3(emissive);
+        const auto transmission = g.extensions.find("KHR_materials_transmission");
+        if (transmission != g.extensions.end()) {
+            const double t = number(transmission->second, "transmissionFactor", 0.0);
+            if (!inUnit(t)) fail(at + ": transmissionFactor must be in [0, 1]");
+            if (t > 0.0) {
+                const auto ior = g.extensions.find("KHR_materials_ior");
+                m.ior = float(ior != g.extensions.end() ? number(ior->second, "ior", 1.5) : 1.5);
+                m.transmission = colour * float(t);
+                m.diffuse = glm::vec3(0.0f);
+                m.reflectivity = glm::vec3(0.0f);
+            }
+        }
+        if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
+            m.ior < 0.0f || (m.ior > 0.0f && m.ior < 1.0f))
+            fail(at + ": emission must be finite and >= 0, ior >= 1");
+        if (g.pbrMetallicRoughness.baseColorTexture.index >= 0)
+            warn(at + " ('" + m.name + "'): textures are not used yet; its baseColorFactor is");
+        scene.materials.push_back(m);
+        materialIds_[size_t(index)] = int(scene.materials.size() - 1);
+        return uint32_t(scene.materials.size() - 1);
+    }
+
+    void camera(int index, const glm::dmat4& world, const std::string& at, Scene& scene) {
+        if (index >= int(m_.cameras.size())) fail(at + ": camera " + std::to_string(index) + " does not exist");
+        const tinygltf::Camera& c = m_.cameras[size_t(index)];
+        if (scene.camera || c.type != "perspective") return;  // the first perspective camera
+        const double yfov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
+        if (!(yfov > 0.0 && yfov < 180.0)) fail("camera " + std::to_string(index) + ": yfov outside (0, pi)");
+        const glm::dvec3 eye(world * glm::dvec4(0, 0, 0, 1));
+        const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0));
+        const glm::dvec3 up(world * glm::dvec4(0, 1, 0, 0));
+        const double length = glm::length(forward);
+        if (!(length > 0.0) || !std::isfinite(length) || glm::length(glm::cross(forward, up)) == 0.0)
+            fail(at + ": camera " + std::to_string(index) + " has no view direction (a degenerate transform)");
+        CameraSpec spec;
+        spec.eye = glm::vec3(eye);
+        spec.target = glm::vec3(eye + forward / length);
+        spec.up = glm::vec3(up);
+        spec.fovy = float(yfov);
+        scene.camera = spec;
+    }
+
+    void pointLight(const tinygltf::Value& which, const glm::dmat4& world, const std::string& at, Scene& scene) {
+        const int index = which.IsInt() || which.IsNumber() ? which.GetNumberAsInt() : -1;
+        if (index < 0 || index >= int(m_.lights.size())) fail(at + ": light " + std::to_string(index) + " does not exist");
+        const tinygltf::Light& l = m_.lights[size_t(index)];
+        if (l.type == "directional") {
+            warn("light " + std::to_string(index) + ": directional lights are not used");
+            return;
+        }
+        if (l.type == "spot") warn("light " + std::to_string(index) + ": a spot light, used as a point light");
+        PointLight light;
+        light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+        if (l.color.size() == 3) light.color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+        light.intensity = float(l.intensity);
+        if (!finite(light.position) || !finite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.0f ||
+            glm::any(glm::lessThan(light.color, glm::vec3(0.0f))))
+            fail("light " + std::to_string(index) + ": colour and intensity must be finite and >= 0");
+        scene.lights.push_back(light);
+    }
+
+    const tinygltf::Model& m_;
+    std::string name_;
+    std::vector<int> materialIds_;
+    std::set<int> onPath_;
+};
+
+}  // namespace
+
+bool looksLikeGlb(const std::string& head) { return head.compare(0, 4, "glTF") == 0; }
+
+Scene parseGltf(const std::string& bytes, const std::string& name, const std::filesystem::path& folder) {
+    if (bytes.size() > UINT32_MAX) throw InputError(name + ": larger than a glTF file can be (4 GiB)");
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skipImage, nullptr);
+    std::string err, warn;
+    const bool glb = looksLikeGlb(bytes);
+    if (!glb && name.size() >= 4 && name.compare(name.size() - 4, 4, ".glb") == 0)
+        throw InputError(name + ": not a binary glTF file (it does not start with 'glTF')");
+    bool ok = false;
+    try {
+        ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                               unsigned(bytes.size()), folder.string())
+                 : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), folder.string());
+    } catch (const std::exception& e) {
+        throw InputError(name + ": not a glTF file (" + e.what() + ")");
+    }
+    if (!ok) throw InputError(name + ": " + (err.empty() ? std::string("not a glTF file") : firstLine(err)));
+    std::istringstream warnings(warn);
+    for (std::string line; std::getline(warnings, line);)
+        if (!line.empty()) std::cerr << name << ": warning: " << line << "\n";
+    return GltfReader(model, name).read();
+}
+
+Scene loadGltf(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(name + ": cannot read file");
+    return parseGltf(buffer.str(), name, path.parent_path());
+}
+
+}  // namespace gpurt
