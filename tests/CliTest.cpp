@@ -59,8 +59,10 @@ Result gpurt(const std::string& args, const std::string& env = "") {
 class Cli : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("gpurt-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        // The process id too: two runs of the suite at once (a sanitizer build beside the plain
+        // one) must not share folders.
+        dir = fs::temp_directory_path() / ("gpurt-cli-" + std::to_string(::getpid()) + "-" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir);
     }

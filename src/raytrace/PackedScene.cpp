@@ -735,24 +735,8 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
 }
 
 LoadedScene readPackedScene(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status))
-        throw InputError(name + ": is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
-    // The real file size sizes the buffer, never a field of the file.
-    in.seekg(0, std::ios::end);
-    const std::streamoff length = in.tellg();
-    in.seekg(0, std::ios::beg);
-    if (length < 0 || !in) throw InputError(name + ": cannot read");
-    std::vector<unsigned char> bytes(static_cast<size_t>(length));
-    in.read(reinterpret_cast<char*>(bytes.data()), length);
-    if (in.gcount() != length)
-        throw InputError(name + ": cannot read (the file changed while read)");
-    return decodePackedScene(bytes, name);
+    const std::string bytes = readSceneFile(path);
+    return decodePackedScene(std::span(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()), path.string());
 }
 
 }  // namespace gpurt

@@ -13,6 +13,7 @@
 #include "scene/ObjLoader.h"
 #include "raytrace/PackedScene.h"
 #include "scene/PlyLoader.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -31,15 +32,7 @@ bool isJsonSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r
 // Reads only as far as the decision needs: the magic, then past leading whitespace.
 SceneFormat detectFormat(const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status))
-        throw InputError(name + ": is a directory, not a scene file");
-    // A device such as /dev/zero would be read forever; pipes are fine.
-    if (std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ||
-        std::filesystem::is_socket(status))
-        throw InputError(name + ": is a device or socket, not a scene file");
+    checkSceneFile(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
 

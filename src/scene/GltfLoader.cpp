@@ -17,6 +17,7 @@
 #include <tiny_gltf.h>
 
 #include "image/InputError.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -414,13 +415,7 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
 }
 
 Scene loadGltf(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read file");
-    return parseGltf(buffer.str(), name, path.parent_path());
+    return parseGltf(readSceneFile(path), path.string(), path.parent_path());
 }
 
 }  // namespace gpurt

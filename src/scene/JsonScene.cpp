@@ -52,22 +52,6 @@ std::string formatNumber(double value) {
     return text;
 }
 
-std::string readSceneText(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status))
-        throw InputError(name + ": is a directory, not a scene file");
-    if (!isReadableKind(status))
-        throw InputError(name + ": is a device or socket, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read");
-    return buffer.str();
-}
 
 // "LINE:COLUMN" of a 1-based byte offset into text (nlohmann's parse_error::byte).
 std::string lineAndColumn(std::string_view text, size_t byte) {
@@ -555,7 +539,7 @@ class SceneReader {
 }  // namespace
 
 JsonSceneFile loadJsonSceneFile(const std::filesystem::path& path) {
-    return parseJsonScene(readSceneText(path), path);
+    return parseJsonScene(readSceneFile(path), path);
 }
 
 JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::path& path) {

@@ -373,21 +373,6 @@ class MtlReader : public tinyobj::MaterialReader {
     std::map<std::string, bool> loaded_;  // library name -> whether it could be read
 };
 
-std::string readWholeFile(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (std::filesystem::is_directory(status))
-        throw InputError(name + ": is a directory, not an OBJ file");
-    if (std::filesystem::exists(status) && !isReadableKind(status))
-        throw InputError(name + ": is a device or socket, not an OBJ file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read file");
-    return buffer.str();
-}
 
 glm::vec3 toVec3(const tinyobj::real_t* p) {
     return glm::vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
@@ -395,7 +380,7 @@ glm::vec3 toVec3(const tinyobj::real_t* p) {
 
 }  // namespace
 
-Scene loadObj(const std::filesystem::path& path) { return parseObj(readWholeFile(path), path); }
+Scene loadObj(const std::filesystem::path& path) { return parseObj(readSceneFile(path), path); }
 
 Scene parseObj(std::string text, const std::filesystem::path& path) {
     const std::string name = path.string();

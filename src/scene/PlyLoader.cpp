@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "image/InputError.h"
+#include "scene/SceneFile.h"
 
 namespace gpurt {
 namespace {
@@ -404,13 +405,7 @@ Scene parsePly(const std::string& bytes, const std::string& name) {
 }
 
 Scene loadPly(const std::filesystem::path& path) {
-    const std::string name = path.string();
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot open file (" + std::strerror(errno) + ")");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read file");
-    return parsePly(buffer.str(), name);
+    return parsePly(readSceneFile(path), path.string());
 }
 
 }  // namespace gpurt

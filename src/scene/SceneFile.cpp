@@ -2,7 +2,12 @@
 
 #include <cctype>
 #include <cstdio>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
+#include <sstream>
+
+#include "image/InputError.h"
 
 #include "scene/ObjLoader.h"
 #include "scene/PlyLoader.h"
@@ -11,6 +16,26 @@ namespace gpurt {
 
 bool isReadableKind(const std::filesystem::file_status& status) {
     return std::filesystem::is_regular_file(status) || std::filesystem::is_fifo(status);
+}
+
+void checkSceneFile(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
+    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
+    if (!isReadableKind(status)) throw InputError(name + ": is a device or socket, not a scene file");
+}
+
+std::string readSceneFile(const std::filesystem::path& path) {
+    checkSceneFile(path);
+    const std::string name = path.string();
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(name + ": cannot read");
+    return buffer.str();
 }
 
 std::string printable(std::string_view text) {

@@ -14,6 +14,15 @@ namespace gpurt {
 // A regular file or a pipe: a device such as /dev/zero would be read forever.
 bool isReadableKind(const std::filesystem::file_status& status);
 
+// Throws InputError "FILE: no such file", "FILE: is a directory, not a scene file" or "FILE: is a
+// device or socket, not a scene file" (a device such as /dev/zero would be read forever; pipes are
+// fine).
+void checkSceneFile(const std::filesystem::path& path);
+
+// checkSceneFile, then the whole file (its real size sizes the buffer, never a field of it).
+// Throws InputError "FILE: cannot read (...)".
+std::string readSceneFile(const std::filesystem::path& path);
+
 // Text or file bytes as one line of ASCII: other bytes as \xNN.
 std::string printable(std::string_view text);
 
