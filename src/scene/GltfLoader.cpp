@@ -276,11 +276,10 @@ class GltfReader {
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (index.size() % 3 != 0) fail(at + ": " + std::to_string(index.size()) + " indices, not a multiple of 3");
             for (size_t k = 0; k + 2 < index.size(); k += 3) emit(index[k], index[k + 1], index[k + 2]);
-        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-            for (size_t k = 0; k + 2 < index.size(); ++k)  // every other triangle reversed, as the spec orders them
-                k % 2 == 0 ? emit(index[k], index[k + 1], index[k + 2]) : emit(index[k + 1], index[k], index[k + 2]);
-        } else {
-            for (size_t k = 1; k + 1 < index.size(); ++k) emit(index[0], index[k], index[k + 1]);
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // the spec: p_i = (v_i, v_i+1+i%2, v_i+2-i%2)
+            for (size_t k = 0; k + 2 < index.size(); ++k) emit(index[k], index[k + 1 + k % 2], index[k + 2 - k % 2]);
+        } else {  // the spec: p_i = (v_i+1, v_i+2, v_0)
+            for (size_t k = 0; k + 2 < index.size(); ++k) emit(index[k + 1], index[k + 2], index[0]);
         }
         // Triangles of primitives without normals keep none (all zero), so that smoothing fills them.
         if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());

@@ -113,10 +113,10 @@ TEST(GltfLoader, NodesDepthFirstWithTheirWorldTransforms) {
         {node0({0, 1, 0}), node0({0, 0, 0}), node0({1, 0, 0})},                       // node 0, indices 2 0 1
         {node1({0, 0, 0}), node1({1, 0, 0}), node1({1, 1, 0})},                       // node 1, quad
         {node1({0, 0, 0}), node1({1, 1, 0}), node1({0, 1, 0})},
-        {node0({0, 0, 0}), node0({1, 0, 0}), node0({1, 1, 0})},                       // node 2, fan
-        {node0({0, 0, 0}), node0({1, 1, 0}), node0({0, 1, 0})},
-        {glm::vec3(0, 0, 9), glm::vec3(1, 0, 9), glm::vec3(0, 1, 9)},                 // node 3, strip
-        {glm::vec3(0, 1, 9), glm::vec3(1, 0, 9), glm::vec3(1, 1, 9)}};                                           // reversed: 2nd of a strip
+        {node0({1, 0, 0}), node0({1, 1, 0}), node0({0, 0, 0})},                       // node 2, fan:
+        {node0({1, 1, 0}), node0({0, 1, 0}), node0({0, 0, 0})},                       // (v_i+1, v_i+2, v_0)
+        {glm::vec3(0, 0, 9), glm::vec3(1, 0, 9), glm::vec3(0, 1, 9)},                 // node 3, strip:
+        {glm::vec3(1, 0, 9), glm::vec3(1, 1, 9), glm::vec3(0, 1, 9)}};                // (v_i, v_i+1+i%2, v_i+2-i%2)                                           // reversed: 2nd of a strip
     ASSERT_EQ(scene.triangles.size(), expected.size());
     for (size_t t = 0; t < expected.size(); ++t) {
         expectNear(scene.triangles[t].v0, expected[t].v0, "triangle " + std::to_string(t) + " v0");
