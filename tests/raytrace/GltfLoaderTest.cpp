@@ -5,6 +5,8 @@
 #include "scene/GltfLoader.h"
 
 #include <gtest/gtest.h>
+
+#include "Refusal.h"
 #include <unistd.h>
 
 #include <cmath>
@@ -205,26 +207,10 @@ TEST(GltfLoader, MaterialsCameraAndPointLights) {
     EXPECT_EQ(scene.lights[0].intensity, 40.0f);
 }
 
-// The message of the InputError parsing `text` throws ("" and a failure if none); it names the
-// file and is one line.
+// The message of the InputError parsing `text` throws (Refusal.h).
 std::string refusal(const std::string& text, const fs::path& folder = fs::temp_directory_path()) {
-    try {
-        parseGltf(text, "bad.gltf", folder);
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.rfind("bad.gltf: ", 0), 0u) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        return message;
-    }
-    ADD_FAILURE() << "accepted";
-    return "";
+    return test::refusalOf([&] { parseGltf(text, "bad.gltf", folder); }, "bad.gltf: ");
 }
-
-#define EXPECT_REFUSED(text, part)                                                                   \
-    do {                                                                                             \
-        const std::string message_ = refusal(text);                                                  \
-        EXPECT_NE(message_.find(part), std::string::npos) << "'" << (part) << "' not in: " << message_; \
-    } while (0)
 
 TEST(GltfLoader, RefusesWhatIsNotAUsableGltf) {
     auto triangle = [](const std::string& mode, const std::string& indices) {

@@ -6,6 +6,8 @@
 #include "raytrace/PackedScene.h"
 
 #include <gtest/gtest.h>
+
+#include "Refusal.h"
 #include <unistd.h>
 #include <zlib.h>
 
@@ -204,26 +206,10 @@ void expectRoundTrip(const LoadedScene& source) {
     EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), bytes);
 }
 
-// The message of the InputError that decoding `bytes` throws ("" and a failure if none).
+// The message of the InputError that decoding `bytes` throws (Refusal.h).
 std::string refusal(const Bytes& bytes) {
-    try {
-        decodePackedScene(bytes, "damaged.gpscene");
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.rfind("damaged.gpscene: ", 0), 0u) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        return message;
-    }
-    ADD_FAILURE() << "accepted";
-    return "";
+    return test::refusalOf([&] { decodePackedScene(bytes, "damaged.gpscene"); }, "damaged.gpscene: ");
 }
-
-#define EXPECT_REFUSED(bytes, part)                       \
-    do {                                                  \
-        const std::string message_ = refusal(bytes);      \
-        EXPECT_NE(message_.find(part), std::string::npos) \
-            << "'" << (part) << "' not in: " << message_; \
-    } while (0)
 
 class PackedSceneTest : public ::testing::Test {
   protected:

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "Refusal.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -139,26 +141,10 @@ std::string replaced(const std::string& text, const std::string& from, const std
     return at == std::string::npos ? text : text.substr(0, at) + to + text.substr(at + from.size());
 }
 
-// The message of the InputError parsing `bytes` throws ("" and a failure if none); it names the
-// file and is one line.
+// The message of the InputError parsing `bytes` throws (Refusal.h).
 std::string refusal(const std::string& bytes) {
-    try {
-        parsePly(bytes, "bad.ply");
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.rfind("bad.ply", 0), 0u) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        return message;
-    }
-    ADD_FAILURE() << "accepted";
-    return "";
+    return test::refusalOf([&] { parsePly(bytes, "bad.ply"); }, "bad.ply");
 }
-
-#define EXPECT_REFUSED(bytes, part)                                                             \
-    do {                                                                                        \
-        const std::string message_ = refusal(bytes);                                            \
-        EXPECT_NE(message_.find(part), std::string::npos) << "'" << (part) << "' not in: " << message_; \
-    } while (0)
 
 TEST(PlyLoader, RefusesHeadersThatDoNotMatchTheirData) {
     const std::string ascii = asciiPly();
