@@ -174,11 +174,7 @@ struct OutputFiles {
     std::map<std::string, std::string> aovs;
 };
 
-bool isExr(const std::string& file) {
-    std::string ext = std::filesystem::path(file).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr";
-}
+bool isExr(const std::string& file) { return lowerExtension(file) == ".exr"; }
 
 // Writes a render's outputs (and their tile sidecars when `tile`) together: all appear or none.
 // OUT.png: the tone-mapped sRGB picture; OUT.exr: the linear colour times 2^EV as half floats.

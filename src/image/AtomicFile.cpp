@@ -2,6 +2,7 @@
 #include "image/AtomicFile.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -35,6 +36,12 @@ void checkOutputPath(const std::filesystem::path& path) {
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
     if (!std::filesystem::is_directory(folder, ec))
         throw InputError(target + ": cannot create file (no folder " + folder.string() + ")");
+}
+
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
 }
 
 void checkOutputPaths(const std::vector<std::filesystem::path>& paths) {

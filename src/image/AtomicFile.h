@@ -24,6 +24,10 @@ void checkOutputPath(const std::filesystem::path& path);
 // doing the work.
 void checkOutputPaths(const std::vector<std::filesystem::path>& paths);
 
+// The file name's extension in lower case (".exr" for OUT.EXR; "" when none): how readers and
+// writers choose a format by name.
+std::string lowerExtension(const std::filesystem::path& path);
+
 // Several output files that appear together or not at all (the PNG and the AOVs of a render):
 // add() writes each to its temporary file at once, commit() renames them all over their targets.
 // Whatever is not committed, because add() or the work in between threw, is removed by the

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "image/AtomicFile.h"
 #include "image/InputError.h"
 #include "scene/GltfLoader.h"
 #include "scene/JsonScene.h"
@@ -20,12 +21,6 @@ namespace {
 
 enum class SceneFormat { Obj, Json, Packed, Ply, Gltf };
 
-// The file's extension, lower case ("" when none).
-std::string extensionOf(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 bool isJsonSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
@@ -49,7 +44,7 @@ SceneFormat detectFormat(const std::filesystem::path& path) {
     if (looksLikeGlb(std::string(head, got))) return SceneFormat::Gltf;
     // A file named as one of the binary formats is that format's reader's to refuse ("not a PLY
     // file", "wrong magic"): read as an OBJ it would give a less useful message.
-    const std::string ext = extensionOf(path);
+    const std::string ext = lowerExtension(path);
     if (ext == ".gpscene") return SceneFormat::Packed;
     if (ext == ".ply") return SceneFormat::Ply;
     if (ext == ".glb" || ext == ".gltf") return SceneFormat::Gltf;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "image/AtomicFile.h"
 #include "image/InputError.h"
 
 #include "scene/ObjLoader.h"
@@ -53,8 +54,7 @@ std::string printable(std::string_view text) {
 }
 
 Scene loadMesh(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(path);
     char head[5] = {};
     std::ifstream in(path, std::ios::binary);
     in.read(head, sizeof head);
