@@ -280,15 +280,32 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     for (size_t t = 0; t < source.scene.materialIds.size(); t += 2) source.scene.materialIds[t] = 1;
     for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // vertex normals, in the packed file too
         source.scene.normals.push_back({glm::vec3(float(t), 1, 0), glm::vec3(0, float(t), 1), glm::vec3(1, 0, float(t))});
+    for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // texture coordinates and two textures
+        source.scene.texcoords.push_back({glm::vec2(float(t), 0.5f), glm::vec2(-1.0f, float(t)), glm::vec2(0.25f, 2.0f)});
+    for (int k = 0; k < 2; ++k) {
+        Texture texture;
+        texture.name = "t" + std::to_string(k);
+        texture.image.width = 3 + k;
+        texture.image.height = 5000 + k;  // more than a row of the texel table
+        for (uint32_t i = 0; i < uint32_t(texture.image.width * texture.image.height); ++i)
+            texture.image.texels.push_back(i * 2654435761u + uint32_t(k));
+        texture.wrapS = uint32_t(k);
+        texture.wrapT = kWrapMirror;
+        source.scene.textures.push_back(texture);
+    }
+    source.scene.materials.back().diffuseTexture = 1;
     const UniformGrid grid = buildGrid(source.scene, {});
     const LoadedScene packed =
         decodePackedScene(encodePackedScene(source, grid, "random"), "random.gpscene");
     const SceneTextures textures(packed.scene, *packed.grid);
     const std::vector<TextureTexels> cpu = sceneTextureTexels(source.scene, grid);
-    const GPUFloatArray* gpu[6] = {&textures.voxelIndex(), &textures.cellTriangles(), &textures.triangles(),
-                                   &textures.materials(), &textures.vertexNormals(), &textures.emitters()};
+    const GPUFloatArray* gpu[] = {&textures.voxelIndex(), &textures.cellTriangles(), &textures.triangles(),
+                                  &textures.materials(), &textures.vertexNormals(), &textures.emitters(),
+                                  &textures.texcoords(), &textures.textureTexels(), &textures.textureTable(),
+                                  &textures.srgbTable()};
+    ASSERT_EQ(cpu.size(), std::size(gpu));
     size_t bytes = 0;
-    for (size_t k = 0; k < 6; ++k) {
+    for (size_t k = 0; k < cpu.size(); ++k) {
         EXPECT_EQ(gpu[k]->name(), cpu[k].name);
         EXPECT_EQ(gpu[k]->width(), cpu[k].width) << cpu[k].name;
         EXPECT_EQ(gpu[k]->height(), cpu[k].rows) << cpu[k].name;

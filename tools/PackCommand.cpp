@@ -9,6 +9,7 @@
 #include "raytrace/SceneLoader.h"
 #include "raytrace/SceneTextureLayout.h"
 #include "raytrace/UniformGrid.h"
+#include "scene/SceneFile.h"
 
 #include <algorithm>
 #include <chrono>
@@ -191,6 +192,16 @@ int runPack(const PackOptions& o) {
     std::printf("triangles    %zu\n", n);
     std::printf("materials    %zu\n", scene.materials.size());
     std::printf("lights       %zu\n", scene.lights.size());
+    static const char* const kWrapNames[] = {"repeat", "clamp", "mirror"};
+    std::printf("textures     %zu%s\n", scene.textures.size(), scene.textures.empty() ? "" :
+                scene.texcoords.empty() ? " (no texture coordinates: not sampled)" : "");
+    for (size_t k = 0; k < scene.textures.size(); ++k) {
+        const Texture& t = scene.textures[k];
+        size_t users = 0;
+        for (const Material& m : scene.materials) users += m.diffuseTexture == int(k);
+        std::printf("  texture %zu  %s %dx%d, wrap %s/%s, %zu material%s\n", k, printable(t.name).c_str(), t.image.width,
+                    t.image.height, kWrapNames[t.wrapS], kWrapNames[t.wrapT], users, users == 1 ? "" : "s");
+    }
     if (gridOptions.resolution)
         std::printf("grid         %dx%dx%d (given)\n", r.x, r.y, r.z);
     else

@@ -11,6 +11,7 @@ from geometry generated here, so that every shipped asset can be regenerated and
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 tools/make_scenes.py
+(`tools/make_scenes.py globe FOLDER` writes the textured sphere of the test assets there instead.)
 """
 
 import math
@@ -332,6 +333,42 @@ def add_sphere(obj, center, radius, segments, rings):
                 obj.triangles += 1
 
 
+def globe(folder):
+    """A textured UV sphere for the texture tests (tools/make-test-assets.sh): radius 1 at the
+    origin, 48 segments by 24 rings, vt (u, v) = (longitude / 2 pi, 1 - colatitude / pi) with the
+    seam's column doubled, vn exact; its material maps checker.jpg."""
+    segments, rings = 48, 24
+    obj = ObjWriter("a UV sphere with texture coordinates (tools/make_scenes.py globe)", "globe.mtl")
+    obj.use("globe")
+    index = {}
+    texcoords = 0
+    for r in range(rings + 1):
+        theta = math.pi * r / rings
+        for k in range(segments + 1):
+            phi = 2 * math.pi * k / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
+            v = obj.vertex(n)
+            vn = obj.normal(n)
+            obj.lines.append("vt %s %s" % (fmt(k / segments), fmt(1 - r / rings)))
+            texcoords += 1
+            index[r, k] = "%d/%d/%d" % (v, texcoords, vn)
+    for r in range(rings):
+        for k in range(segments):
+            a, b, c, d = index[r, k], index[r + 1, k], index[r + 1, k + 1], index[r, k + 1]
+            if r > 0:
+                obj.lines.append("f %s %s %s" % (a, b, d))
+                obj.triangles += 1
+            if r < rings - 1:
+                obj.lines.append("f %s %s %s" % (b, c, d))
+                obj.triangles += 1
+    text = "\n".join(obj.lines) + "\n"
+    with open(os.path.join(folder, "globe.obj"), "w", encoding="ascii", newline="\n") as out:
+        out.write(text)
+    with open(os.path.join(folder, "globe.mtl"), "w", encoding="ascii", newline="\n") as out:
+        out.write("# written by tools/make_scenes.py globe\nnewmtl globe\nKd 1 1 1\nmap_Kd checker.jpg\n")
+    return obj.triangles
+
+
 def cornell_walls(obj):
     """The Cornell box's walls (Goral et al. 1984; the Cornell measurements' layout, 555 units a
     side) and its ceiling light."""
@@ -413,6 +450,9 @@ def scene_e():
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "globe":
+        print("globe %6d triangles" % globe(sys.argv[2]))
+        return 0
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e)):

@@ -16,9 +16,18 @@
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024
-// Materials: RGBA32F, five texels each on one row: (diffuse, shininess), (specular, 0),
-// (reflectivity, 0), (emission, 0), (transmission filter, index of refraction | 0).
+// Materials: RGBA32F, five texels each on one row: (diffuse, shininess), (specular, diffuse
+// texture | -1), (reflectivity, 0), (emission, 0), (transmission filter, index of refraction | 0).
 #define GPURT_MATERIAL_TEXELS 5
+// Texture coordinates (scenes with a textured material): RGBA32F, two texels per triangle, laid
+// out as the triangles (GPURT_TRIANGLES_PER_ROW a row): (t0, t1), (t2, 0, 0), in the image
+// coordinates of common/texture.h; one triangle of zeros when the scene has none.
+#define GPURT_TEXCOORD_TEXELS 2
+// Texture images: an R32UI buffer texture of every texture's texels one after another, each image
+// top row first, r | g << 8 | b << 16 | a << 24 sRGB; and an RGBA32UI buffer texture, one texel
+// per texture: (its first texel there, width, height, wrapS | wrapT << 8). A single texel of each
+// when the scene has no texture. The kernels decode the sRGB codes with an R32F buffer texture of
+// 256 floats (common/texture.h srgbDecode8).
 // Emitters (EmitterTable): RG32F buffer texture, one texel per emitting triangle: (cumulative
 // area share, triangle id); one texel (1, -1) when the scene has none.
 

@@ -41,11 +41,13 @@ void main() {
     if (s.w < 0.0f || !lightInFront(s.xyz, nm.xyz, lightPosition) || readStream(hitState).w >= 0.0f)
         discard;  // no surface, light behind it, or in shadow: the local colour stays
 #endif
+    vec4 shading = readStream(surfaceShading);
+    vec4 view = readStream(surfaceView);
+    vec3 n = shading.xyz;
+    vec3 d = view.xyz;
     vec3 kd, ks, reflectivity;
     float ns;
-    fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
-    vec3 n = readStream(surfaceShading).xyz;
-    vec3 d = readStream(surfaceView).xyz;
+    fetchSurfaceMaterial(int(nm.w), vec2(view.w, shading.w), kd, ks, ns, reflectivity);
 #ifdef PATH
     vec3 tf, diffuse, glossy;
     float ior;

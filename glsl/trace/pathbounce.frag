@@ -52,11 +52,13 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     vec4 nm = readStream(surfaceNormal);
     vec3 kd, ks, reflectivity, tf, diffuse, glossy;
     float ns, ior;
-    fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
+    vec4 view = readStream(surfaceView);
+    vec4 shading = readStream(surfaceShading);
+    fetchSurfaceMaterial(int(nm.w), vec2(view.w, shading.w), kd, ks, ns, reflectivity);
     fetchDielectric(int(nm.w), tf, ior);
     pathLobes(kd, ks, reflectivity, ior, diffuse, glossy);
-    vec3 d = readStream(surfaceView).xyz;
-    vec3 n = readStream(surfaceShading).xyz;
+    vec3 d = view.xyz;
+    vec3 n = shading.xyz;
     vec3 local = readStream(localColor).xyz;
     vec4 q = emitterCount > 0 ? readStream(lightSample) : vec4(-1.0f);
     if (q.w >= 0.0f && readStream(hitState).w < 0.0f) {  // the emitter point is not in shadow

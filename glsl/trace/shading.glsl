@@ -2,6 +2,7 @@
 // backend) and the material fetch.
 #include "scene.glsl"
 #include "../common/shading.h"
+#include "../common/texture.h"
 
 uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
 
@@ -11,6 +12,42 @@ void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 refle
     ns = a.w;
     ks = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).xyz;
     reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
+}
+
+// The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
+vec2 fetchTexcoord(int id, float u, float v) {
+    if (hasTexcoords == 0) return vec2(0.0f);
+    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangleTexcoords, at, 0);
+    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+    return interpolateTexcoord(a.xy, a.zw, b.xy, u, v);
+}
+
+vec3 textureTexel(int first, int width, int x, int y) {
+    uint c = texelFetch(textureTexels, first + y * width + x).x;
+    return vec3(texelFetch(srgbTable, int(c & 0xffu)).x, texelFetch(srgbTable, int((c >> 8) & 0xffu)).x,
+                texelFetch(srgbTable, int((c >> 16) & 0xffu)).x);
+}
+
+// Material m's diffuse colour kd at image coordinates t: times its texture's filtered colour
+// when it has one (src/raytrace/SurfaceTexture.cpp diffuseAt).
+vec3 fetchDiffuse(int m, vec3 kd, vec2 t) {
+    int tex = int(texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).w);
+    if (tex < 0 || hasTexcoords == 0) return kd;
+    uvec4 info = texelFetch(textureTable, tex);
+    int first = int(info.x), w = int(info.y), h = int(info.z);
+    ivec2 columns, rows;
+    vec2 f;
+    bilinearFootprint(t, w, h, int(info.w & 0xffu), int(info.w >> 8), columns, rows, f);
+    return kd * bilinearBlend(textureTexel(first, w, columns.x, rows.x), textureTexel(first, w, columns.y, rows.x),
+                              textureTexel(first, w, columns.x, rows.y), textureTexel(first, w, columns.y, rows.y), f);
+}
+
+// The material of a surface record: fetchMaterial with the diffuse colour at the record's image
+// coordinates (surface.frag keeps them in surfaceView.w and surfaceShading.w).
+void fetchSurfaceMaterial(int m, vec2 t, out vec3 kd, out vec3 ks, out float ns, out vec3 reflectivity) {
+    fetchMaterial(m, kd, ks, ns, reflectivity);
+    kd = fetchDiffuse(m, kd, t);
 }
 
 // The dielectric part of material m: transmission tf Tf and index of refraction (0: not a

@@ -14,6 +14,10 @@ uniform sampler2D pathState;  // the path's pixel (packed paths: shading.glsl pa
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
+#ifdef PATH
+uniform sampler2D surfaceView;     // w: the hit's image coordinate x
+uniform sampler2D surfaceShading;  // w: y
+#endif
 #ifdef EMITTER
 uniform uint sampleIndex;
 uniform uint sampleCount;
@@ -39,7 +43,8 @@ void main() {
     if (s.w >= 0.0f) {
         vec3 kd, ks, reflectivity, tf, diffuse, glossy;
         float ns, ior;
-        fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
+        fetchSurfaceMaterial(int(nm.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w), kd, ks, ns,
+                             reflectivity);
         fetchDielectric(int(nm.w), tf, ior);
         if (!pathLobes(kd, ks, reflectivity, ior, diffuse, glossy)) s.w = -1.0f;  // nothing to light
     }

@@ -21,9 +21,10 @@ uniform vec3 background;
 layout(location = 0) out vec4 color;          // (accumulated colour, 0)
 layout(location = 1) out vec4 surfacePoint;   // (p, triangle | -1 when this path has no hit)
 layout(location = 2) out vec4 surfaceNormal;  // (n facing the ray, material)
-layout(location = 3) out vec4 surfaceView;    // (ray direction, 0)
+layout(location = 3) out vec4 surfaceView;    // (ray direction, image coordinate x of the hit)
 layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
-layout(location = 5) out vec4 surfaceShading; // (shading normal, 0): smooth, facing as the normal
+layout(location = 5) out vec4 surfaceShading; // (shading normal, image coordinate y): the normal
+                                              // smooth, facing as the geometric one
 
 void main() {
     vec4 w = readStream(weight);
@@ -51,13 +52,14 @@ void main() {
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
     surfaceNormal = vec4(ng, float(material));
-    surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), 0.0f);
-    surfaceView = vec4(d, 0.0f);
+    vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
+    surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), t.y);
+    surfaceView = vec4(d, t.x);
 #ifdef PATH
     float mis = emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea);
     color = vec4(c.xyz + w.xyz * (fetchEmission(material) * mis), 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
-    localColor = vec4(ambientColor(kd), 0.0f);
+    localColor = vec4(ambientColor(fetchDiffuse(material, kd, t)), 0.0f);
 #endif
 }

@@ -13,6 +13,7 @@
 
 #include "raytrace/Parallel.h"
 #include "raytrace/RayMath.h"
+#include "raytrace/SurfaceTexture.h"
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"
@@ -181,8 +182,9 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
         color += weight * (m.emission * emissionWeight(prevPdf, hit.t, n, d, emitters_.totalArea));
         if (b == maxDepth) break;
 
+        const glm::vec3 kd = diffuseAt(scene_, m, uint32_t(hit.prim), hit.u, hit.v);
         glm::vec3 diffuse, glossy;
-        const vec3 probs = pathLobes(m.diffuse, m.specular, m.reflectivity, m.ior, diffuse, glossy)
+        const vec3 probs = pathLobes(kd, m.specular, m.reflectivity, m.ior, diffuse, glossy)
                                ? lobeProbabilities(diffuse, glossy, m.reflectivity, m.ior)
                                : vec3(0.0f);
         if (probs.x + probs.y > 0.0f) {  // next-event estimation (shadowgen.frag, light.frag PATH)
@@ -287,16 +289,17 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             }
             if (maxBounces < 0) break;
 
-            glm::vec3 local = ambientColor(material.diffuse);
+            const glm::vec3 kd = diffuseAt(scene_, material, uint32_t(hit.prim), hit.u, hit.v);
+            glm::vec3 local = ambientColor(kd);
             for (const PointLight& light : lights)
                 if (lightVisible(p, n, light.position, stats))
-                    local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess,
+                    local += lightContribution(p, ns, d, kd, material.specular, material.shininess,
                                                light.position, light.color, light.intensity);
             vec3 q;  // the sample's point of the emitters (shadowgen.frag EMITTER, light.frag EMITTER)
             uint32_t id;
             if (emitterVisible(i, j, sample, samples, settings.seed, bounce, p, n, stats, q, id)) {
                 const PreparedTriangle& e = triangles_[id];
-                local += lightContribution(p, ns, d, material.diffuse, material.specular, material.shininess, q,
+                local += lightContribution(p, ns, d, kd, material.specular, material.shininess, q,
                                            scene_.materials[scene_.materialIds[id]].emission,
                                            emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
             }

@@ -169,6 +169,8 @@ struct GpuPipeline {
         emitterLight.addInput(lightSample, "lightSample").addInOut(localColor, "localState");
         emitterLight.addInput(surfaceShading, "surfaceShading");
         pathEmitterShadowgen.addInput(pathState, "pathState");
+        for (GPUKernel* k : {&pathShadowgen, &pathEmitterShadowgen})  // the lobes at the hit's texture coordinates
+            k->addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");
         for (GPUKernel* k : {&pathBounce, &pathPack}) {
             k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
             k->addInput(surfaceView, "surfaceView").addInput(surfaceShading, "surfaceShading");

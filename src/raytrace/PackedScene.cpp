@@ -38,20 +38,28 @@ constexpr char kGrid[] = "GRID";
 constexpr char kCellStart[] = "CELL";
 constexpr char kCellList[] = "LIST";
 constexpr char kNormals[] = "NRML";
-// In the order the writer stores them; all but the camera, its animation and the normals are
-// required.
+constexpr char kTexcoords[] = "TXCO";
+constexpr char kTextures[] = "TEXS";
+// In the order the writer stores them; all but the camera, its animation, the normals, the
+// texture coordinates and the textures are required.
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,   kBackground, kRender,
-                                         kGrid,      kCellStart, kCellList, kNormals, kAnimation};
+                                         kGrid,      kCellStart, kCellList, kNormals, kAnimation,  kTexcoords,
+                                         kTextures};
 constexpr bool optionalSection(std::string_view tag) {
-    return tag == kCamera || tag == kNormals || tag == kAnimation;
+    return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures;
 }
 bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kCamera) return bool(loaded.scene.camera);
     if (tag == kNormals) return !loaded.scene.normals.empty();
     if (tag == kAnimation) return bool(loaded.scene.animation);
+    if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
+    if (tag == kTextures) return !loaded.scene.textures.empty();
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
+constexpr size_t kTexcoordsBytes = 6 * 4;
+constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
+constexpr uint64_t kMaxTextures = 1 << 16;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
@@ -208,6 +216,28 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
             fail("material " + std::to_string(m) +
                  ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
     }
+    for (size_t m = 0; m < scene.materials.size(); ++m)
+        if (scene.materials[m].diffuseTexture < -1 || scene.materials[m].diffuseTexture >= int(scene.textures.size()))
+            fail("material " + std::to_string(m) + ": texture " + std::to_string(scene.materials[m].diffuseTexture) +
+                 " out of range (" + std::to_string(scene.textures.size()) + " textures)");
+    if (!scene.texcoords.empty() && scene.texcoords.size() != n)
+        fail(std::to_string(scene.texcoords.size()) + " texture coordinates for " + std::to_string(n) + " triangles");
+    uint64_t texels = 0;
+    for (size_t k = 0; k < scene.textures.size(); ++k) {
+        const Texture& t = scene.textures[k];
+        const Rgba8Image& image = t.image;
+        if (image.width < 1 || image.height < 1 || image.width > kMaxTextureSide || image.height > kMaxTextureSide ||
+            uint64_t(image.width) * uint64_t(image.height) > kMaxTextureTexels ||
+            image.texels.size() != size_t(image.width) * size_t(image.height))
+            fail("texture " + std::to_string(k) + ": size " + std::to_string(image.width) + "x" +
+                 std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, 2^26 texels");
+        if (t.wrapS > kWrapMirror || t.wrapT > kWrapMirror)
+            fail("texture " + std::to_string(k) + ": wrap modes " + std::to_string(t.wrapS) + ", " +
+                 std::to_string(t.wrapT) + " are not 0 (repeat), 1 (clamp) or 2 (mirror)");
+        texels += image.texels.size();
+    }
+    if (texels > kMaxTextureTexels * 2)
+        fail(std::to_string(texels) + " texels in all textures; at most 2^27");
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
         if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
@@ -404,6 +434,57 @@ class SectionDecoder {
             t.n1 = in.vec3();
             t.n2 = in.vec3();
         }
+    }
+
+    // One entry per triangle (read after the triangles): t0, t1, t2.
+    void texcoords(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = count(in, s, kTexcoordsBytes, true, kMaxTextureTriangles, "texture coordinates");
+        if (n != scene.triangles.size())
+            fail("section " + s.tag + ": " + std::to_string(n) + " texture coordinates for " +
+                 std::to_string(scene.triangles.size()) + " triangles");
+        scene.texcoords.resize(size_t(n));
+        for (TriangleTexcoords& t : scene.texcoords) {
+            const glm::vec2 c[3] = {{in.f32(), in.f32()}, {in.f32(), in.f32()}, {in.f32(), in.f32()}};
+            t = {c[0], c[1], c[2]};
+        }
+    }
+
+    // The textures (count; then each: width, height, wrapS, wrapT, its name's length, the name
+    // padded to 4 bytes, width x height texels), then each material's texture (count = the
+    // materials', then an i32 each). Read after the materials.
+    void textures(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = count(in, s, kTextureMinBytes, false, kMaxTextures, "textures");
+        scene.textures.resize(size_t(n));
+        for (uint64_t k = 0; k < n; ++k) {
+            Texture& t = scene.textures[size_t(k)];
+            const uint32_t width = in.u32(), height = in.u32();
+            t.wrapS = in.u32();
+            t.wrapT = in.u32();
+            if (width < 1 || height < 1 || width > uint32_t(kMaxTextureSide) || height > uint32_t(kMaxTextureSide) ||
+                uint64_t(width) * height > kMaxTextureTexels)
+                fail("texture " + std::to_string(k) + ": size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is not 1.." + std::to_string(kMaxTextureSide) + " a side, 2^26 texels");
+            const uint32_t length = in.u32();
+            const uint64_t padded = (uint64_t(length) + 3) / 4 * 4;
+            const uint64_t texels = uint64_t(width) * height;
+            if (padded > in.remaining() || texels * 4 > in.remaining() - padded)
+                fail("section " + s.tag + ": texture " + std::to_string(k) + " (" + std::to_string(width) + "x" +
+                     std::to_string(height) + ") runs past the section's end");
+            const unsigned char* text = in.take(size_t(padded));
+            t.name.assign(reinterpret_cast<const char*>(text), length);
+            t.image.width = int(width);
+            t.image.height = int(height);
+            t.image.texels.resize(size_t(texels));
+            for (uint32_t& texel : t.image.texels) texel = in.u32();
+        }
+        if (in.remaining() < 8) fail("section " + s.tag + ": no material textures after the textures");
+        const uint64_t materials = in.u64();
+        if (materials != scene.materials.size() || in.remaining() != materials * 4)
+            fail("section " + s.tag + ": " + std::to_string(materials) + " material textures in " +
+                 std::to_string(in.remaining()) + " bytes for " + std::to_string(scene.materials.size()) + " materials");
+        for (Material& m : scene.materials) m.diffuseTexture = int(int32_t(in.u32()));
     }
 
     void fixedSize(const Section& s, uint64_t bytes) const {
@@ -615,6 +696,28 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
                 out.vec3(n.n1);
                 out.vec3(n.n2);
             }
+        } else if (tag == kTexcoords) {
+            out.u64(scene.texcoords.size());
+            for (const TriangleTexcoords& t : scene.texcoords)
+                for (const glm::vec2 c : {t.t0, t.t1, t.t2}) {
+                    out.f32(c.x);
+                    out.f32(c.y);
+                }
+        } else if (tag == kTextures) {
+            out.u64(scene.textures.size());
+            for (const Texture& t : scene.textures) {
+                out.u32(uint32_t(t.image.width));
+                out.u32(uint32_t(t.image.height));
+                out.u32(t.wrapS);
+                out.u32(t.wrapT);
+                if (t.name.size() > UINT32_MAX) throw InputError(name + ": a texture name is too long");
+                out.u32(static_cast<uint32_t>(t.name.size()));
+                out.raw(t.name.data(), t.name.size());
+                out.padTo(4);
+                for (uint32_t texel : t.image.texels) out.u32(texel);
+            }
+            out.u64(scene.materials.size());
+            for (const Material& m : scene.materials) out.u32(uint32_t(int32_t(m.diffuseTexture)));
         }
         const size_t entry = table + k * kPackedSectionEntryBytes;
         out.patch64(entry + 8, start);
@@ -726,6 +829,8 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     decoder.cellList(**slotOf(kCellList), grid);
     if (*slotOf(kNormals)) decoder.normals(**slotOf(kNormals), loaded.scene);
     if (*slotOf(kAnimation)) decoder.animation(**slotOf(kAnimation), loaded.scene);
+    if (*slotOf(kTexcoords)) decoder.texcoords(**slotOf(kTexcoords), loaded.scene);
+    if (*slotOf(kTextures)) decoder.textures(**slotOf(kTextures), loaded.scene);
 
     validateScene(name, loaded, grid);
     // The skip distances are derived from cellStart (computeSkip) rather than stored.

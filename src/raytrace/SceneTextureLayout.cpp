@@ -4,6 +4,8 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/SurfaceTexture.h"
+
 namespace gpurt {
 
 namespace {
@@ -88,7 +90,7 @@ TextureTexels materialTexels(const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
-                                                   vec4(mat.specular, 0.0f),
+                                                   vec4(mat.specular, float(mat.diffuseTexture)),
                                                    vec4(mat.reflectivity, 0.0f),
                                                    vec4(mat.emission, 0.0f),
                                                    vec4(mat.transmission, mat.ior)};
@@ -113,6 +115,52 @@ TextureTexels vertexNormalTexels(const Scene& scene) {
     return normals;
 }
 
+TextureTexels texcoordTexels(const Scene& scene) {
+    const size_t n = scene.texcoords.size();
+    TextureTexels texcoords = emptyTexture("triangleTexcoords", n == 0 ? GPURT_TEXCOORD_TEXELS : GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW,
+                                           textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
+    for (size_t t = 0; t < n; ++t) {
+        const TriangleTexcoords& c = scene.texcoords[t];
+        const float values[8] = {c.t0.x, c.t0.y, c.t1.x, c.t1.y, c.t2.x, c.t2.y, 0.0f, 0.0f};
+        std::copy(values, values + 8, &texcoords.floats[t * 8]);
+    }
+    return texcoords;
+}
+
+TextureTexels textureImageTexels(const Scene& scene) {
+    size_t n = 0;
+    for (const Texture& t : scene.textures) n += t.image.texels.size();
+    TextureTexels texels = emptyTexture("textureTexels", GPURT_INDEX_WIDTH, textureRowsFor(n, GPURT_INDEX_WIDTH), 1, false);
+    size_t at = 0;
+    for (const Texture& t : scene.textures) {
+        std::copy(t.image.texels.begin(), t.image.texels.end(), texels.uints.begin() + std::ptrdiff_t(at));
+        at += t.image.texels.size();
+    }
+    return texels;
+}
+
+TextureTexels textureTableTexels(const Scene& scene) {
+    TextureTexels table = emptyTexture("textureTable", std::max<size_t>(1, scene.textures.size()), 1, 4, false);
+    table.uints[1] = table.uints[2] = 1;
+    size_t first = 0;
+    for (size_t k = 0; k < scene.textures.size(); ++k) {
+        const Texture& t = scene.textures[k];
+        table.uints[4 * k] = uint32_t(first);
+        table.uints[4 * k + 1] = uint32_t(t.image.width);
+        table.uints[4 * k + 2] = uint32_t(t.image.height);
+        table.uints[4 * k + 3] = t.wrapS | t.wrapT << 8;
+        first += t.image.texels.size();
+    }
+    return table;
+}
+
+TextureTexels srgbTableTexels() {
+    TextureTexels table = emptyTexture("srgbTable", 256, 1, 1, true);
+    const std::array<float, 256>& decode = srgbDecodeTable();
+    std::copy(decode.begin(), decode.end(), table.floats.begin());
+    return table;
+}
+
 TextureTexels emitterTexels(const EmitterTable& emitters) {
     const size_t n = std::max<size_t>(1, emitters.triangles.size());
     TextureTexels table = emptyTexture("emitters", n, 1, 2, true);
@@ -133,6 +181,10 @@ std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformG
     all.push_back(materialTexels(scene));
     all.push_back(vertexNormalTexels(scene));
     all.push_back(emitterTexels(buildEmitterTable(scene)));
+    all.push_back(texcoordTexels(scene));
+    all.push_back(textureImageTexels(scene));
+    all.push_back(textureTableTexels(scene));
+    all.push_back(srgbTableTexels());
     return all;
 }
 

@@ -51,11 +51,22 @@ TextureTexels materialTexels(const Scene& scene);
 // RGBA32F, as the triangle texture: (n0, 0), (n1, 0), (n2, 0) per triangle of scene.normals;
 // one triangle of zeros when it is empty.
 TextureTexels vertexNormalTexels(const Scene& scene);
+// RGBA32F, two texels a triangle of scene.texcoords, laid out as the triangles: (t0, t1),
+// (t2, 0, 0); one triangle of zeros when it is empty.
+TextureTexels texcoordTexels(const Scene& scene);
+// R32UI, every texture's texels one after another (GPURT_INDEX_WIDTH a row); one texel when
+// the scene has no texture.
+TextureTexels textureImageTexels(const Scene& scene);
+// RGBA32UI, one texel per texture: (first texel in textureImageTexels, width, height,
+// wrapS | wrapT << 8); (0, 1, 1, 0) when there is none.
+TextureTexels textureTableTexels(const Scene& scene);
+// R32F, the 256 linear values of the sRGB codes (srgbDecodeTable).
+TextureTexels srgbTableTexels();
 // RG32F, one row: (cumulative area share, triangle id) per entry of the emitter table; (1, -1)
 // when it is empty.
 TextureTexels emitterTexels(const EmitterTable& emitters);
 
-// The six, in the order SceneTextures binds them.
+// All of them, in the order SceneTextures binds them.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
 
 }  // namespace gpurt

@@ -83,6 +83,24 @@ GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     return upload(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
 }
 
+GPUFloatArray makeTexcoords(const Scene& scene) {
+    checkFits("texture coordinate", GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW,
+              textureRowsFor(scene.texcoords.size(), GPURT_TRIANGLES_PER_ROW));
+    return upload(texcoordTexels(scene), GPUFormat::RGBA32F);
+}
+
+GPUFloatArray makeTextureTexels(const Scene& scene) {
+    size_t n = 0;
+    for (const Texture& t : scene.textures) n += t.image.texels.size();
+    checkFitsBuffer("texture image", GPURT_INDEX_WIDTH, textureRowsFor(n, GPURT_INDEX_WIDTH));
+    return upload(textureImageTexels(scene), GPUFormat::R32UI, GPUStorage::Buffer);
+}
+
+GPUFloatArray makeTextureTable(const Scene& scene) {
+    checkFitsBuffer("texture", std::max<size_t>(1, scene.textures.size()), 1);
+    return upload(textureTableTexels(scene), GPUFormat::RGBA32UI, GPUStorage::Buffer);
+}
+
 }  // namespace
 
 SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
@@ -94,7 +112,12 @@ SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
       vertexNormals_(makeVertexNormals(scene)),
       hasVertexNormals_(!scene.normals.empty()),
       emitterTable_(buildEmitterTable(scene)),
-      emitters_(makeEmitters(emitterTable_)) {}
+      emitters_(makeEmitters(emitterTable_)),
+      texcoords_(makeTexcoords(scene)),
+      hasTexcoords_(!scene.texcoords.empty()),
+      textureTexels_(makeTextureTexels(scene)),
+      textureTable_(makeTextureTable(scene)),
+      srgbTable_(upload(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)) {}
 
 void SceneTextures::bind(GPUKernel& kernel) const {
     kernel.addInput(voxelIndex_, "voxelIndex")
@@ -106,6 +129,11 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(emitters_, "emitters")
         .setUniform("emitterCount", int(emitterTable_.triangles.size()))
         .setUniform("emitterArea", emitterTable_.totalArea)
+        .addInput(texcoords_, "triangleTexcoords")
+        .setUniform("hasTexcoords", hasTexcoords_ ? 1 : 0)
+        .addInput(textureTexels_, "textureTexels")
+        .addInput(textureTable_, "textureTable")
+        .addInput(srgbTable_, "srgbTable")
         .setUniform("gridMin", grid_.min)
         .setUniform("gridMax", grid_.max)
         .setUniform("cellSize", grid_.cellSize)
@@ -117,7 +145,8 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
-    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_);
+    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
+           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_);
 }
 
 }  // namespace gpurt

@@ -18,7 +18,8 @@ class SceneTextures {
     SceneTextures(const Scene& scene, const UniformGrid& grid);
 
     // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellTriangles, triangles,
-    // materials, emitters) and sets the grid and emitter uniforms.
+    // materials, vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable,
+    // srgbTable) and sets the grid, emitter and texture uniforms.
     void bind(GPUKernel& kernel) const;
 
     const GPUFloatArray& voxelIndex() const { return voxelIndex_; }
@@ -27,6 +28,10 @@ class SceneTextures {
     const GPUFloatArray& materials() const { return materials_; }
     const GPUFloatArray& vertexNormals() const { return vertexNormals_; }
     const GPUFloatArray& emitters() const { return emitters_; }
+    const GPUFloatArray& texcoords() const { return texcoords_; }
+    const GPUFloatArray& textureTexels() const { return textureTexels_; }
+    const GPUFloatArray& textureTable() const { return textureTable_; }
+    const GPUFloatArray& srgbTable() const { return srgbTable_; }
     const EmitterTable& emitterTable() const { return emitterTable_; }
     size_t bytes() const;
 
@@ -40,6 +45,11 @@ class SceneTextures {
     bool hasVertexNormals_;
     EmitterTable emitterTable_;
     GPUFloatArray emitters_;
+    GPUFloatArray texcoords_;
+    bool hasTexcoords_;
+    GPUFloatArray textureTexels_;
+    GPUFloatArray textureTable_;
+    GPUFloatArray srgbTable_;
 };
 
 }  // namespace gpurt

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -25,9 +26,26 @@ namespace {
 // More elements than this in one accessor is a damaged file, not a model (2^28 vertices).
 constexpr uint64_t kMaxAccessorCount = uint64_t(1) << 28;
 
-// Textures are not decoded (not used yet): tinygltf still reads image files, and says when one is
-// missing.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// The images tinygltf read (from a file, a data URI or a buffer view), decoded by gpurt's PNG and
+// JPEG reader; one that cannot be decoded is kept as its error, so that the materials using it
+// warn and keep their colour instead of failing the whole scene.
+struct DecodedImages {
+    std::string name;  // the glTF file
+    std::map<int, Rgba8Image> images;
+    std::map<int, std::string> errors;
+};
+
+bool decodeGltfImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                     const unsigned char* bytes, int size, void* user) {
+    DecodedImages& decoded = *static_cast<DecodedImages*>(user);
+    const std::string what = "image " + std::to_string(index) + (image->uri.empty() || image->uri.compare(0, 5, "data:") == 0
+                                                                      ? std::string()
+                                                                      : " ('" + image->uri + "')");
+    try {
+        decoded.images[index] = decodeImage(bytes, size_t(std::max(size, 0)), what);
+    } catch (const InputError& e) {
+        decoded.errors[index] = e.what();
+    }
     return true;
 }
 
@@ -41,7 +59,8 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 class GltfReader {
   public:
-    GltfReader(const tinygltf::Model& model, const std::string& name) : m_(model), name_(name) {}
+    GltfReader(const tinygltf::Model& model, const std::string& name, DecodedImages& images)
+        : m_(model), name_(name), images_(images) {}
 
     Scene read() {
         Scene scene;
@@ -61,6 +80,8 @@ class GltfReader {
                 if (!child[n]) roots.push_back(int(n));
         }
         for (int n : roots) visit(n, glm::dmat4(1.0), scene);
+        if (scene.textures.empty()) scene.texcoords.clear();
+        else scene.texcoords.resize(scene.triangles.size());
         return scene;
     }
 
@@ -245,6 +266,24 @@ class GltfReader {
                 normals[v] = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
             }
         }
+        const uint32_t material = materialOf(prim.material, scene);
+        // The texture coordinates its base colour texture uses (TEXCOORD_n of textureInfo.texCoord).
+        std::vector<glm::vec2> texcoords;
+        if (scene.materials[material].diffuseTexture >= 0) {
+            const std::string set = "TEXCOORD_" + std::to_string(texcoordSets_[material]);
+            const auto attribute = prim.attributes.find(set);
+            if (attribute == prim.attributes.end()) {
+                warn(at + ": no " + set + " for its material's texture; it is sampled at (0, 0)");
+            } else {
+                const std::vector<double> t = values(attribute->second, at + " " + set, components);
+                if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
+                texcoords.resize(vertices);
+                for (size_t v = 0; v < vertices; ++v) {
+                    const glm::vec2 c(float(t[2 * v]), float(t[2 * v + 1]));
+                    texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
+                }
+            }
+        }
         std::vector<uint32_t> index;
         if (prim.indices >= 0) {
             if (prim.indices >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(prim.indices) + " does not exist");
@@ -264,13 +303,16 @@ class GltfReader {
             index.resize(vertices);
             for (size_t v = 0; v < vertices; ++v) index[v] = uint32_t(v);
         }
-        const uint32_t material = materialOf(prim.material, scene);
         auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
             scene.materialIds.push_back(material);
             if (!normals.empty()) {
                 if (scene.normals.size() + 1 < scene.triangles.size()) scene.normals.resize(scene.triangles.size() - 1);
                 scene.normals.push_back({normals[a], normals[b], normals[c]});
+            }
+            if (!texcoords.empty()) {
+                scene.texcoords.resize(scene.triangles.size() - 1);
+                scene.texcoords.push_back({texcoords[a], texcoords[b], texcoords[c]});
             }
         };
         if (mode == TINYGLTF_MODE_TRIANGLES) {
@@ -333,11 +375,61 @@ class GltfReader {
         if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
             m.ior < 0.0f || (m.ior > 0.0f && m.ior < 1.0f))
             fail(at + ": emission must be finite and >= 0, ior >= 1");
-        if (g.pbrMetallicRoughness.baseColorTexture.index >= 0)
-            warn(at + " ('" + m.name + "'): textures are not used yet; its baseColorFactor is");
+        const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
+        if (baseTexture.index >= 0 && m.diffuse != glm::vec3(0.0f)) {
+            m.diffuseTexture = textureOf(baseTexture.index, at + " ('" + m.name + "')", scene);
+            if (baseTexture.texCoord < 0) fail(at + ": baseColorTexture texCoord " + std::to_string(baseTexture.texCoord));
+            if (baseTexture.extensions.count("KHR_texture_transform"))
+                warn(at + ": KHR_texture_transform is not used; the texture is mapped untransformed");
+        }
+        texcoordSets_.resize(scene.materials.size() + 1, 0);
+        texcoordSets_.back() = std::max(baseTexture.texCoord, 0);
         scene.materials.push_back(m);
         materialIds_[size_t(index)] = int(scene.materials.size() - 1);
         return uint32_t(scene.materials.size() - 1);
+    }
+
+    // The scene texture of glTF texture `index` (one per image and sampler), or -1 with a warning
+    // when its image could not be read.
+    int textureOf(int index, const std::string& material, Scene& scene) {
+        if (index >= int(m_.textures.size())) fail(material + ": texture " + std::to_string(index) + " does not exist");
+        const tinygltf::Texture& t = m_.textures[size_t(index)];
+        const std::pair<int, int> key(t.source, t.sampler);
+        if (auto seen = textures_.find(key); seen != textures_.end()) return seen->second;
+        int& made = textures_[key] = -1;
+        if (t.source < 0 || t.source >= int(m_.images.size())) {
+            warn(material + ": texture " + std::to_string(index) + " has no image gpurt reads (PNG or JPEG); the material keeps its colour");
+            return -1;
+        }
+        const auto image = images_.images.find(t.source);
+        if (image == images_.images.end()) {
+            const auto error = images_.errors.find(t.source);
+            const tinygltf::Image& source = m_.images[size_t(t.source)];
+            warn(material + ": " +
+                 (error != images_.errors.end() ? error->second
+                                                : "image " + std::to_string(t.source) + (source.uri.empty() ? "" : " ('" + source.uri + "')") +
+                                                      " could not be read") +
+                 "; the material keeps its colour");
+            return -1;
+        }
+        Texture texture;
+        const tinygltf::Image& source = m_.images[size_t(t.source)];
+        texture.name = source.uri.empty() || source.uri.compare(0, 5, "data:") == 0 ? name_ + " image " + std::to_string(t.source) : source.uri;
+        texture.image = image->second;
+        if (t.sampler >= 0) {
+            if (t.sampler >= int(m_.samplers.size())) fail("texture " + std::to_string(index) + ": sampler " + std::to_string(t.sampler) + " does not exist");
+            const tinygltf::Sampler& sampler = m_.samplers[size_t(t.sampler)];
+            texture.wrapS = wrapOf(sampler.wrapS);
+            texture.wrapT = wrapOf(sampler.wrapT);
+        }
+        scene.textures.push_back(std::move(texture));
+        return made = int(scene.textures.size() - 1);
+    }
+
+    static uint32_t wrapOf(int mode) {
+        if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return kWrapClamp;
+        if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return kWrapMirror;
+        return kWrapRepeat;
     }
 
     void camera(int index, const glm::dmat4& world, const std::string& at, Scene& scene) {
@@ -382,6 +474,9 @@ class GltfReader {
     const tinygltf::Model& m_;
     std::string name_;
     std::vector<int> materialIds_;
+    std::vector<int> texcoordSets_;  // per scene material: the TEXCOORD set of its texture
+    std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
+    DecodedImages& images_;
     std::set<int> onPath_;
 };
 
@@ -393,7 +488,9 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     if (bytes.size() > UINT32_MAX) throw InputError(name + ": larger than a glTF file can be (4 GiB)");
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skipImage, nullptr);
+    DecodedImages images;
+    images.name = name;
+    loader.SetImageLoader(decodeGltfImage, &images);
     std::string err, warn;
     const bool glb = looksLikeGlb(bytes);
     if (!glb && name.size() >= 4 && name.compare(name.size() - 4, 4, ".glb") == 0)
@@ -410,7 +507,7 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     std::istringstream warnings(warn);
     for (std::string line; std::getline(warnings, line);)
         if (!line.empty()) std::cerr << name << ": warning: " << line << "\n";
-    return GltfReader(model, name).read();
+    return GltfReader(model, name, images).read();
 }
 
 Scene loadGltf(const std::filesystem::path& path) {

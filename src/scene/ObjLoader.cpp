@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <set>
@@ -319,6 +320,7 @@ class MtlReader : public tinyobj::MaterialReader {
         tinyobj::LoadMtl(matMap, materials, &library, warn, err);
         for (size_t m = first; m < materials->size() && invalid.empty(); ++m)
             invalid = checkMaterial((*materials)[m], path.string());
+        folders.resize(materials->size(), path.parent_path());
         return loaded_[name] = true;
     }
 
@@ -327,6 +329,9 @@ class MtlReader : public tinyobj::MaterialReader {
     std::string invalid;
 
     std::vector<std::string> missing;
+
+    // The folder of each material's library (texture file names are relative to it).
+    std::vector<std::filesystem::path> folders;
 
     // Materials (by name) whose library gives Tf (or Kt) and Ni: tinyobjloader's defaults (Tf 0,
     // Ni 1) cannot be told from values a file gives.
@@ -376,6 +381,31 @@ class MtlReader : public tinyobj::MaterialReader {
 
 glm::vec3 toVec3(const tinyobj::real_t* p) {
     return glm::vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+}
+
+// The scene texture of map_Kd `file` (relative to `folder`), read once per file; -1 with a
+// warning naming it when it cannot be read (the material then keeps its colour).
+int textureOf(const std::string& file, const std::filesystem::path& folder, const std::string& name,
+              const std::string& material, std::map<std::string, int>& known, Scene& scene) {
+    std::string relative = file;
+    std::replace(relative.begin(), relative.end(), '\\', '/');  // as Windows exporters write them
+    const std::filesystem::path path = folder / relative;
+    if (auto seen = known.find(path.string()); seen != known.end()) return seen->second;
+    int& index = known[path.string()] = -1;
+    std::error_code ec;
+    try {
+        if (!isReadableKind(std::filesystem::status(path, ec)))
+            throw InputError(path.string() + ": cannot open image file");
+        Texture texture;
+        texture.name = path.string();
+        texture.image = readImage(path);
+        scene.textures.push_back(std::move(texture));
+        index = int(scene.textures.size() - 1);
+    } catch (const InputError& e) {
+        std::cerr << name << ": warning: material " << quote(material) << ": map_Kd: " << e.what()
+                  << "; the material keeps its colour\n";
+    }
+    return index;
 }
 
 }  // namespace
@@ -448,8 +478,12 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
                          std::to_string(scan.faceSizes.size()) + " 'f' lines");
 
     Scene scene;
+    std::map<std::string, int> textureFiles;
     for (const tinyobj::material_t& m : mtlMaterials) {
         Material material;
+        if (!m.diffuse_texname.empty())
+            material.diffuseTexture =
+                textureOf(m.diffuse_texname, mtlReader.folders[scene.materials.size()], name, m.name, textureFiles, scene);
         material.name = m.name;
         material.diffuse = toVec3(m.diffuse);
         material.specular = toVec3(m.specular);
@@ -509,6 +543,15 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
             bool hasNormals = true;
             for (uint32_t i = 0; i < n && hasNormals; ++i)
                 hasNormals = shape.mesh.indices[first + i].normal_index >= 0;
+            // The face's texture coordinates (v/vt, v/vt/vn) as image coordinates: OBJ's v axis
+            // points up, the image's rows down. Missing or not finite: 0.
+            auto texcoord = [&](size_t i) {
+                const int index = shape.mesh.indices[first + i].texcoord_index;
+                if (index < 0 || 2 * size_t(index) + 1 >= attrib.texcoords.size()) return glm::vec2(0.0f);
+                const glm::vec2 t(float(attrib.texcoords[2 * size_t(index)]), 1.0f - float(attrib.texcoords[2 * size_t(index) + 1]));
+                return std::isfinite(t.x) && std::isfinite(t.y) ? t : glm::vec2(0.0f);
+            };
+            const bool textured = !scene.textures.empty();
             const glm::vec3 v0 = vertex(0);
             for (uint32_t i = 1; i + 1 < n; ++i) {
                 scene.triangles.push_back({v0, vertex(i), vertex(i + 1)});
@@ -517,6 +560,7 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
                     scene.normals.resize(scene.triangles.size());
                     scene.normals.back() = {normal(0), normal(i), normal(i + 1)};
                 }
+                if (textured) scene.texcoords.push_back({texcoord(0), texcoord(i), texcoord(i + 1)});
             }
             first += n;
         }

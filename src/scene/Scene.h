@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "image/TextureImage.h"
+
 namespace gpurt {
 
 // Phong material from an MTL file (Kd, Ks, Ns); reflectivity is the mirror weight of a Whitted
@@ -27,8 +29,27 @@ struct Material {
     // transmission (Tf). reflectivity is then unused.
     float ior = 0.0f;
     glm::vec3 transmission{1.0f};
+    // Index into Scene::textures, or -1: the diffuse colour at a hit is diffuse times the
+    // texture's linear colour at the hit's texture coordinates (glTF baseColorTexture, MTL map_Kd).
+    int diffuseTexture = -1;
 
     bool emits() const { return emission != glm::vec3(0.0f); }
+};
+
+// Wrap modes of a texture's coordinates (the values of glsl/common/texture.h).
+enum TextureWrap : uint32_t { kWrapRepeat = 0, kWrapClamp = 1, kWrapMirror = 2 };
+
+// A decoded texture image and how coordinates outside [0, 1] wrap.
+struct Texture {
+    std::string name;  // where it came from (file, or glTF image), for messages and pack --dump
+    Rgba8Image image;
+    uint32_t wrapS = kWrapRepeat, wrapT = kWrapRepeat;
+};
+
+// Texture coordinates at a triangle's corners in image coordinates: (0, 0) the top-left corner of
+// the image, (1, 1) the bottom-right one (glTF's TEXCOORD; OBJ's vt (u, v) are stored as (u, 1 - v)).
+struct TriangleTexcoords {
+    glm::vec2 t0{0.0f}, t1{0.0f}, t2{0.0f};
 };
 
 struct PointLight {
@@ -90,8 +111,11 @@ struct Scene {
     std::vector<uint32_t> materialIds;  // one per triangle, index into materials
     // Empty (faceted), or one per triangle: the file's vertex normals, then smoothNormals'.
     std::vector<TriangleNormals> normals;
+    // Empty (no textured material), or one per triangle (zeros where a file gave none).
+    std::vector<TriangleTexcoords> texcoords;
     // Never empty (index 0 = the default material when the OBJ has none).
     std::vector<Material> materials;
+    std::vector<Texture> textures;  // the materials' diffuseTexture indices refer to these
     // May be empty: renderers then add a headlight (lightsOrHeadlight).
     std::vector<PointLight> lights;
     std::optional<CameraSpec> camera;  // OBJ: none

@@ -102,7 +102,7 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
         const Material& mat = scene.materials[m];
         const float expected[20] = {
             mat.diffuse.x,      mat.diffuse.y,      mat.diffuse.z,      mat.shininess,
-            mat.specular.x,     mat.specular.y,     mat.specular.z,     0.0f,
+            mat.specular.x,     mat.specular.y,     mat.specular.z,     float(mat.diffuseTexture),
             mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f,
             mat.emission.x,     mat.emission.y,     mat.emission.z,     0.0f,
             mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior};
@@ -141,11 +141,49 @@ TEST(SceneTextureLayoutTest, EmitterTableSharesAreTheAreas) {
     EXPECT_EQ(emitterTexels(EmitterTable{}).floats, (std::vector<float>{1.0f, -1.0f}));
 }
 
+// Texture coordinates as the triangles (two texels each); the images one after another with
+// their first texel, size and wrap modes in the table.
+TEST(SceneTextureLayoutTest, TexturesAreWhereSceneLayoutSays) {
+    Scene scene;
+    const size_t n = GPURT_TRIANGLES_PER_ROW + 5;  // a second row
+    for (size_t t = 0; t < n; ++t)
+        scene.texcoords.push_back({vec2(float(t), 1.0f), vec2(2.0f, float(t)), vec2(-float(t), 0.5f)});
+    const TextureTexels texcoords = texcoordTexels(scene);
+    EXPECT_EQ(texcoords.width, GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW);
+    EXPECT_EQ(texcoords.rows, 2);
+    for (size_t t = 0; t < n; ++t) {
+        const size_t at = (t / GPURT_TRIANGLES_PER_ROW) * size_t(texcoords.width) + 2 * (t % GPURT_TRIANGLES_PER_ROW);
+        const float* texel = &texcoords.floats[at * 4];
+        const TriangleTexcoords& c = scene.texcoords[t];
+        const float expected[8] = {c.t0.x, c.t0.y, c.t1.x, c.t1.y, c.t2.x, c.t2.y, 0.0f, 0.0f};
+        for (int k = 0; k < 8; ++k) ASSERT_EQ(texel[k], expected[k]) << t << " " << k;
+    }
+    for (int k = 0; k < 2; ++k) {
+        Texture texture;
+        texture.image.width = 2 + k;
+        texture.image.height = 3;
+        for (int i = 0; i < texture.image.width * texture.image.height; ++i) texture.image.texels.push_back(uint32_t(100 * k + i));
+        texture.wrapS = kWrapClamp;
+        texture.wrapT = uint32_t(k == 0 ? kWrapMirror : kWrapRepeat);
+        scene.textures.push_back(texture);
+    }
+    const TextureTexels texels = textureImageTexels(scene);
+    EXPECT_EQ(texels.width, GPURT_INDEX_WIDTH);
+    EXPECT_EQ(std::vector<uint32_t>(texels.uints.begin(), texels.uints.begin() + 15),
+              (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 100, 101, 102, 103, 104, 105, 106, 107, 108}));
+    EXPECT_EQ(textureTableTexels(scene).uints, (std::vector<uint32_t>{0, 2, 3, 1 | 2 << 8, 6, 3, 3, 1}));
+    EXPECT_EQ(textureTableTexels(Scene{}).uints, (std::vector<uint32_t>{0, 1, 1, 0}));
+    const TextureTexels srgb = srgbTableTexels();
+    EXPECT_EQ(srgb.floats.front(), 0.0f);
+    EXPECT_NEAR(srgb.floats.back(), 1.0f, 1e-6f);
+    EXPECT_NEAR(srgb.floats[188], 0.5f, 0.003f);  // sRGB 188/255 is about half the light
+}
+
 TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
     Scene empty;
     empty.materials.push_back(Material{});
     const std::vector<TextureTexels> all = sceneTextureTexels(empty, buildGrid(empty, {}));
-    ASSERT_EQ(all.size(), 6u);
+    ASSERT_EQ(all.size(), 10u);
     for (const TextureTexels& t : all) {
         EXPECT_EQ(t.rows, 1) << t.name;
         EXPECT_EQ(t.isFloat ? t.floats.size() : t.uints.size(), t.texels() * size_t(t.channels))

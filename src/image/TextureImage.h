@@ -1,0 +1,30 @@
+// Texture images for materials (glTF base colour textures, MTL map_Kd): PNG (libpng) and JPEG
+// (libjpeg-turbo), chosen by their signature, decoded to 8-bit sRGB RGBA.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gpurt {
+
+// Larger images than these are refused (a texture of 16384 x 4096 is 256 MiB decoded).
+constexpr int kMaxTextureSide = 16384;
+constexpr uint64_t kMaxTextureTexels = uint64_t(1) << 26;
+
+struct Rgba8Image {
+    int width = 0, height = 0;
+    // Top row first; each texel r | g << 8 | b << 16 | a << 24, sRGB-encoded as stored in the file
+    // (greyscale and palette images expanded; alpha 255 where the file has none).
+    std::vector<uint32_t> texels;
+};
+
+// Decodes a PNG or JPEG held in memory. Throws InputError("<name>: ...") when it is neither, is
+// damaged or truncated, or is larger than the limits above.
+Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::string& name);
+
+// The same for a file.
+Rgba8Image readImage(const std::filesystem::path& path);
+
+}  // namespace gpurt

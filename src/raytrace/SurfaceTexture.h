@@ -1,0 +1,25 @@
+// Textured diffuse colour on the CPU: what glsl/trace/shading.glsl's fetchDiffuse does in the
+// kernels, with the filtering of glsl/common/texture.h shared word for word.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "scene/Scene.h"
+
+namespace gpurt {
+
+// The linear value of each 8-bit sRGB code (common/texture.h srgbDecode8); the kernels read the
+// same 256 floats from a table texture.
+const std::array<float, 256>& srgbDecodeTable();
+
+// The bilinearly filtered linear colour of `texture` at image coordinates t.
+glm::vec3 sampleTexture(const Texture& texture, glm::vec2 t);
+
+// Material m's diffuse colour at barycentrics (u, v) of triangle `prim`: m.diffuse, times its
+// texture's colour at the interpolated texture coordinates when it has one.
+glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float u, float v);
+
+}  // namespace gpurt
