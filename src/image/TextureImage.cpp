@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include <jpeglib.h>
+#include <jerror.h>
 #include <png.h>
 
 #include "image/InputError.h"
@@ -63,7 +64,11 @@ void jpegFail(j_common_ptr info) {
     std::longjmp(error->back, 1);
 }
 
-void jpegQuiet(j_common_ptr, int) {}  // warnings (recoverable damage) are not printed
+// Warnings (recoverable damage, as extraneous bytes) are not printed; but data that ends early,
+// which libjpeg would fill with grey, is a truncated file and fails.
+void jpegWarning(j_common_ptr info, int level) {
+    if (level == -1 && info->err->msg_code == JWRN_JPEG_EOF) jpegFail(info);
+}
 
 // The libjpeg idiom: only `info` and the caller's objects live across the setjmp, so that the
 // jump skips no destructor. false: libjpeg failed (error.message says why). The size is checked
@@ -73,7 +78,7 @@ bool runJpeg(const unsigned char* bytes, size_t size, JpegError& error, std::vec
     jpeg_decompress_struct info{};
     info.err = jpeg_std_error(&error.manager);
     error.manager.error_exit = jpegFail;
-    error.manager.emit_message = jpegQuiet;
+    error.manager.emit_message = jpegWarning;
     if (setjmp(error.back)) {
         jpeg_destroy_decompress(&info);
         return false;

@@ -279,7 +279,7 @@ class GltfReader {
                 if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
                 texcoords.resize(vertices);
                 for (size_t v = 0; v < vertices; ++v) {
-                    const glm::vec2 c(float(t[2 * v]), float(t[2 * v + 1]));
+                    const glm::vec2 c{float(t[2 * v]), float(t[2 * v + 1])};
                     texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
                 }
             }

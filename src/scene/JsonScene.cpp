@@ -330,9 +330,19 @@ class SceneReader {
         if (override) {
             scene.materials.push_back(*override);
         } else {
-            scene.materials.insert(scene.materials.end(), obj.materials.begin(),
-                                   obj.materials.end());
+            // The mesh's textures, once however often it is listed.
+            auto textures = textureBase_.find(key);
+            if (textures == textureBase_.end()) {
+                textures = textureBase_.emplace(key, int(scene.textures.size())).first;
+                scene.textures.insert(scene.textures.end(), obj.textures.begin(), obj.textures.end());
+            }
+            for (Material m : obj.materials) {
+                if (m.diffuseTexture >= 0) m.diffuseTexture += textures->second;
+                scene.materials.push_back(m);
+            }
         }
+        const bool texcoords = !override && !obj.texcoords.empty();
+        if (texcoords || !scene.texcoords.empty()) scene.texcoords.resize(scene.triangles.size());
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
         // Vertex normals go through the inverse transpose of the transform's linear part.
@@ -358,6 +368,8 @@ class SceneReader {
                 triangle.v2 = transformPoint(*transform, triangle.v2, at / "transform", k);
             }
             scene.triangles.push_back(triangle);
+            if (texcoords) scene.texcoords.push_back(obj.texcoords[k]);
+            else if (!scene.texcoords.empty()) scene.texcoords.push_back(TriangleTexcoords{});
             scene.materialIds.push_back(override ? materialBase
                                                  : materialBase + obj.materialIds[k]);
         }
@@ -534,6 +546,7 @@ class SceneReader {
     std::string file_;
     std::filesystem::path folder_;
     std::map<std::string, Scene> objCache_;
+    std::map<std::string, int> textureBase_;  // where each mesh's textures start in the scene's
 };
 
 }  // namespace

@@ -107,6 +107,23 @@ LoadedScene unusualScene() {
     animation.keys.push_back({-0.5f, CameraSpec{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 10.0f}});
     animation.keys.push_back({0.25f, CameraSpec{{-1, 2, 3e10f}, {0, 0, -0.0f}, {1, 0, 0}, 170.0f}});
     s.animation = animation;
+    // Two textures (names of lengths 1 and 6, each wrap mode), one of them used by two
+    // materials, and texture coordinates with -0, a denormal and values far outside [0, 1].
+    for (int k = 0; k < 2; ++k) {
+        Texture t;
+        t.name = k == 0 ? "a" : "b\xff.jpeg";
+        t.image.width = 3 - k;
+        t.image.height = 2 + k;
+        for (uint32_t i = 0; i < 6; ++i) t.image.texels.push_back(0x80402010u * (i + 1) + uint32_t(k));
+        t.wrapS = uint32_t(k == 0 ? kWrapMirror : kWrapClamp);
+        t.wrapT = uint32_t(k == 0 ? kWrapRepeat : kWrapMirror);
+        s.textures.push_back(t);
+    }
+    s.materials[1].diffuseTexture = 1;
+    s.materials[2].diffuseTexture = 0;
+    s.materials[3].diffuseTexture = 1;
+    for (size_t t = 0; t < s.triangles.size(); ++t)
+        s.texcoords.push_back({{-0.0f, std::numeric_limits<float>::denorm_min()}, {float(t), -1e6f}, {0.5f, 2.0f}});
     s.background = glm::vec3(0.125f, -0.0f, 3.5f);
     s.maxBounces = 7;
     loaded.size = glm::ivec2(321, 123);
@@ -134,7 +151,21 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.materials[m].shininess, y.materials[m].shininess)) << m;
         EXPECT_TRUE(sameBits(x.materials[m].reflectivity, y.materials[m].reflectivity)) << m;
         EXPECT_EQ(x.materials[m].name, y.materials[m].name) << m;
+        EXPECT_EQ(x.materials[m].diffuseTexture, y.materials[m].diffuseTexture) << m;
     }
+    ASSERT_EQ(x.textures.size(), y.textures.size());
+    for (size_t k = 0; k < x.textures.size(); ++k) {
+        const Texture &p = x.textures[k], &q = y.textures[k];
+        EXPECT_EQ(p.name, q.name) << k;
+        EXPECT_EQ(p.image.width, q.image.width) << k;
+        EXPECT_EQ(p.image.height, q.image.height) << k;
+        EXPECT_EQ(p.image.texels, q.image.texels) << k;
+        EXPECT_EQ(p.wrapS, q.wrapS) << k;
+        EXPECT_EQ(p.wrapT, q.wrapT) << k;
+    }
+    ASSERT_EQ(x.texcoords.size(), y.texcoords.size());
+    for (size_t t = 0; t < x.texcoords.size(); ++t)
+        ASSERT_TRUE(sameBits(x.texcoords[t], y.texcoords[t])) << "texture coordinates " << t;
     ASSERT_EQ(x.lights.size(), y.lights.size());
     for (size_t l = 0; l < x.lights.size(); ++l) {
         EXPECT_TRUE(sameBits(x.lights[l].position, y.lights[l].position)) << l;
@@ -446,9 +477,13 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
                    "does not fit");
     // The section table.
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, 0xffffffffu); }), "section table");
-    {  // the last section, when it is a required one (ANIM, optional, comes last when there is one)
+    {  // the last section, when it is a required one (ANIM, TXCO and TEXS, optional, come last
+       // when there are some)
         LoadedScene still = source_;
         still.scene.animation.reset();
+        still.scene.texcoords.clear();
+        still.scene.textures.clear();
+        for (Material& m : still.scene.materials) m.diffuseTexture = -1;
         Bytes b = encodePackedScene(still, grid_, "still");
         put32(b, 24, get32(b, 24) - 1);
         reseal(b);
@@ -467,6 +502,32 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
                    "runs past");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, section(b, "LGTS").offset, 1000); }),
                    "do not fit");
+}
+
+// The texture section's sizes and indices, patched with a correct checksum.
+TEST_F(PackedSceneTest, RefusesTexturesThatLie) {
+    const Entry texs = section(bytes_, "TEXS");
+    const Entry txco = section(bytes_, "TXCO");
+    auto patched = [&](auto patch) {
+        Bytes b = bytes_;
+        patch(b);
+        reseal(b);
+        return b;
+    };
+    const size_t first = texs.offset + 8;  // texture 0: width, height, wrap s, wrap t, name length
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, texs.offset, uint64_t(1) << 40); }), "textures");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first, 20000); }), "texture 0: size 20000x2");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first + 4, 0); }), "texture 0: size 3x0");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first, 4000); }), "runs past the section's end");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first + 8, 3); }), "wrap modes 3");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first + 16, 1u << 30); }), "runs past the section's end");
+    // The material textures at the end: one index out of range, a count that is not the materials'.
+    const size_t indices = texs.offset + texs.size - 4 * source_.scene.materials.size();
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, indices + 4, 2); }), "texture 2 out of range (2 textures)");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, indices, uint32_t(-2)); }), "texture -2 out of range");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, indices - 8, source_.scene.materials.size() + 1); }),
+                   "material textures");
+    EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, txco.offset, source_.scene.triangles.size() - 1); }), "do not fit");
 }
 
 TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
