@@ -15,21 +15,26 @@
 namespace gpurt {
 namespace {
 
-void checkSize(uint64_t width, uint64_t height, const std::string& name) {
-    if (width == 0 || height == 0) throw InputError(name + ": an image of no pixels");
-    if (width > uint64_t(kMaxTextureSide) || height > uint64_t(kMaxTextureSide) || width * height > kMaxTextureTexels)
-        throw InputError(name + ": a " + std::to_string(width) + " x " + std::to_string(height) +
-                         " image is larger than a texture may be (" + std::to_string(kMaxTextureSide) +
-                         " a side, 2^26 texels)");
+bool fits(uint64_t width, uint64_t height, uint64_t maxTexels) {
+    return width > 0 && height > 0 && width <= uint64_t(kMaxTextureSide) && height <= uint64_t(kMaxTextureSide) &&
+           width * height <= maxTexels;
 }
 
-Rgba8Image decodePng(const unsigned char* bytes, size_t size, const std::string& name) {
+void checkSize(uint64_t width, uint64_t height, uint64_t maxTexels, const std::string& name) {
+    if (width == 0 || height == 0) throw InputError(name + ": an image of no pixels");
+    if (!fits(width, height, maxTexels))
+        throw InputError(name + ": a " + std::to_string(width) + " x " + std::to_string(height) +
+                         " image is larger than a texture may be (" + std::to_string(kMaxTextureSide) +
+                         " a side, " + std::to_string(maxTexels) + " texels)");
+}
+
+Rgba8Image decodePng(const unsigned char* bytes, size_t size, uint64_t maxTexels, const std::string& name) {
     png_image image{};
     image.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_memory(&image, bytes, size))
         throw InputError(name + ": not a readable PNG (" + image.message + ")");
     try {
-        checkSize(image.width, image.height, name);
+        checkSize(image.width, image.height, maxTexels, name);
     } catch (...) {
         png_image_free(&image);
         throw;
@@ -72,9 +77,10 @@ void jpegWarning(j_common_ptr info, int level) {
 
 // The libjpeg idiom: only `info` and the caller's objects live across the setjmp, so that the
 // jump skips no destructor. false: libjpeg failed (error.message says why). The size is checked
-// before the pixels are allocated.
-bool runJpeg(const unsigned char* bytes, size_t size, JpegError& error, std::vector<unsigned char>& pixels,
-             size_t& width, size_t& height) {
+// from the header, before libjpeg allocates for the image (a progressive JPEG's coefficients)
+// and before the pixels are.
+bool runJpeg(const unsigned char* bytes, size_t size, uint64_t maxTexels, JpegError& error,
+             std::vector<unsigned char>& pixels, size_t& width, size_t& height) {
     jpeg_decompress_struct info{};
     info.err = jpeg_std_error(&error.manager);
     error.manager.error_exit = jpegFail;
@@ -86,13 +92,13 @@ bool runJpeg(const unsigned char* bytes, size_t size, JpegError& error, std::vec
     jpeg_create_decompress(&info);
     jpeg_mem_src(&info, bytes, static_cast<unsigned long>(size));
     jpeg_read_header(&info, TRUE);
-    info.out_color_space = JCS_EXT_RGBA;  // libjpeg-turbo: greyscale and YCbCr to RGBA; CMYK fails
-    jpeg_start_decompress(&info);
-    width = info.output_width;
-    height = info.output_height;
-    const bool fits = width > 0 && height > 0 && width <= size_t(kMaxTextureSide) && height <= size_t(kMaxTextureSide) &&
-                      uint64_t(width) * height <= kMaxTextureTexels;
-    if (fits) {
+    width = info.image_width;
+    height = info.image_height;
+    if (fits(width, height, maxTexels)) {
+        info.out_color_space = JCS_EXT_RGBA;  // libjpeg-turbo: greyscale and YCbCr to RGBA; CMYK fails
+        jpeg_start_decompress(&info);
+        width = info.output_width;  // the same: no scaling asked
+        height = info.output_height;
         pixels.assign(width * height * 4, 0);
         while (info.output_scanline < info.output_height) {
             JSAMPROW row = pixels.data() + size_t(info.output_scanline) * width * 4;
@@ -104,13 +110,13 @@ bool runJpeg(const unsigned char* bytes, size_t size, JpegError& error, std::vec
     return true;
 }
 
-Rgba8Image decodeJpeg(const unsigned char* bytes, size_t size, const std::string& name) {
+Rgba8Image decodeJpeg(const unsigned char* bytes, size_t size, uint64_t maxTexels, const std::string& name) {
     JpegError error{};
     std::vector<unsigned char> pixels;
     size_t width = 0, height = 0;
-    if (!runJpeg(bytes, size, error, pixels, width, height))
+    if (!runJpeg(bytes, size, maxTexels, error, pixels, width, height))
         throw InputError(name + ": not a readable JPEG (" + error.message + ")");
-    checkSize(width, height, name);
+    checkSize(width, height, maxTexels, name);
     Rgba8Image out;
     out.width = int(width);
     out.height = int(height);
@@ -125,9 +131,10 @@ Rgba8Image decodeJpeg(const unsigned char* bytes, size_t size, const std::string
 }  // namespace
 
 Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::string& name) {
+    const uint64_t maxTexels = kMaxTextureTexels;
     static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (size >= 8 && std::memcmp(bytes, kPng, 8) == 0) return decodePng(bytes, size, name);
-    if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return decodeJpeg(bytes, size, name);
+    if (size >= 8 && std::memcmp(bytes, kPng, 8) == 0) return decodePng(bytes, size, maxTexels, name);
+    if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return decodeJpeg(bytes, size, maxTexels, name);
     throw InputError(name + ": not a PNG or JPEG image");
 }
 

@@ -9,9 +9,16 @@
 
 namespace gpurt {
 
-// Larger images than these are refused (a texture of 16384 x 4096 is 256 MiB decoded).
+// Larger images than these are refused (a texture of 16384 x 4096 is 256 MiB decoded). The fuzz
+// targets build with a smaller limit (GPURT_FUZZ_TEXTURE_TEXELS): a few hundred bytes can claim a
+// 16384 x 4096 JPEG, which the reader rightly allocates for before it finds the data missing,
+// beyond the fuzzer's memory limit under the sanitizers.
 constexpr int kMaxTextureSide = 16384;
+#ifdef GPURT_FUZZ_TEXTURE_TEXELS
+constexpr uint64_t kMaxTextureTexels = GPURT_FUZZ_TEXTURE_TEXELS;
+#else
 constexpr uint64_t kMaxTextureTexels = uint64_t(1) << 26;
+#endif
 
 struct Rgba8Image {
     int width = 0, height = 0;
@@ -21,7 +28,8 @@ struct Rgba8Image {
 };
 
 // Decodes a PNG or JPEG held in memory. Throws InputError("<name>: ...") when it is neither, is
-// damaged or truncated, or is larger than the limits above.
+// damaged or truncated, or is larger than the limits above, which is checked from the header
+// before anything is allocated for the pixels.
 Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::string& name);
 
 // The same for a file.

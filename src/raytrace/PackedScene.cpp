@@ -230,14 +230,14 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
             uint64_t(image.width) * uint64_t(image.height) > kMaxTextureTexels ||
             image.texels.size() != size_t(image.width) * size_t(image.height))
             fail("texture " + std::to_string(k) + ": size " + std::to_string(image.width) + "x" +
-                 std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, 2^26 texels");
+                 std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
         if (t.wrapS > kWrapMirror || t.wrapT > kWrapMirror)
             fail("texture " + std::to_string(k) + ": wrap modes " + std::to_string(t.wrapS) + ", " +
                  std::to_string(t.wrapT) + " are not 0 (repeat), 1 (clamp) or 2 (mirror)");
         texels += image.texels.size();
     }
     if (texels > kMaxTextureTexels * 2)
-        fail(std::to_string(texels) + " texels in all textures; at most 2^27");
+        fail(std::to_string(texels) + " texels in all textures; at most " + std::to_string(2 * kMaxTextureTexels));
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
         if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
@@ -465,7 +465,7 @@ class SectionDecoder {
             if (width < 1 || height < 1 || width > uint32_t(kMaxTextureSide) || height > uint32_t(kMaxTextureSide) ||
                 uint64_t(width) * height > kMaxTextureTexels)
                 fail("texture " + std::to_string(k) + ": size " + std::to_string(width) + "x" + std::to_string(height) +
-                     " is not 1.." + std::to_string(kMaxTextureSide) + " a side, 2^26 texels");
+                     " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
             const uint32_t length = in.u32();
             const uint64_t padded = (uint64_t(length) + 3) / 4 * 4;
             const uint64_t texels = uint64_t(width) * height;

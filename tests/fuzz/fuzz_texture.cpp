@@ -14,13 +14,14 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     gpurt::Texture texture;
     try {
-        texture.image = gpurt::decodeImage(data, size, "fuzz.img");
+        texture.image = gpurt::decodeImage(data, size, "fuzz.img");  // at most 2^20 texels here
     } catch (const gpurt::InputError&) {
         return 0;
     }
     const gpurt::Rgba8Image& image = texture.image;
     if (image.width < 1 || image.height < 1 || image.width > gpurt::kMaxTextureSide ||
-        image.height > gpurt::kMaxTextureSide || image.texels.size() != size_t(image.width) * size_t(image.height))
+        image.height > gpurt::kMaxTextureSide ||
+        uint64_t(image.width) * uint64_t(image.height) > gpurt::kMaxTextureTexels || image.texels.size() != size_t(image.width) * size_t(image.height))
         std::abort();  // an accepted image must be whole and within the limits
     for (uint32_t wrap : {gpurt::kWrapRepeat, gpurt::kWrapClamp, gpurt::kWrapMirror}) {
         texture.wrapS = texture.wrapT = wrap;
