@@ -37,6 +37,9 @@ struct DecodedImages {
 
 bool decodeGltfImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                      const unsigned char* bytes, int size, void* user) {
+    // An image in a buffer view is decoded later (GltfReader::textureOf), with the view checked
+    // against its buffer: tinygltf hands over the view's bytes without that check.
+    if (image->bufferView >= 0) return true;
     DecodedImages& decoded = *static_cast<DecodedImages*>(user);
     const std::string what = "image " + std::to_string(index) + (image->uri.empty() || image->uri.compare(0, 5, "data:") == 0
                                                                       ? std::string()
@@ -400,6 +403,22 @@ class GltfReader {
         if (t.source < 0 || t.source >= int(m_.images.size())) {
             warn(material + ": texture " + std::to_string(index) + " has no image gpurt reads (PNG or JPEG); the material keeps its colour");
             return -1;
+        }
+        const tinygltf::Image& stored = m_.images[size_t(t.source)];
+        if (stored.bufferView >= 0 && !images_.images.count(t.source) && !images_.errors.count(t.source)) {
+            const std::string what = "image " + std::to_string(t.source);
+            if (stored.bufferView >= int(m_.bufferViews.size())) fail(what + ": buffer view " + std::to_string(stored.bufferView) + " does not exist");
+            const tinygltf::BufferView& view = m_.bufferViews[size_t(stored.bufferView)];
+            if (view.buffer < 0 || view.buffer >= int(m_.buffers.size())) fail(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
+            const std::vector<unsigned char>& data = m_.buffers[size_t(view.buffer)].data;
+            if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+                fail(what + ": buffer view " + std::to_string(stored.bufferView) + " (" + std::to_string(view.byteLength) +
+                     " bytes at " + std::to_string(view.byteOffset) + ") runs past its buffer of " + std::to_string(data.size()) + " bytes");
+            try {
+                images_.images[t.source] = decodeImage(data.data() + view.byteOffset, view.byteLength, what);
+            } catch (const InputError& e) {
+                images_.errors[t.source] = e.what();
+            }
         }
         const auto image = images_.images.find(t.source);
         if (image == images_.images.end()) {
