@@ -60,7 +60,8 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     vec3 d = view.xyz;
     vec3 n = shading.xyz;
     vec3 local = readStream(localColor).xyz;
-    vec4 q = emitterCount > 0 ? readStream(lightSample) : vec4(-1.0f);
+#ifdef SCENE_EMITTERS  // SceneTextures::bind: compiled out without emitters
+    vec4 q = readStream(lightSample);
     if (q.w >= 0.0f && readStream(hitState).w < 0.0f) {  // the emitter point is not in shadow
         vec3 qv0, qe1, qe2;
         int emitterMaterial;
@@ -70,6 +71,7 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
                                               emitterIntensity(s.xyz, q.xyz, qe1, qe2, emitterArea)) *
                             emitterSampleWeight(s.xyz, q.xyz, qe1, qe2, emitterArea, probs, ns, n, d);
     }
+#endif
     color = color + w * local;
 
     vec3 v0, e1, e2;

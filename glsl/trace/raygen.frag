@@ -10,7 +10,11 @@ layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
 layout(location = 1) out vec4 rayDir;     // (d, tEnter | GPURT_MISSED_BOX)
 
 void main() {
+#ifdef PIXEL_CENTRE  // one sample a pixel: llvmpipe would run sampleDirection's jitter under masks
+    vec3 d = primaryDirection();
+#else
     vec3 d = sampleDirection();
+#endif
     rayOrigin = vec4(eye, GPURT_FAR);
     rayDir = vec4(d, gridEntry(eye, d, GPURT_FAR));
 }

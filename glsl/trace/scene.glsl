@@ -9,9 +9,7 @@ uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
 uniform sampler2D triangles;    // v0 + material, e1, e2
 uniform sampler2D materials;
 uniform sampler2D vertexNormals;  // per triangle n0, n1, n2 as the triangles' texels
-uniform int hasVertexNormals;     // 0: every triangle is faceted
 uniform sampler2D triangleTexcoords;  // per triangle (t0, t1), (t2, 0, 0)
-uniform int hasTexcoords;             // 0: no textured material
 uniform usamplerBuffer textureTexels; // every texture image's sRGB RGBA8 texels
 uniform usamplerBuffer textureTable;  // per texture (first texel, width, height, wrapS | wrapT << 8)
 uniform samplerBuffer srgbTable;      // the linear value of each sRGB code

@@ -15,12 +15,17 @@ void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 refle
 }
 
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
+// What a scene lacks is compiled out (SceneTextures::bind defines SCENE_TEXTURES,
+// SCENE_VERTEX_NORMALS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.
 vec2 fetchTexcoord(int id, float u, float v) {
-    if (hasTexcoords == 0) return vec2(0.0f);
+#ifdef SCENE_TEXTURES
     ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     vec4 a = texelFetch(triangleTexcoords, at, 0);
     vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
     return interpolateTexcoord(a.xy, a.zw, b.xy, u, v);
+#else
+    return vec2(0.0f);
+#endif
 }
 
 vec3 textureTexel(int first, int width, int x, int y) {
@@ -32,8 +37,9 @@ vec3 textureTexel(int first, int width, int x, int y) {
 // Material m's diffuse colour kd at image coordinates t: times its texture's filtered colour
 // when it has one (src/raytrace/SurfaceTexture.cpp diffuseAt).
 vec3 fetchDiffuse(int m, vec3 kd, vec2 t) {
+#ifdef SCENE_TEXTURES
     int tex = int(texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).w);
-    if (tex < 0 || hasTexcoords == 0) return kd;
+    if (tex < 0) return kd;
     uvec4 info = texelFetch(textureTable, tex);
     int first = int(info.x), w = int(info.y), h = int(info.z);
     ivec2 columns, rows;
@@ -41,6 +47,9 @@ vec3 fetchDiffuse(int m, vec3 kd, vec2 t) {
     bilinearFootprint(t, w, h, int(info.w & 0xffu), int(info.w >> 8), columns, rows, f);
     return kd * bilinearBlend(textureTexel(first, w, columns.x, rows.x), textureTexel(first, w, columns.y, rows.x),
                               textureTexel(first, w, columns.x, rows.y), textureTexel(first, w, columns.y, rows.y), f);
+#else
+    return kd;
+#endif
 }
 
 // The material of a surface record: fetchMaterial with the diffuse colour at the record's image
@@ -63,12 +72,15 @@ vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TE
 
 // The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).
 vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
-    if (hasVertexNormals == 0) return ng;
+#ifdef SCENE_VERTEX_NORMALS
     ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     vec3 n0 = texelFetch(vertexNormals, at, 0).xyz;
     vec3 n1 = texelFetch(vertexNormals, at + ivec2(1, 0), 0).xyz;
     vec3 n2 = texelFetch(vertexNormals, at + ivec2(2, 0), 0).xyz;
     return shadingNormal(n0, n1, n2, u, v, ng);
+#else
+    return ng;
+#endif
 }
 
 // The pixel of the path in this element (path integrator): the element itself in round 0 (the

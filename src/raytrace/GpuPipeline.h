@@ -44,7 +44,7 @@ struct GpuPipeline {
     // The path integrator's masks: paths alive at the start of a round (its trace, surface and
     // bounce passes) and paths with a hit in it (the shadow rays' passes).
     GPUMask aliveMask, surfaceMask;
-    GPUKernel raygen, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
+    GPUKernel raygen, raygenCentre, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
     // The path integrator's variants (PATH) and its bounce (pathbounce.frag).
@@ -100,6 +100,7 @@ struct GpuPipeline {
           aliveMask("alive", mask, weight, 3, 1.0f, 1.0f),
           surfaceMask("surface", mask, surfacePoint, 3, 0.0f, 1e30f),
           raygen("raygen", "trace/raygen.frag"),
+          raygenCentre("raygen", "trace/raygen.frag", {"PIXEL_CENTRE"}),  // a variant: the same pass in --stats
           precalc("precalc", "trace/precalc.frag"),
           traverse("traverse", "trace/traverse.frag",
                    {"TRAVERSE_STEPS " + std::to_string(std::max(1, traverseSteps))}),
@@ -127,6 +128,7 @@ struct GpuPipeline {
           traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
         for (GPUKernel* k : allKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
+        raygenCentre.addOutput(rayOrigin).addOutput(rayDir);
         precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
         precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
         traverse.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
@@ -202,8 +204,8 @@ struct GpuPipeline {
         traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 25> allKernels() {
-        return {&raygen, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
+    std::array<GPUKernel*, 26> allKernels() {
+        return {&raygen, &raygenCentre, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
                 &accumulate, &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight,
                 &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit, &pathAccumulate, &pathTrace, &pathTraceAny, &trace, &traceAny,
                 &traceCamera};
@@ -253,7 +255,7 @@ struct GpuPipeline {
         // The image row of the streams' row 0 (--tile): the kernels that key samples by pixel or
         // aim the camera add it (scene.glsl imagePixel).
         for (GPUKernel* k : allKernels()) k->setUniform("tileRow", c.rowBegin);
-        for (GPUKernel* k : {&raygen, &traceCamera})
+        for (GPUKernel* k : {&raygen, &raygenCentre, &traceCamera})
             k->setUniform("eye", c.eye)
                 .setUniform("forward", c.forward)
                 .setUniform("right", c.right)
@@ -265,13 +267,21 @@ struct GpuPipeline {
 
     // The sample that raygen's rays go through: sample s of n (n = 1: the pixel centre).
     void setSample(uint32_t s, uint32_t n, uint32_t seed) {
+        sampleCount_ = n;
         for (GPUKernel* k : {&raygen, &emitterShadowgen, &pathEmitterShadowgen, &pathBounce, &pathPack})
             k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
     }
 
+    // The pass that generates the primary rays of the current sample: the pixel centres' own
+    // variant when there is one sample a pixel.
+    GPUKernel& primaryRays() { return sampleCount_ == 1 ? raygenCentre : raygen; }
+
     // The ray states as mask values (glsl/common/raymath.h).
     static constexpr int RAY_ACTIVE_VALUE = 1;
     static constexpr int RAY_WAIT_VALUE = 2;
+
+  private:
+    uint32_t sampleCount_ = 1;
 };
 
 }  // namespace gpurt

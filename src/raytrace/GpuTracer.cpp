@@ -138,15 +138,21 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     p.pathSurface.setUniform("background", scene_.background);
     p.setCamera(camera);
     if (samples > 1) traceSample(p, lights, -1, true, out);  // pixel centres: the AOVs only
-    p.sampleSum.fill(0.0f);
-    for (uint32_t s = 0; s < samples; ++s) {
-        p.setSample(s, samples, settings.seed);
-        traceIntegrator(p, lights, settings, samples == 1, out);
-        (paths ? p.pathAccumulate : p.accumulate).dispatch();
+    if (samples == 1) {  // the sample is the image: no sum to accumulate into
+        p.setSample(0, 1, settings.seed);
+        traceIntegrator(p, lights, settings, true, out);
+        out.color = toVectors<glm::vec3>((paths ? p.pixelColor : p.color).download(), 4);
+    } else {
+        p.sampleSum.fill(0.0f);
+        for (uint32_t s = 0; s < samples; ++s) {
+            p.setSample(s, samples, settings.seed);
+            traceIntegrator(p, lights, settings, false, out);
+            (paths ? p.pathAccumulate : p.accumulate).dispatch();
+        }
+        out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
+        for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     }
     out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows()) * samples;
-    out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
-    for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     flushStats();
     out.stats.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -210,7 +216,7 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
     p.weight.fill(1.0f);
     p.pathState.fill(0.0f);  // the camera rays: their emission counts in full
     p.pixelColor.fill(0.0f);
-    p.raygen.dispatch();
+    p.primaryRays().dispatch();
     int rows = p.height;  // the rows that hold the live paths
     p.setPathRows(rows);
     for (int b = 0; b <= maxDepth; ++b) {
@@ -274,7 +280,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
     p.color.fill(0.0f);
     p.weight.fill(1.0f);  // every pixel starts a tree with one ray of weight 1
     p.pathState.fill(0.0f);
-    p.raygen.dispatch();
+    p.primaryRays().dispatch();
     p.bounce.setUniform("maxBounces", std::max(0, maxBounces));
     // Each round traces one ray of each pixel's tree; a tree has at most GPURT_TREE_RAYS rays.
     for (int b = 0; b < GPURT_TREE_RAYS; ++b) {
@@ -337,7 +343,7 @@ uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
     if (onePassTrace()) {
         rays = p.traceCamera.execute();  // one pass: the rays are generated in the trace kernel
     } else {
-        p.raygen.dispatch();
+        p.primaryRays().dispatch();
         rays = traceLoop(p, false);
     }
     glFinish();

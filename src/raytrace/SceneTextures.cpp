@@ -120,17 +120,20 @@ SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
       srgbTable_(upload(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)) {}
 
 void SceneTextures::bind(GPUKernel& kernel) const {
+    // What the scene has, as defines: llvmpipe runs both sides of a branch under masks, so code
+    // for a feature the scene lacks costs its full price unless it is compiled out.
+    if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
+    if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
+    if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     kernel.addInput(voxelIndex_, "voxelIndex")
         .addInput(cellTriangles_, "cellTriangles")
         .addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .addInput(vertexNormals_, "vertexNormals")
-        .setUniform("hasVertexNormals", hasVertexNormals_ ? 1 : 0)
         .addInput(emitters_, "emitters")
         .setUniform("emitterCount", int(emitterTable_.triangles.size()))
         .setUniform("emitterArea", emitterTable_.totalArea)
         .addInput(texcoords_, "triangleTexcoords")
-        .setUniform("hasTexcoords", hasTexcoords_ ? 1 : 0)
         .addInput(textureTexels_, "textureTexels")
         .addInput(textureTable_, "textureTable")
         .addInput(srgbTable_, "srgbTable")

@@ -44,6 +44,12 @@ GPUKernel::GPUKernel(std::string name, std::string fragmentPath, std::vector<std
     }
 }
 
+GPUKernel& GPUKernel::addDefine(const std::string& define) {
+    defines_.push_back(define);
+    program_.reset();
+    return *this;
+}
+
 GPUKernel& GPUKernel::addInput(const GPUFloatArray& array, const std::string& samplerName) {
     inputs_.push_back({Stream{&array, nullptr, nullptr}, samplerName});
     return *this;

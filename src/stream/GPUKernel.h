@@ -46,6 +46,8 @@ class GPUKernel {
 
     // Random-access input, read in GLSL with texelFetch(samplerName, ...). A ping-pong input reads
     // its front.
+    // One more "#define X" line for this kernel's source (before it is first built).
+    GPUKernel& addDefine(const std::string& define);
     GPUKernel& addInput(const GPUFloatArray& array, const std::string& samplerName);
     GPUKernel& addInput(const GPUPingPongArray& array, const std::string& samplerName);
     // Outputs in the order of the shader's `layout(location = i) out` variables; all the same size.
