@@ -15,9 +15,21 @@
 
 namespace gpurt {
 
+// The full-size streams only some renders use (llvmpipe zeroes every texture it allocates, about
+// 8 ms per 16 MB stream at 1024x1024): the others are 1x1 and their kernels are not set up.
+struct StreamNeeds {
+    bool rayStates = true;  // dda: the trace loop in more than one pass (precalc, traverse, ...)
+    bool emitters = true;   // lightSample: the emitters' sample points
+    bool pathState = true;  // pathState: rays that spawn (Whitted's bounce) or the path integrator
+    bool sums = true;       // sampleSum: more than one sample, or the viewer's progressive sums
+    bool operator==(const StreamNeeds&) const = default;
+};
+
 // The streams (one element per pixel, row 0 = top) and the kernels that connect them.
 struct GpuPipeline {
+    using Needs = StreamNeeds;
     int width, height;
+    Needs needs;
     // Ray streams, rewritten for every trace (primary, shadow, mirror).
     GPUFloatArray rayOrigin, rayDir, dda, voxel, hit;
     // Per-bounce surface records and the per-pixel accumulators of eq. 5.1.
@@ -60,12 +72,14 @@ struct GpuPipeline {
     // fused kernels, 0 for the whole traversal in one pass. stackSlots: rays a pixel's stack can
     // hold (0 where nothing spawns two rays: a scene without glass).
     GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
-                int fusedSteps = 0, int slots = 0, bool pathStreams = false, bool progressiveAovs = false)
+                int fusedSteps = 0, int slots = 0, bool pathStreams = false, bool progressiveAovs = false,
+                Needs needed = {})
         : width(w),
           height(h),
+          needs(needed),
           rayOrigin(w, h, 4, "rayOrigin"),
           rayDir(w, h, 4, "rayDir"),
-          dda(w, h, 4, "dda"),
+          dda(needs.rayStates ? w : 1, needs.rayStates ? h : 1, 4, "dda"),
           voxel(w, h, GPUFormat::RGBA32I, "voxel"),
           hit(w, h, 4, "hit"),
           surfacePoint(w, h, 4, "surfacePoint"),
@@ -75,9 +89,9 @@ struct GpuPipeline {
           localColor(w, h, 4, "localColor"),
           color(w, h, 4, "color"),
           weight(w, h, 4, "weight"),
-          sampleSum(w, h, 4, "sampleSum"),
-          lightSample(w, h, 4, "lightSample"),
-          pathState(w, h, 4, "pathState"),
+          sampleSum(needs.sums ? w : 1, needs.sums ? h : 1, 4, "sampleSum"),
+          lightSample(needs.emitters ? w : 1, needs.emitters ? h : 1, 4, "lightSample"),
+          pathState(needs.pathState || pathStreams ? w : 1, needs.pathState || pathStreams ? h : 1, 4, "pathState"),
           progressive(progressiveAovs),
           aovHit(progressive ? w : 1, progressive ? h : 1, 4, "aovHit"),
           aovCells(progressive ? w : 1, progressive ? h : 1, GPUFormat::RGBA32I, "aovCells"),
@@ -129,13 +143,15 @@ struct GpuPipeline {
         for (GPUKernel* k : allKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
         raygenCentre.addOutput(rayOrigin).addOutput(rayDir);
-        precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-        precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
-        traverse.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-        traverse.addInOut(dda, "ddaState").addInOut(voxel, "voxel").setMask(&activeMask);
-        intersect.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-        intersect.addInOut(dda, "ddaState").addInOut(voxel, "voxel").addInOut(hit, "hitState");
-        intersect.setMask(&waitMask);
+        if (needs.rayStates) {
+            precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+            precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
+            traverse.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+            traverse.addInOut(dda, "ddaState").addInOut(voxel, "voxel").setMask(&activeMask);
+            intersect.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
+            intersect.addInOut(dda, "ddaState").addInOut(voxel, "voxel").addInOut(hit, "hitState");
+            intersect.setMask(&waitMask);
+        }
         for (GPUKernel* k : {&surface, &pathSurface}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
             k->addInput(weight, "weight").addInOut(color, "colorState");
@@ -156,15 +172,17 @@ struct GpuPipeline {
         bounce.addInput(surfaceView, "surfaceView").addInput(localColor, "localColor");
         bounce.addInput(surfaceShading, "surfaceShading");
         bounce.addInOut(color, "colorState").addInOut(weight, "weightState");
-        bounce.addOutput(rayOrigin).addOutput(rayDir).addInOut(pathState, "pathStateIn");
+        bounce.addOutput(rayOrigin).addOutput(rayDir);
+        if (needs.pathState) bounce.addInOut(pathState, "pathStateIn");
         bounce.addImage(stackOrigin, "stackOrigin").addImage(stackDir, "stackDir").addImage(stackWeight, "stackWeight");
         bounce.setUniform("stackSlots", slots);
         lastBounce.addInput(surfacePoint, "surfacePoint").addInput(weight, "weightState");
         lastBounce.addInput(localColor, "localColor").addInOut(color, "colorState");
-        accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
+        if (needs.sums) accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
         for (GPUKernel* k : {&emitterShadowgen, &pathEmitterShadowgen}) {
             k->addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
-            k->addOutput(rayOrigin).addOutput(rayDir).addOutput(lightSample);
+            k->addOutput(rayOrigin).addOutput(rayDir);
+            if (needs.emitters) k->addOutput(lightSample);
         }
         emitterLight.addInput(surfacePoint, "surfacePoint").addInput(surfaceNormal, "surfaceNormal");
         emitterLight.addInput(surfaceView, "surfaceView").addInput(hit, "hitState");
@@ -180,21 +198,21 @@ struct GpuPipeline {
             k->addImage(pixelColor, "pixelColor");
         }
         pathBounce.addInOut(color, "colorState").addInOut(weight, "weightState").addOutput(rayOrigin).addOutput(rayDir);
-        pathBounce.addInOut(pathState, "pathStateIn");
+        if (paths) pathBounce.addInOut(pathState, "pathStateIn");
         pathPack.addInput(color, "colorState").addInput(weight, "weightState").addInput(pathState, "pathStateIn");
         pathPack.addImage(nextOrigin, "nextOrigin").addImage(nextDir, "nextDir").addImage(nextWeight, "nextWeight");
         pathPack.addImage(nextState, "nextState").addImage(nextColor, "nextColor").addImage(pathCount, "pathCount");
         pathPack.addOutput(pathLives);
         pathDeposit.addInput(color, "colorState").addInput(weight, "weightState").addInput(pathState, "pathStateIn");
         pathDeposit.addImage(pixelColor, "pixelColor").addOutput(pathLives);
-        pathAccumulate.addInput(pixelColor, "colorState").addInOut(sampleSum, "sumState");
+        if (needs.sums) pathAccumulate.addInput(pixelColor, "colorState").addInOut(sampleSum, "sumState");
         for (GPUKernel* k : {&pathTrace, &pathTraceAny})
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addOutput(voxel).addOutput(hit);
         pathTrace.setMask(&aliveMask, false);
         pathTraceAny.setMask(&surfaceMask, false);
         for (GPUKernel* k : {&trace, &traceAny}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-            if (fusedSteps > 0) {
+            if (fusedSteps > 0) {  // needs.rayStates
                 k->addInOut(dda, "ddaState").addInOut(voxel, "voxel").addOutput(hit);
                 k->setMask(&activeMask, false);  // the trace loop updates the mask and counts with it
             } else {

@@ -50,14 +50,20 @@ int GpuTracer::cellLimit() const {
     return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums) {
+    GpuPipeline::Needs needs;
+    needs.rayStates = !onePassTrace();
+    needs.emitters = !textures_.emitterTable().empty();
+    needs.pathState = paths || hasSecondary_;
+    needs.sums = sums || progressive;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height ||
-        pipeline_->stackSlots != stackSlots || pipeline_->paths != paths || pipeline_->progressive != progressive) {
+        pipeline_->stackSlots != stackSlots || pipeline_->paths != paths || pipeline_->progressive != progressive ||
+        !(pipeline_->needs == needs)) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         const int steps = options_.traverseSteps;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps,
-                                                  stackSlots, paths, progressive);
+                                                  stackSlots, paths, progressive, needs);
         if (options_.maxCellSteps > 0)
             for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
     }
@@ -127,13 +133,13 @@ std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths);
+    const uint32_t samples = std::max(1u, settings.samples);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.rows();
 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, paths);
-    const uint32_t samples = std::max(1u, settings.samples);
     p.surface.setUniform("background", scene_.background);
     p.pathSurface.setUniform("background", scene_.background);
     p.setCamera(camera);

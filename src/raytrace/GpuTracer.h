@@ -84,7 +84,8 @@ class GpuTracer {
   private:
     // The pipeline for this size, ray stacks and integrator (paths: the path integrator's streams;
     // progressive: the viewer's AOV copies).
-    GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false);
+    GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
+                          bool sums = false);
     uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
