@@ -7,6 +7,9 @@
 // per pixel per round, so the passes stay image-sized and the rounds end when the trace counts no
 // ray (GpuTracer::traceSample). The stack is the one store outside the pixel's own element: slot s
 // of pixel (x, y) is element (x, y + s H) of the stack images, written only by that pixel.
+// The bounce also widens a box (rayBounds) to every element that has a ray next round: the next
+// round's passes run over that box only (GpuTracer::traceSample), so the late rounds of glass
+// cost the pixels that see it, not the image.
 // LAST_ROUND: the variant for a round after which no ray can follow (no mirror or glass in the
 // scene, or no bounce allowed): only the colour, one output instead of five.
 #include "shading.glsl"
@@ -22,6 +25,7 @@ uniform sampler2D pathStateIn;  // in place
 layout(rgba32f) uniform image2D stackOrigin;  // (o, depth)
 layout(rgba32f) uniform image2D stackDir;     // (d, 0)
 layout(rgba32f) uniform image2D stackWeight;  // (weight, 0)
+layout(r32ui) uniform uimage2D rayBounds;     // 4 x 1: min x, min y, max x, max y of the next rays
 uniform int maxBounces;
 uniform int stackSlots;
 
@@ -99,5 +103,12 @@ void main() {
         depth = int(o.w);
     }
     pathState = vec4(float(depth), float(height), float(rays - 1), 0.0f);
+    if (weight.w != 0.0f) {  // a ray next round: the round's passes must cover this element
+        uvec2 at = uvec2(streamIndex());
+        imageAtomicMin(rayBounds, ivec2(0, 0), at.x);
+        imageAtomicMin(rayBounds, ivec2(1, 0), at.y);
+        imageAtomicMax(rayBounds, ivec2(2, 0), at.x);
+        imageAtomicMax(rayBounds, ivec2(3, 0), at.y);
+    }
 }
 #endif

@@ -52,6 +52,8 @@ struct GpuPipeline {
     // ended, and the bounce pass's own output (whether the element's path lives on).
     bool paths;
     GPUFloatArray nextOrigin, nextDir, nextWeight, nextState, nextColor, pathCount, pixelColor, pathLives;
+    // The box of the elements that have a ray in the next round of the ray tree (bounce.frag).
+    GPUFloatArray rayBounds;
     GPUMask activeMask, waitMask;
     // The path integrator's masks: paths alive at the start of a round (its trace, surface and
     // bounce passes) and paths with a hit in it (the shadow rays' passes).
@@ -109,6 +111,7 @@ struct GpuPipeline {
           pathCount(1, 1, GPUFormat::R32UI, "pathCount"),
           pixelColor(paths ? w : 1, paths ? h : 1, 4, "pixelColor"),
           pathLives(paths ? w : 1, paths ? h : 1, 1, "pathLives"),
+          rayBounds(4, 1, GPUFormat::R32UI, "rayBounds"),
           activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
           waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
           aliveMask("alive", mask, weight, 3, 1.0f, 1.0f),
@@ -176,6 +179,7 @@ struct GpuPipeline {
         if (needs.pathState) bounce.addInOut(pathState, "pathStateIn");
         bounce.addImage(stackOrigin, "stackOrigin").addImage(stackDir, "stackDir").addImage(stackWeight, "stackWeight");
         bounce.setUniform("stackSlots", slots);
+        bounce.addImage(rayBounds, "rayBounds");
         lastBounce.addInput(surfacePoint, "surfacePoint").addInput(weight, "weightState");
         lastBounce.addInput(localColor, "localColor").addInOut(color, "colorState");
         if (needs.sums) accumulate.addInput(color, "colorState").addInOut(sampleSum, "sumState");
@@ -253,6 +257,13 @@ struct GpuPipeline {
             rows ? std::optional<StreamRect>(StreamRect{0, 0, width, *rows}) : std::nullopt;
         for (GPUKernel* k : {&trace, &traceAny, &pathTrace, &pathTraceAny, &pathSurface, &pathShadowgen, &pathLight,
                              &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit})
+            k->setRect(rect);
+    }
+
+    // The ray tree's round passes over `rect` only (the box of the elements with rays), or all.
+    void setRoundRect(std::optional<StreamRect> rect) {
+        for (GPUKernel* k : {&trace, &traceAny, &surface, &shadowgen, &light, &emitterShadowgen, &emitterLight, &bounce,
+                             &lastBounce})
             k->setRect(rect);
     }
 

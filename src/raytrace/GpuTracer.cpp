@@ -288,6 +288,11 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
     p.pathState.fill(0.0f);
     p.primaryRays().dispatch();
     p.bounce.setUniform("maxBounces", std::max(0, maxBounces));
+    p.setRoundRect(std::nullopt);
+    // The rounds after the first cover the box of the elements with rays (bounce.frag); only for
+    // the one-pass trace, whose passes need no mask over the whole image.
+    const bool boxed = onePassTrace();
+    const uint32_t emptyBox[4] = {UINT32_MAX, UINT32_MAX, 0, 0};
     // Each round traces one ray of each pixel's tree; a tree has at most GPURT_TREE_RAYS rays.
     for (int b = 0; b < GPURT_TREE_RAYS; ++b) {
         const uint64_t rays = traceLoop(p, false);
@@ -314,8 +319,15 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
             p.lastBounce.dispatch();
             break;
         }
+        if (boxed) p.rayBounds.upload(std::span<const uint32_t>(emptyBox));
         p.bounce.dispatch();
+        if (boxed) {
+            const std::vector<uint32_t> box = p.rayBounds.downloadUint();
+            if (box[2] < box[0]) break;  // no ray left: every tree is done
+            p.setRoundRect(StreamRect{int(box[0]), int(box[1]), int(box[2] - box[0] + 1), int(box[3] - box[1] + 1)});
+        }
     }
+    p.setRoundRect(std::nullopt);
 }
 
 GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
