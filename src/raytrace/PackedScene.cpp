@@ -421,13 +421,19 @@ class SectionDecoder {
         }
     }
 
-    // One entry per triangle (read after the triangles).
+    // The leading count of a section of one record per triangle (read after the triangles).
+    uint64_t perTriangle(ByteReader& in, const Section& s, uint64_t recordBytes, const char* what,
+                         const Scene& scene) const {
+        const uint64_t n = count(in, s, recordBytes, true, kMaxTextureTriangles, what);
+        if (n != scene.triangles.size())
+            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " for " +
+                 std::to_string(scene.triangles.size()) + " triangles");
+        return n;
+    }
+
     void normals(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
-        const uint64_t n = count(in, s, kNormalsBytes, true, kMaxTextureTriangles, "normals");
-        if (n != scene.triangles.size())
-            fail("section " + s.tag + ": " + std::to_string(n) + " normals for " +
-                 std::to_string(scene.triangles.size()) + " triangles");
+        const uint64_t n = perTriangle(in, s, kNormalsBytes, "normals", scene);
         scene.normals.resize(size_t(n));
         for (TriangleNormals& t : scene.normals) {
             t.n0 = in.vec3();
@@ -436,13 +442,10 @@ class SectionDecoder {
         }
     }
 
-    // One entry per triangle (read after the triangles): t0, t1, t2.
+    // Per triangle t0, t1, t2.
     void texcoords(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
-        const uint64_t n = count(in, s, kTexcoordsBytes, true, kMaxTextureTriangles, "texture coordinates");
-        if (n != scene.triangles.size())
-            fail("section " + s.tag + ": " + std::to_string(n) + " texture coordinates for " +
-                 std::to_string(scene.triangles.size()) + " triangles");
+        const uint64_t n = perTriangle(in, s, kTexcoordsBytes, "texture coordinates", scene);
         scene.texcoords.resize(size_t(n));
         for (TriangleTexcoords& t : scene.texcoords) {
             const glm::vec2 c[3] = {{in.f32(), in.f32()}, {in.f32(), in.f32()}, {in.f32(), in.f32()}};

@@ -256,6 +256,15 @@ class PackedSceneTest : public ::testing::Test {
     }
     void TearDown() override { fs::remove_all(dir_); }
 
+    // The packed source with `patch` applied and the checksum made right again.
+    template <class Patch>
+    Bytes patched(Patch patch) const {
+        Bytes b = bytes_;
+        patch(b);
+        reseal(b);
+        return b;
+    }
+
     fs::path dir_;
     LoadedScene source_;
     UniformGrid grid_;
@@ -452,12 +461,6 @@ TEST_F(PackedSceneTest, RefusesAFileSizeThatDisagreesWithTheHeader) {
 // Patches with a correct checksum: only the reader's own checks stand between them and a crash.
 TEST_F(PackedSceneTest, RefusesSizesThatLie) {
     const Entry tris = section(bytes_, "TRIS");
-    auto patched = [&](auto patch) {
-        Bytes b = bytes_;
-        patch(b);
-        reseal(b);
-        return b;
-    };
     const uint64_t n = source_.scene.triangles.size();
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, n + 1); }), "do not fit");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, tris.offset, n - 1); }), "do not fit");
@@ -508,12 +511,6 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
 TEST_F(PackedSceneTest, RefusesTexturesThatLie) {
     const Entry texs = section(bytes_, "TEXS");
     const Entry txco = section(bytes_, "TXCO");
-    auto patched = [&](auto patch) {
-        Bytes b = bytes_;
-        patch(b);
-        reseal(b);
-        return b;
-    };
     const size_t first = texs.offset + 8;  // texture 0: width, height, wrap s, wrap t, name length
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, texs.offset, uint64_t(1) << 40); }), "textures");
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, first, 20000); }), "texture 0: size 20000x2");
@@ -531,12 +528,6 @@ TEST_F(PackedSceneTest, RefusesTexturesThatLie) {
 }
 
 TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
-    auto patched = [&](auto patch) {
-        Bytes b = bytes_;
-        patch(b);
-        reseal(b);
-        return b;
-    };
     const Entry g = section(bytes_, "GRID"), cells = section(bytes_, "CELL"),
                 list = section(bytes_, "LIST");
     const glm::ivec3 r = grid_.resolution;
@@ -602,12 +593,6 @@ TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
 }
 
 TEST_F(PackedSceneTest, RefusesBadValues) {
-    auto patched = [&](auto patch) {
-        Bytes b = bytes_;
-        patch(b);
-        reseal(b);
-        return b;
-    };
     const Entry tris = section(bytes_, "TRIS");
     const size_t n = source_.scene.triangles.size();
     const uint32_t inf = std::bit_cast<uint32_t>(std::numeric_limits<float>::infinity());
