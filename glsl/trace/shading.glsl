@@ -34,11 +34,10 @@ vec3 textureTexel(int first, int width, int x, int y) {
                 texelFetch(srgbTable, int((c >> 16) & 0xffu)).x);
 }
 
-// Material m's diffuse colour kd at image coordinates t: times its texture's filtered colour
-// when it has one (src/raytrace/SurfaceTexture.cpp diffuseAt).
-vec3 fetchDiffuse(int m, vec3 kd, vec2 t) {
+// The diffuse colour kd times texture `tex`'s filtered colour at image coordinates t (-1: no
+// texture; src/raytrace/SurfaceTexture.cpp diffuseAt).
+vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #ifdef SCENE_TEXTURES
-    int tex = int(texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).w);
     if (tex < 0) return kd;
     uvec4 info = texelFetch(textureTable, tex);
     int first = int(info.x), w = int(info.y), h = int(info.z);
@@ -53,10 +52,15 @@ vec3 fetchDiffuse(int m, vec3 kd, vec2 t) {
 }
 
 // The material of a surface record: fetchMaterial with the diffuse colour at the record's image
-// coordinates (surface.frag keeps them in surfaceView.w and surfaceShading.w).
+// coordinates t (surface.frag computes them; the later passes read them from surfaceView.w and
+// surfaceShading.w). The texel holding the texture index is the specular one, fetched once.
 void fetchSurfaceMaterial(int m, vec2 t, out vec3 kd, out vec3 ks, out float ns, out vec3 reflectivity) {
-    fetchMaterial(m, kd, ks, ns, reflectivity);
-    kd = fetchDiffuse(m, kd, t);
+    vec4 a = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m, 0), 0);
+    vec4 b = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0);
+    kd = texturedDiffuse(int(b.w), a.xyz, t);
+    ns = a.w;
+    ks = b.xyz;
+    reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
 }
 
 // The dielectric part of material m: transmission tf Tf and index of refraction (0: not a

@@ -46,13 +46,13 @@ void main() {
     vec3 v0, e1, e2;
     int material;
     fetchTriangle(int(h.w), v0, e1, e2, material);
+    vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
     vec3 kd, ks, reflectivity;
     float ns;
-    fetchMaterial(material, kd, ks, ns, reflectivity);
+    fetchSurfaceMaterial(material, t, kd, ks, ns, reflectivity);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
     surfaceNormal = vec4(ng, float(material));
-    vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
     surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), t.y);
     surfaceView = vec4(d, t.x);
 #ifdef PATH
@@ -60,6 +60,6 @@ void main() {
     color = vec4(c.xyz + w.xyz * (fetchEmission(material) * mis), 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
-    localColor = vec4(ambientColor(fetchDiffuse(material, kd, t)), 0.0f);
+    localColor = vec4(ambientColor(kd), 0.0f);
 #endif
 }
