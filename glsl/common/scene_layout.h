@@ -17,7 +17,7 @@
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024
 // Materials: RGBA32F, five texels each on one row: (diffuse, shininess), (specular, diffuse
-// texture | -1), (reflectivity, 0), (emission, 0), (transmission filter, index of refraction | 0).
+// texture | -1), (reflectivity, model), (emission, 0), (transmission filter, index of refraction | 0).
 #define GPURT_MATERIAL_TEXELS 5
 // Texture coordinates (scenes with a textured material): RGBA32F, two texels per triangle, laid
 // out as the triangles (GPURT_TRIANGLES_PER_ROW a row): (t0, t1), (t2, 0, 0), in the image

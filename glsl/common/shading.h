@@ -1,19 +1,17 @@
-// Whitted shading at one hit, shared word for word by the GLSL kernels (#include
-// "common/shading.h" after "common/raymath.h") and the C++ CPU backend (included after
-// raytrace/RayMath.h, inside namespace gpurt::raymath), so both backends colour a hit with the
-// same float operations. Same rules as raymath.h: the common subset of GLSL 4.50 and C++/GLM, no
-// swizzle writes, float literals with 'f'.
+// The geometry and optics of a hit, shared word for word by the GLSL kernels (#include
+// "common/shading.h" after "common/raymath.h") and the C++ CPU backend (raytrace/RayMath.h
+// includes it inside namespace gpurt::raymath), so both backends treat a hit with the same float
+// operations: normals, ray offsets, shadow rays, mirror and refracted directions, Fresnel, emitter
+// points. Same rules as raymath.h: the common subset of GLSL 4.50 and C++/GLM, no swizzle writes,
+// float literals with 'f'. What a material does with light is common/material.h's.
 //
-// Per hit p with material (kd, ks, ns) seen along direction d (Whitted 1980; Christen 2005,
-// eq. 5.1), with l the unit vector to the light and n the normal facing the ray:
-//   local = 0.1 kd + sum over lights in front of the surface and not in shadow of
-//           (kd max(0, n.l) + ks max(0, reflect(-l, n).(-d))^ns) * colour * intensity / dist^2
-//   colour = sum over the rays of the pixel's ray tree of weight * (emission + local); a miss
-//            adds weight * background. A ray's weight is the product of the mirror
-//            reflectivities, Fresnel reflectances and transmissions along its branch
-//            (hitChildren); n in the lighting terms is the shading normal (shadingNormal).
-// A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by the surface itself
-// and gets no shadow ray.
+// Whitted's rule per hit (Whitted 1980; Christen 2005, eq. 5.1): colour = sum over the rays of the
+// pixel's ray tree of weight * (emission + local), local = the material's ambient term plus its
+// response to each light in front of the surface and not in shadow; a miss adds weight *
+// background. A ray's weight is the product of the mirror reflectivities, Fresnel reflectances and
+// transmissions along its branch (materialChildren); the lighting terms use the shading normal
+// (shadingNormal). A light behind the surface (n.l <= 0, n facing the ray) counts as shadowed by
+// the surface itself and gets no shadow ray.
 //
 // Units: a white diffuse surface facing a point light of intensity I at distance r has radiance
 // I / r^2 (the light's radiant intensity is pi I: Lambert's BRDF kd / pi times pi I / r^2).
@@ -27,8 +25,6 @@
 #ifndef GPURT_RAYMATH_H
 #error "include common/raymath.h before common/shading.h"
 #endif
-
-#define GPURT_AMBIENT 0.1f  // ambient term: this fraction of the diffuse colour
 
 // Geometric unit normal of the triangle with edges e1 = v1 - v0, e2 = v2 - v0, turned to face
 // the incoming ray direction d. The squared length of cross(e1, e2) is quartic in the edges and
@@ -81,25 +77,6 @@ GPURT_FN void shadowRay(vec3 p, vec3 n, float eps, vec3 lightPos, GPURT_OUT(vec3
     tLimit = sqrt(dot(toLight, toLight));
 }
 
-// Diffuse + specular light from one unshadowed point light.
-GPURT_FN vec3 lightContribution(vec3 p, vec3 n, vec3 d, vec3 kd, vec3 ks, float ns, vec3 lightPos,
-                                vec3 lightColor, float intensity) {
-    vec3 toLight = lightPos - p;
-    float dist2 = dot(toLight, toLight);
-    vec3 l = contractNormalize(toLight);
-    float diffuse = max(0.0f, dot(n, l));
-    float s = max(0.0f, dot(mirrorDirection(-l, n), -d));
-    // GLSL leaves pow(0, y) undefined; a zero base contributes nothing.
-    float specular = s > 0.0f ? pow(s, ns) : 0.0f;
-    // Bounded: a light of colour 1e30 and intensity 1e30 (or one at 1e-20 from the surface)
-    // would give infinity, and a later bounce's weight of 0 times infinity a NaN pixel. 1e30 is
-    // far beyond white and leaves room to sum any number of lights.
-    return min((kd * diffuse + ks * specular) * lightColor * intensity / dist2, vec3(1e30f));
-}
-
-// The ambient part of the local colour.
-GPURT_FN vec3 ambientColor(vec3 kd) { return GPURT_AMBIENT * kd; }
-
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).
 GPURT_FN vec3 reflectedDirection(vec3 d, vec3 n) {
     return contractNormalize(mirrorDirection(d, n));
@@ -146,49 +123,6 @@ GPURT_FN vec3 refractedDirection(vec3 d, vec3 n, float eta, float cosI) {
     return contractNormalize(d / eta + (cosI / eta - cosT) * n);
 }
 
-// The rays a hit spawns, from the pixel's ray of direction d and weight w at a surface with
-// facing geometric normal ng and shading normal ns. A dielectric (ior > 0; entering when
-// `entering`): the refracted ray of weight w (1 - F) tf and the reflected ray of weight w F,
-// or only the reflected ray, of weight w, where there is no refraction (total internal
-// reflection, or a refracted ray that the shading normal would send out on the facing side). A
-// mirror: the reflected ray of weight w reflectivity. A is the ray the pixel continues with (the
-// refracted one where there is one; sideA -1: it leaves on the far side of the surface), B the
-// second, pushed on the pixel's stack. Returns how many (0, 1 or 2).
-GPURT_FN int hitChildren(vec3 d, vec3 ng, vec3 ns, bool entering, vec3 reflectivity, float ior,
-                         vec3 tf, vec3 w, GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA,
-                         GPURT_OUT(float) sideA, GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {
-    vec3 r = shadingReflection(d, ns, ng);
-    dirA = r;
-    weightA = w * reflectivity;
-    sideA = 1.0f;
-    dirB = r;
-    weightB = vec3(0.0f);
-    if (ior > 0.0f) {
-        float eta = entering ? ior : 1.0f / ior;
-        float cosI = clamp(-dot(d, ns), 0.0f, 1.0f);
-        float f = fresnelDielectric(cosI, eta);
-        weightA = w;  // no refraction: all of it is reflected
-        if (f < 1.0f) {
-            vec3 t = refractedDirection(d, ns, eta, cosI);
-            if (dot(t, ng) < 0.0f) {
-                dirA = t;
-                weightA = w * ((1.0f - f) * tf);
-                sideA = -1.0f;
-                weightB = w * f;
-            }
-        }
-    }
-    bool a = max(weightA.x, max(weightA.y, weightA.z)) >= GPURT_MIN_WEIGHT;
-    bool b = max(weightB.x, max(weightB.y, weightB.z)) >= GPURT_MIN_WEIGHT;
-    if (!a && b) {  // only the reflection is worth tracing: it continues the pixel's ray
-        dirA = dirB;
-        weightA = weightB;
-        sideA = 1.0f;
-        return 1;
-    }
-    return a ? (b ? 2 : 1) : 0;
-}
-
 // The point at (u.x, u.y) in [0, 1)^2 of the triangle v0 + a e1 + b e2, uniform by area
 // (Shirley 1997: a = sqrt(u.x) (1 - u.y), b = sqrt(u.x) u.y).
 GPURT_FN vec3 emitterPoint(vec3 v0, vec3 e1, vec3 e2, vec2 u) {
@@ -216,6 +150,24 @@ GPURT_FN float emitterIntensity(vec3 p, vec3 q, vec3 e1, vec3 e2, float totalAre
     vec3 l = contractNormalize(q - p);
     vec3 nq = facingNormal(e1, e2, l);
     return abs(dot(nq, l)) * totalArea * 0.31830988f;  // 1 / pi
+}
+
+#define GPURT_PI 3.14159265f
+#define GPURT_INV_PI 0.31830988f
+GPURT_FN float maxChannel(vec3 c) { return max(c.x, max(c.y, c.z)); }
+
+// The unit vector at angle acos(cosTheta) from the unit axis a, at azimuth 2 pi u about it, in
+// the branchless orthonormal basis of Duff et al. 2017 ("Building an Orthonormal Basis,
+// Revisited").
+GPURT_FN vec3 directionAbout(vec3 a, float cosTheta, float u) {
+    float s = a.z >= 0.0f ? 1.0f : -1.0f;
+    float k = -1.0f / (s + a.z);
+    float m = a.x * a.y * k;
+    vec3 t = vec3(1.0f + s * a.x * a.x * k, s * m, -s * a.x);
+    vec3 b = vec3(m, s + a.y * a.y * k, -a.y);
+    float sinTheta = sqrt(max(0.0f, 1.0f - cosTheta * cosTheta));
+    float phi = 2.0f * GPURT_PI * u;
+    return contractNormalize(t * (sinTheta * cos(phi)) + b * (sinTheta * sin(phi)) + a * cosTheta);
 }
 
 #endif

@@ -1,6 +1,6 @@
 // Shading, last step of a round of the ray tree (Whitted 1980; Christen 2005, eq. 5.1):
-// colour += weight * local colour; then the pixel's next ray. The hit's children (common/shading.h
-// hitChildren: the reflected and refracted rays of glass, the mirror ray) are spawned while the
+// colour += weight * local colour; then the pixel's next ray. The hit's children (common/material.h
+// materialChildren: the reflected and refracted rays of glass, the mirror ray) are spawned while the
 // ray's depth is below `maxBounces` and the tree has rays left: the first continues as the pixel's
 // ray, the second is pushed on the pixel's stack. A ray without children hands over to the top of
 // the stack (its depth and weight with it); with the stack empty the pixel's tree is done. One ray
@@ -62,17 +62,16 @@ void main() {
         color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
         if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
             vec4 nm = readStream(surfaceNormal);
-            vec3 kd, ks, reflectivity, tf;
-            float ns, ior;
-            fetchMaterial(int(nm.w), kd, ks, ns, reflectivity);
-            fetchDielectric(int(nm.w), tf, ior);
-            if (ior > 0.0f || reflectivity != vec3(0.0f)) {  // only mirrors and glass have children
-                vec3 d = readStream(surfaceView).xyz;
+            vec4 view = readStream(surfaceView);
+            vec4 shading = readStream(surfaceShading);
+            MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
+            if (materialSpawns(m)) {  // only mirrors and glass have children
+                vec3 d = view.xyz;
                 vec3 v0, e1, e2;
                 int material;
                 fetchTriangle(int(s.w), v0, e1, e2, material);
-                children = hitChildren(d, nm.xyz, readStream(surfaceShading).xyz, frontFace(e1, e2, d),
-                                       reflectivity, ior, tf, w.xyz, dirA, weightA, sideA, dirB, weightB);
+                children = materialChildren(m, d, nm.xyz, shading.xyz, frontFace(e1, e2, d), w.xyz, dirA, weightA,
+                                            sideA, dirB, weightB);
             }
             vec3 o = offsetOrigin(s.xyz, sideA * nm.xyz, rayOffset);
             if (children > 0) {

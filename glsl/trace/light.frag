@@ -1,8 +1,7 @@
 // Adds one point light's diffuse and specular term to the local colour of each surface point
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
-// PATH: the path integrator's diffuse and glossy lobes (common/path.h) instead of Whitted's
-// Phong terms, for point lights (its emitter point is lit in pathbounce.frag).
+// PATH: the path integrator's light through the BSDF (common/path.h) instead of Whitted's terms, for point lights (its emitter point is lit in pathbounce.frag).
 #include "shading.glsl"
 #ifdef PATH
 #include "../common/path.h"
@@ -45,17 +44,11 @@ void main() {
     vec4 view = readStream(surfaceView);
     vec3 n = shading.xyz;
     vec3 d = view.xyz;
-    vec3 kd, ks, reflectivity;
-    float ns;
-    fetchSurfaceMaterial(int(nm.w), vec2(view.w, shading.w), kd, ks, ns, reflectivity);
+    MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
 #ifdef PATH
-    vec3 tf, diffuse, glossy;
-    float ior;
-    fetchDielectric(int(nm.w), tf, ior);
-    pathLobes(kd, ks, reflectivity, ior, diffuse, glossy);
-    vec3 add = pathLightContribution(s.xyz, n, d, diffuse, glossy, ns, lightPosition, lightColor, lightIntensity);
+    vec3 add = pathLightContribution(m, s.xyz, n, d, lightPosition, lightColor, lightIntensity);
 #else
-    vec3 add = lightContribution(s.xyz, n, d, kd, ks, ns, lightPosition, lightColor, lightIntensity);
+    vec3 add = materialLight(m, s.xyz, n, d, lightPosition, lightColor, lightIntensity);
 #endif
     localColor = vec4(readStream(localState).xyz + add, 0.0f);
 }

@@ -2,7 +2,7 @@
 // that next-event estimation gathered at the hit (the point lights' in localColor, and the
 // emitter point's, whose shadow ray the last trace answered, added here: the light pass of the
 // emitters fused into this one), then the path's next ray: a direction from the
-// BSDF (scatterPath, the sample's numbers of this depth), the throughput times f cos / pdf, and
+// BSDF (materialSample, the sample's numbers of this depth), the throughput times f cos / pdf, and
 // Russian roulette. A path that ends (missed, absorbed, below the surface, roulette) leaves its
 // colour in its pixel's element of pixelColor. The paths that go on stay in their elements, or
 // with PACK are packed to the front of the next round's streams (an atomic counter gives each
@@ -50,13 +50,9 @@ layout(location = 4) out vec4 pathStateOut;
 bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput, out vec3 o, out vec3 dir,
              out float pdf) {
     vec4 nm = readStream(surfaceNormal);
-    vec3 kd, ks, reflectivity, tf, diffuse, glossy;
-    float ns, ior;
     vec4 view = readStream(surfaceView);
     vec4 shading = readStream(surfaceShading);
-    fetchSurfaceMaterial(int(nm.w), vec2(view.w, shading.w), kd, ks, ns, reflectivity);
-    fetchDielectric(int(nm.w), tf, ior);
-    pathLobes(kd, ks, reflectivity, ior, diffuse, glossy);
+    MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
     vec3 d = view.xyz;
     vec3 n = shading.xyz;
     vec3 local = readStream(localColor).xyz;
@@ -66,10 +62,9 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
         vec3 qv0, qe1, qe2;
         int emitterMaterial;
         fetchTriangle(int(q.w), qv0, qe1, qe2, emitterMaterial);
-        vec3 probs = lobeProbabilities(diffuse, glossy, reflectivity, ior);
-        local = local + pathLightContribution(s.xyz, n, d, diffuse, glossy, ns, q.xyz, fetchEmission(emitterMaterial),
+        local = local + pathLightContribution(m, s.xyz, n, d, q.xyz, fetchEmission(emitterMaterial),
                                               emitterIntensity(s.xyz, q.xyz, qe1, qe2, emitterArea)) *
-                            emitterSampleWeight(s.xyz, q.xyz, qe1, qe2, emitterArea, probs, ns, n, d);
+                            emitterSampleWeight(m, s.xyz, q.xyz, qe1, qe2, emitterArea, n, d);
     }
 #endif
     color = color + w * local;
@@ -82,8 +77,7 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     vec2 choice = randomPair(sampleIndex, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim + 1u));
     vec3 factor;
     float side;
-    if (!scatterPath(d, nm.xyz, n, frontFace(e1, e2, d), diffuse, glossy, ns, reflectivity, ior, tf, u, choice.x,
-                     dir, factor, pdf, side))
+    if (!materialSample(m, d, nm.xyz, n, frontFace(e1, e2, d), u, choice.x, dir, factor, pdf, side))
         return false;
     throughput = w * factor;
     float survive = survival(depth, throughput, choice.y);

@@ -1,18 +1,11 @@
-// Shared by the shading kernels: the shading math of common/shading.h (shared with the CPU
-// backend) and the material fetch.
+// Shared by the shading kernels: the shading math of common/shading.h and the material interface
+// of common/material.h (both shared with the CPU backend), and the material record's fetch.
 #include "scene.glsl"
 #include "../common/shading.h"
+#include "../common/material.h"
 #include "../common/texture.h"
 
 uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
-
-void fetchMaterial(int m, out vec3 kd, out vec3 ks, out float ns, out vec3 reflectivity) {
-    vec4 a = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m, 0), 0);
-    kd = a.xyz;
-    ns = a.w;
-    ks = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0).xyz;
-    reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
-}
 
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
 // What a scene lacks is compiled out (SceneTextures::bind defines SCENE_TEXTURES,
@@ -51,27 +44,28 @@ vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #endif
 }
 
-// The material of a surface record: fetchMaterial with the diffuse colour at the record's image
-// coordinates t (surface.frag computes them; the later passes read them from surfaceView.w and
-// surfaceShading.w). The texel holding the texture index is the specular one, fetched once.
-void fetchSurfaceMaterial(int m, vec2 t, out vec3 kd, out vec3 ks, out float ns, out vec3 reflectivity) {
-    vec4 a = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m, 0), 0);
-    vec4 b = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 1, 0), 0);
-    kd = texturedDiffuse(int(b.w), a.xyz, t);
-    ns = a.w;
-    ks = b.xyz;
-    reflectivity = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 2, 0), 0).xyz;
+// The material record (common/material.h) of material m at image coordinates t: every field of
+// its texels, the diffuse colour textured at t (surface.frag computes t; the later passes read it
+// from surfaceView.w and surfaceShading.w). What a kernel does not use the compiler drops.
+MaterialRecord fetchMaterialRecord(int m, vec2 t) {
+    ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);
+    vec4 a = texelFetch(materials, at, 0);
+    vec4 b = texelFetch(materials, at + ivec2(1, 0), 0);
+    vec4 c = texelFetch(materials, at + ivec2(2, 0), 0);
+    vec4 e = texelFetch(materials, at + ivec2(4, 0), 0);
+    MaterialRecord r;
+    r.model = int(c.w);
+    r.kd = texturedDiffuse(int(b.w), a.xyz, t);
+    r.ks = b.xyz;
+    r.ns = a.w;
+    r.reflectivity = c.xyz;
+    r.tf = e.xyz;
+    r.ior = e.w;
+    r.emission = texelFetch(materials, at + ivec2(3, 0), 0).xyz;
+    return r;
 }
 
-// The dielectric part of material m: transmission tf Tf and index of refraction (0: not a
-// dielectric).
-void fetchDielectric(int m, out vec3 tf, out float ior) {
-    vec4 t = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 4, 0), 0);
-    tf = t.xyz;
-    ior = t.w;
-}
-
-// The radiance the material emits (area lights; 0 for most).
+// The radiance an emitter's material m emits (the light a shadow ray towards it carries).
 vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
 
 // The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).

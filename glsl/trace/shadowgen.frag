@@ -4,7 +4,7 @@
 // of the emitters, uniform by area (common/sampling.h, dimension GPURT_DIM_EMITTER + bounce; the
 // emitter by a binary search of the area table), stores it for the light pass, and aims the ray
 // at it. PATH: only from surfaces that the path integrator's diffuse or glossy lobe can light
-// (not from mirrors and glass: common/path.h pathLobes).
+// (not from mirrors and glass: common/material.h materialLit).
 #include "shading.glsl"
 #include "../common/sampling.h"
 #ifdef PATH
@@ -40,14 +40,9 @@ void main() {
     rayOrigin = vec4(0.0f);
     rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
 #ifdef PATH
-    if (s.w >= 0.0f) {
-        vec3 kd, ks, reflectivity, tf, diffuse, glossy;
-        float ns, ior;
-        fetchSurfaceMaterial(int(nm.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w), kd, ks, ns,
-                             reflectivity);
-        fetchDielectric(int(nm.w), tf, ior);
-        if (!pathLobes(kd, ks, reflectivity, ior, diffuse, glossy)) s.w = -1.0f;  // nothing to light
-    }
+    if (s.w >= 0.0f &&
+        !materialLit(fetchMaterialRecord(int(nm.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w))))
+        s.w = -1.0f;  // nothing to light
 #endif
 #ifdef EMITTER
     lightSample = vec4(0.0f, 0.0f, 0.0f, -1.0f);

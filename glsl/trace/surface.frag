@@ -47,19 +47,18 @@ void main() {
     int material;
     fetchTriangle(int(h.w), v0, e1, e2, material);
     vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
-    vec3 kd, ks, reflectivity;
-    float ns;
-    fetchSurfaceMaterial(material, t, kd, ks, ns, reflectivity);
+    MaterialRecord m = fetchMaterialRecord(material, t);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
+    vec3 ns = fetchShadingNormal(int(h.w), h.y, h.z, ng);
     surfaceNormal = vec4(ng, float(material));
-    surfaceShading = vec4(fetchShadingNormal(int(h.w), h.y, h.z, ng), t.y);
+    surfaceShading = vec4(ns, t.y);
     surfaceView = vec4(d, t.x);
 #ifdef PATH
     float mis = emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea);
-    color = vec4(c.xyz + w.xyz * (fetchEmission(material) * mis), 0.0f);
+    color = vec4(c.xyz + w.xyz * (materialEmitted(m, ns) * mis), 0.0f);
 #else
-    color = vec4(c.xyz + w.xyz * fetchEmission(material), 0.0f);
-    localColor = vec4(ambientColor(kd), 0.0f);
+    color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);
+    localColor = vec4(materialAmbient(m), 0.0f);
 #endif
 }

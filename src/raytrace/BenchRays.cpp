@@ -2,10 +2,6 @@
 
 #include "raytrace/RayMath.h"
 
-namespace gpurt::raymath {
-#include "../../glsl/common/shading.h"
-}  // namespace gpurt::raymath
-
 namespace gpurt {
 
 RayStream primaryRays(const CameraBasis& camera) {

@@ -11,14 +11,9 @@
 #include <cmath>
 #include <limits>
 
+#include "raytrace/MaterialRecord.h"
 #include "raytrace/Parallel.h"
 #include "raytrace/RayMath.h"
-#include "raytrace/SurfaceTexture.h"
-
-namespace gpurt::raymath {
-#include "../../glsl/common/shading.h"
-#include "../../glsl/common/path.h"
-}  // namespace gpurt::raymath
 
 namespace gpurt {
 
@@ -166,7 +161,7 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
             break;
         }
         const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
-        const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+        const MaterialRecord m = materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v);
         const glm::vec3 p = o + hit.t * d;
         const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
         glm::vec3 ns = n;
@@ -179,28 +174,21 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
             aovs->prim[pixel] = static_cast<float>(hit.prim);
             aovs->normal[pixel] = n;
         }
-        color += weight * (m.emission * emissionWeight(prevPdf, hit.t, n, d, emitters_.totalArea));
+        color += weight * (materialEmitted(m, ns) * emissionWeight(prevPdf, hit.t, n, d, emitters_.totalArea));
         if (b == maxDepth) break;
 
-        const glm::vec3 kd = diffuseAt(scene_, m, uint32_t(hit.prim), hit.u, hit.v);
-        glm::vec3 diffuse, glossy;
-        const vec3 probs = pathLobes(kd, m.specular, m.reflectivity, m.ior, diffuse, glossy)
-                               ? lobeProbabilities(diffuse, glossy, m.reflectivity, m.ior)
-                               : vec3(0.0f);
-        if (probs.x + probs.y > 0.0f) {  // next-event estimation (shadowgen.frag, light.frag PATH)
+        if (materialLit(m)) {  // next-event estimation (shadowgen.frag, light.frag PATH)
             glm::vec3 local(0.0f);
             for (const PointLight& light : lights)
                 if (lightVisible(p, n, light.position, stats))
-                    local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, light.position,
-                                                   light.color, light.intensity);
+                    local += pathLightContribution(m, p, ns, d, light.position, light.color, light.intensity);
             vec3 q;
             uint32_t id;
             if (emitterVisible(i, j, sample, samples, settings.seed, b, p, n, stats, q, id)) {
                 const PreparedTriangle& e = triangles_[id];
-                local += pathLightContribution(p, ns, d, diffuse, glossy, m.shininess, q,
-                                               scene_.materials[scene_.materialIds[id]].emission,
+                local += pathLightContribution(m, p, ns, d, q, scene_.materials[scene_.materialIds[id]].emission,
                                                emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea)) *
-                         emitterSampleWeight(p, q, e.e1, e.e2, emitters_.totalArea, probs, m.shininess, ns, d);
+                         emitterSampleWeight(m, p, q, e.e1, e.e2, emitters_.totalArea, ns, d);
             }
             color += weight * local;
         }
@@ -211,8 +199,7 @@ glm::vec3 CpuTracer::pathSample(int i, int j, uint32_t sample, uint32_t samples,
         const vec2 choice = randomPair(sample, samplePattern(uint32_t(i), uint32_t(j), settings.seed, dim + 1u));
         vec3 dir, factor;
         float pdf, side;
-        if (!scatterPath(d, n, ns, frontFace(tri.e1, tri.e2, d), diffuse, glossy, m.shininess, m.reflectivity, m.ior,
-                         m.transmission, u, choice.x, dir, factor, pdf, side))
+        if (!materialSample(m, d, n, ns, frontFace(tri.e1, tri.e2, d), u, choice.x, dir, factor, pdf, side))
             break;
         weight *= factor;
         const float q = survival(b, weight, choice.y);
@@ -273,7 +260,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 color += weight * scene_.background;
             } else {
             const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
-            const Material& material = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+            const MaterialRecord material = materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v);
             const glm::vec3 p = o + hit.t * d;
             const glm::vec3 n = facingNormal(tri.e1, tri.e2, d);
             glm::vec3 ns = n;  // the shading normal (surface.frag)
@@ -281,7 +268,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
                 ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, n);
             }
-            color += weight * material.emission;
+            color += weight * materialEmitted(material, ns);
             if (bounce == 0 && readAovs) {
                 out.depth[pixel] = hit.t;
                 out.prim[pixel] = static_cast<float>(hit.prim);
@@ -289,28 +276,24 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             }
             if (maxBounces < 0) break;
 
-            const glm::vec3 kd = diffuseAt(scene_, material, uint32_t(hit.prim), hit.u, hit.v);
-            glm::vec3 local = ambientColor(kd);
+            glm::vec3 local = materialAmbient(material);
             for (const PointLight& light : lights)
                 if (lightVisible(p, n, light.position, stats))
-                    local += lightContribution(p, ns, d, kd, material.specular, material.shininess,
-                                               light.position, light.color, light.intensity);
+                    local += materialLight(material, p, ns, d, light.position, light.color, light.intensity);
             vec3 q;  // the sample's point of the emitters (shadowgen.frag EMITTER, light.frag EMITTER)
             uint32_t id;
             if (emitterVisible(i, j, sample, samples, settings.seed, bounce, p, n, stats, q, id)) {
                 const PreparedTriangle& e = triangles_[id];
-                local += lightContribution(p, ns, d, kd, material.specular, material.shininess, q,
-                                           scene_.materials[scene_.materialIds[id]].emission,
-                                           emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
+                local += materialLight(material, p, ns, d, q, scene_.materials[scene_.materialIds[id]].emission,
+                                       emitterIntensity(p, q, e.e1, e.e2, emitters_.totalArea));
             }
             color += weight * local;
 
             if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
                 vec3 dirA, weightA, dirB, weightB;
                 float sideA;
-                children = hitChildren(d, n, ns, frontFace(tri.e1, tri.e2, d), material.reflectivity,
-                                       material.ior, material.transmission, weight, dirA, weightA, sideA,
-                                       dirB, weightB);
+                children = materialChildren(material, d, n, ns, frontFace(tri.e1, tri.e2, d), weight, dirA,
+                                            weightA, sideA, dirB, weightB);
                 if (children > 0) {
                     const vec3 next = offsetOrigin(p, sideA * n, rayOffset_);
                     depth += 1;

@@ -5,10 +5,6 @@
 
 #include "../../glsl/common/scene_layout.h"
 
-namespace gpurt::raymath {
-#include "../../glsl/common/shading.h"
-#include "../../glsl/common/path.h"
-}  // namespace gpurt::raymath
 
 #include "stream/GPUKernel.h"
 #include "stream/KernelChain.h"

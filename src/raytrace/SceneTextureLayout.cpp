@@ -91,7 +91,7 @@ TextureTexels materialTexels(const Scene& scene) {
         const Material& mat = scene.materials[m];
         const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
                                                    vec4(mat.specular, float(mat.diffuseTexture)),
-                                                   vec4(mat.reflectivity, 0.0f),
+                                                   vec4(mat.reflectivity, float(mat.model)),
                                                    vec4(mat.emission, 0.0f),
                                                    vec4(mat.transmission, mat.ior)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)

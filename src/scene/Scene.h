@@ -32,6 +32,9 @@ struct Material {
     // Index into Scene::textures, or -1: the diffuse colour at a hit is diffuse times the
     // texture's linear colour at the hit's texture coordinates (glTF baseColorTexture, MTL map_Kd).
     int diffuseTexture = -1;
+    // The material model (glsl/common/material.h GPURT_MODEL_*): 0, the classic model of the
+    // fields above (glsl/common/materials/classic.h).
+    int model = 0;
 
     bool emits() const { return emission != glm::vec3(0.0f); }
 };

@@ -1,0 +1,70 @@
+// The material seam, shared word for word by the kernels and the CPU backend (after
+// common/shading.h; same rules as raymath.h). A hit's material is fetched once, with its textures
+// at the hit, into a MaterialRecord (the kernels: shading.glsl fetchMaterialRecord; C++:
+// raytrace/MaterialRecord.h materialRecord); the integrators then ask it only through the
+// functions below, which dispatch on the record's model to the model's file in materials/:
+//   Whitted:  materialAmbient (the ambient term), materialLight (one unshadowed point light),
+//             materialSpawns / materialChildren (the reflected and refracted rays of the ray tree);
+//   both:     materialEmitted (radiance the surface sends itself, area lights);
+//   path:     materialLit (whether next-event estimation can light it: a non-delta lobe),
+//             materialEval (pi times the BSDF), materialPdf (the solid-angle pdf materialSample
+//             samples a direction with; 0 for delta lobes), materialSample (a direction, its
+//             throughput factor f cos / pdf, pdf and side).
+// Conventions: d is the incoming ray's direction, ng the geometric normal facing it, ns the shading
+// normal (facing as ng), wi the direction towards the light. docs/ARCHITECTURE.md says how to add
+// a model.
+#ifndef GPURT_MATERIAL_H
+#define GPURT_MATERIAL_H
+
+#ifndef GPURT_SHADING_H
+#error "include common/shading.h before common/material.h"
+#endif
+
+// Material models (the record's `model`; Material::model in the scene).
+#define GPURT_MODEL_CLASSIC 0  // Phong lobes, mirror, smooth glass (materials/classic.h)
+
+// What the integrators know of a material at one hit.
+struct MaterialRecord {
+    int model;          // GPURT_MODEL_*
+    vec3 kd;            // diffuse colour, textured at the hit
+    vec3 ks;            // specular colour
+    float ns;           // Phong exponent
+    vec3 reflectivity;  // mirror weight
+    vec3 tf;            // transmission filter of a dielectric
+    float ior;          // index of refraction; 0: not a dielectric
+    vec3 emission;      // radiance emitted from both sides
+};
+
+#include "materials/classic.h"
+
+// The radiance the surface sends along the ray by itself at shading normal ns (emission).
+GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) { return m.emission; }
+
+GPURT_FN vec3 materialAmbient(MaterialRecord m) { return classicAmbient(m); }
+
+GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
+                            float intensity) {
+    return classicLight(m, p, n, d, lightPos, lightColor, intensity);
+}
+
+GPURT_FN bool materialSpawns(MaterialRecord m) { return classicSpawns(m); }
+
+GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec3 w,
+                              GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA,
+                              GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {
+    return classicChildren(m, d, ng, ns, entering, w, dirA, weightA, sideA, dirB, weightB);
+}
+
+GPURT_FN bool materialLit(MaterialRecord m) { return classicLit(m); }
+
+GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return classicEval(m, n, d, wi); }
+
+GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return classicPdf(m, n, d, wi); }
+
+GPURT_FN bool materialSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec2 u, float lobe,
+                             GPURT_OUT(vec3) dir, GPURT_OUT(vec3) factor, GPURT_OUT(float) pdf,
+                             GPURT_OUT(float) side) {
+    return classicSample(m, d, ng, ns, entering, u, lobe, dir, factor, pdf, side);
+}
+
+#endif
