@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders every scene of scenes/, ../shared/models and the textured test assets with two gpurt
-# binaries, on both backends, Whitted and path, at 1 and 4 samples a pixel (with every AOV at 1),
+# binaries, on both backends, Whitted and path, at 1 and 4 samples a pixel (with every AOV at 1)
+# and as a tile (--tile 1/3, 2 samples; its PNG and sidecar),
 # and compares the files byte for byte: a refactoring must leave every picture as it was.
 #   scripts/check-same-images.sh OLD_GPURT NEW_GPURT [WORKDIR]
 # Prints one line per differing file and exits 1 if any differ.
@@ -27,6 +28,10 @@ render() {  # BIN DIR
                         --integrator "$integrator" --spp "$spp" "${aovs[@]}" 2>/dev/null ||
                         echo "render failed: $bin $s $backend $integrator $spp" >"$out.failed"
                 done
+                # A tile of the image (the streams' rows start below the image's top).
+                "$bin" render "$s" -o "$dir/$name-$backend-$integrator-tile.png" --size 96x72 --backend "$backend" \
+                    --integrator "$integrator" --spp 2 --tile 1/3 2>/dev/null ||
+                    echo "render failed: $bin $s $backend $integrator tile" >"$dir/$name-$backend-$integrator-tile.failed"
             done
         done
     done

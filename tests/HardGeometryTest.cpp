@@ -23,7 +23,7 @@
 #include "image/Colour.h"
 #include "image/ImageIO.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #ifdef GPURT_HAVE_EMBREE
 #include "raytrace/BenchRays.h"
 #include "raytrace/EmbreeTracer.h"

@@ -14,7 +14,7 @@
 #include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
 #include "scene/SmoothNormals.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 #include <cmath>
 

@@ -139,13 +139,13 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         const bool vertex = path.size() > 5 && path.substr(path.size() - 5) == ".vert";
         if (!fragment && !vertex) continue;
         std::vector<AssembledShader> variants{library.assemble(path)};
-        // The define variants the tracer builds (GpuPipeline).
-        if (path == "trace/trace.frag")
+        // The define variants the tracer builds (GpuPipeline, GridGl).
+        if (path == "accel/grid/trace.frag")
             for (const char* defines : {"#define FROM_START\n#define TRACE_STEPS (1 << 30)\n", "#define ANY_HIT\n",
                                         "#define FROM_START\n#define ANY_HIT\n", "#define TRACE_STEPS 16\n",
                                         "#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
                 variants.push_back(library.assemble(path, defines));
-        if (path == "trace/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
+        if (path == "accel/grid/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
         if (path == "trace/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
         if (path == "trace/shadowgen.frag" || path == "trace/light.frag")
             variants.push_back(library.assemble(path, "#define EMITTER\n"));

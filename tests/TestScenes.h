@@ -7,7 +7,7 @@
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "image/ImageIO.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 #include <gtest/gtest.h>
 

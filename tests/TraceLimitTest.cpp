@@ -7,7 +7,7 @@
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::test {
 namespace {

@@ -8,7 +8,7 @@
 #include "raytrace/GpuTracer.h"
 #include "image/ImageIO.h"
 #include "raytrace/SceneLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 #include <png.h>
 

@@ -10,7 +10,7 @@
 #include "raytrace/GpuTracer.h"
 #include "raytrace/Parallel.h"
 #include "raytrace/SceneLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/KernelStats.h"
 #ifdef GPURT_HAVE_EMBREE
 #include "raytrace/EmbreeTracer.h"

@@ -8,7 +8,7 @@
 #include "raytrace/GpuTracer.h"
 #include "scene/Scene.h"
 #include "raytrace/SceneLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/GLContext.h"
 #include "stream/ShaderLibrary.h"
 

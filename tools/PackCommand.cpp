@@ -8,7 +8,7 @@
 #include "raytrace/PackedScene.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/SceneTextureLayout.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/SceneFile.h"
 
 #include <algorithm>

@@ -14,7 +14,7 @@
 #include "raytrace/SceneScale.h"
 #include "scene/SmoothNormals.h"
 #include "image/Tiles.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/KernelStats.h"
 
 #include <nlohmann/json.hpp>

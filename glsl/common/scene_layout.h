@@ -33,7 +33,9 @@
 
 // Stream element (x, y) of the image-sized ray streams is pixel column x, row y counted from the
 // TOP (so a download is in the contract's top-first order).
+// The ray streams every accelerator traces: rayOrigin (o, tLimit), rayDir (d, GPURT_A_RAY or
+// GPURT_NO_RAY); the hit stream it writes: (t, u, v, triangle | -1).
+#define GPURT_A_RAY 0.0f      // rayDir.w: this element carries a ray
 #define GPURT_NO_RAY -2.0f    // rayDir.w: this element carries no ray in this trace
-#define GPURT_MISSED_BOX -1.0f // rayDir.w: a ray that misses the grid's box (a miss, counted)
 
 #endif

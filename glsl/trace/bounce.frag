@@ -77,7 +77,7 @@ void main() {
             if (children > 0) {
                 weight = vec4(weightA, 1.0f);
                 rayOrigin = vec4(o, GPURT_FAR);
-                rayDir = vec4(dirA, gridEntry(o, dirA, GPURT_FAR));
+                rayDir = vec4(dirA, GPURT_A_RAY);
                 depth += 1;
                 rays += 1;
             }
@@ -98,7 +98,7 @@ void main() {
         vec3 d = imageLoad(stackDir, at).xyz;
         weight = vec4(imageLoad(stackWeight, at).xyz, 1.0f);
         rayOrigin = vec4(o.xyz, GPURT_FAR);
-        rayDir = vec4(d, gridEntry(o.xyz, d, GPURT_FAR));
+        rayDir = vec4(d, GPURT_A_RAY);
         depth = int(o.w);
     }
     pathState = vec4(float(depth), float(height), float(rays - 1), 0.0f);

@@ -1,6 +1,7 @@
 // The contract camera as uniforms (GpuPipeline::setCamera), for the kernels that generate primary
 // rays: through the pixel centre (common/raymath.h cameraRayDirection), or through sample
 // `sampleIndex` of `sampleCount` of the pixel (common/sampling.h).
+#include "pixel.glsl"
 #include "../common/sampling.h"
 uniform vec3 eye;
 uniform vec3 forward;
@@ -14,7 +15,7 @@ uniform uint sampleCount;  // --spp (1: the pixel centre)
 uniform uint seed;         // --seed
 
 // The direction of this fragment's primary ray (stream row y = image row tileRow + y from the
-// top; scene.glsl imagePixel).
+// top; pixel.glsl imagePixel).
 vec3 primaryDirection() {
     vec2 pixel = vec2(imagePixel());
     return cameraRayDirection(forward, right, upOrtho, tanHalf, aspect, pixel.x, pixel.y,

@@ -111,7 +111,7 @@ void main() {
         return;
     }
     vec4 origin = vec4(o, GPURT_FAR);
-    vec4 direction = vec4(dir, gridEntry(o, dir, GPURT_FAR));
+    vec4 direction = vec4(dir, GPURT_A_RAY);
     vec4 state = vec4(pdf, float(pixel.x), float(pixel.y), 0.0f);
 #ifdef PACK
     uint k = imageAtomicAdd(pathCount, ivec2(0), 1u);

@@ -1,13 +1,12 @@
 // Primary ray generation (Purcell et al. 2002, 4.1; Christen 2005, 5.4.1): one ray per pixel
 // through the pixel centre, exactly the contract's camera (common/raymath.h), or, for --spp, through
 // the pass's sample of the pixel (common/sampling.h; one pass per sample). Rays that miss the
-// grid's box are marked rejected; the others start where they enter it (rayDir.w = tEnter).
-// (trace.frag with CAMERA generates the same rays itself when only the hits are wanted.)
+// (The grid's trace.frag with CAMERA generates the same rays itself when only the hits are wanted.)
 #include "scene.glsl"
 #include "camera.glsl"
 
 layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
-layout(location = 1) out vec4 rayDir;     // (d, tEnter | GPURT_MISSED_BOX)
+layout(location = 1) out vec4 rayDir;     // (d, GPURT_A_RAY)
 
 void main() {
 #ifdef PIXEL_CENTRE  // one sample a pixel: llvmpipe would run sampleDirection's jitter under masks
@@ -16,5 +15,5 @@ void main() {
     vec3 d = sampleDirection();
 #endif
     rayOrigin = vec4(eye, GPURT_FAR);
-    rayDir = vec4(d, gridEntry(eye, d, GPURT_FAR));
+    rayDir = vec4(d, GPURT_A_RAY);
 }

@@ -28,7 +28,7 @@ uniform vec3 lightPosition;
 #endif
 
 layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
-layout(location = 1) out vec4 rayDir;     // (d, tEnter | GPURT_MISSED_BOX | GPURT_NO_RAY)
+layout(location = 1) out vec4 rayDir;     // (d, GPURT_A_RAY | GPURT_NO_RAY)
 #ifdef EMITTER
 layout(location = 2) out vec4 lightSample;  // (q, emitting triangle | -1)
 #endif
@@ -72,5 +72,5 @@ void main() {
     shadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);
 #endif
     rayOrigin = vec4(o, tLimit);
-    rayDir = vec4(d, gridEntry(o, d, tLimit));
+    rayDir = vec4(d, GPURT_A_RAY);
 }

@@ -10,7 +10,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/RenderTypes.h"
 #include "scene/Scene.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 

@@ -1,28 +1,21 @@
-// The CPU backend: the same grid, the same traversal and the same shading as the GL kernels,
-// evaluated ray by ray in C++ with the shared raymath.h / shading.h. It is the reference the GL
-// backend is tested against and the fallback with --backend cpu.
+// The CPU backend: the same accelerator, traversal and shading as the GL kernels, evaluated ray by
+// ray in C++ with the shared code of glsl/common. It is the reference the GL backend is tested
+// against and the fallback with --backend cpu.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "raytrace/Camera.h"
 #include "raytrace/EmitterTable.h"
+#include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/RenderTypes.h"
 #include "scene/Scene.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
-
-// The result of one traversal. A miss has prim = -1 and t = +inf.
-struct TraceHit {
-    float t;
-    int prim;
-    float u, v;  // barycentrics of the hit (weights of v1 and v2)
-    int steps;   // grid cells visited
-    int state;   // RAY_DEAD (hit or left the grid), RAY_INACTIVE (missed the box), RAY_OVERFLOW
-};
 
 class CpuTracer {
   public:
@@ -62,19 +55,14 @@ class CpuTracer {
     bool emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
                         glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const;
 
-    template <bool AnyHit>
-    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;
-
     struct PreparedTriangle {
         glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
     };
 
     const Scene& scene_;
-    const UniformGrid& grid_;
+    std::unique_ptr<CpuAccelerator> accel_;
     std::vector<PreparedTriangle> triangles_;
-    float hitTolerance_;
     float rayOffset_;
-    int maxSteps_;
     EmitterTable emitters_;
 };
 

@@ -4,6 +4,7 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/SceneTextures.h"
+#include "raytrace/accel/GlAccelerator.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
 #include "stream/GPUMask.h"
@@ -18,7 +19,6 @@ namespace gpurt {
 // The full-size streams only some renders use (llvmpipe zeroes every texture it allocates, about
 // 8 ms per 16 MB stream at 1024x1024): the others are 1x1 and their kernels are not set up.
 struct StreamNeeds {
-    bool rayStates = true;  // dda: the trace loop in more than one pass (precalc, traverse, ...)
     bool emitters = true;   // lightSample: the emitters' sample points
     bool pathState = true;  // pathState: rays that spawn (Whitted's bounce) or the path integrator
     bool sums = true;       // sampleSum: more than one sample, or the viewer's progressive sums
@@ -30,8 +30,10 @@ struct GpuPipeline {
     using Needs = StreamNeeds;
     int width, height;
     Needs needs;
-    // Ray streams, rewritten for every trace (primary, shadow, mirror).
-    GPUFloatArray rayOrigin, rayDir, dda, voxel, hit;
+    // Ray streams, rewritten for every trace (primary, shadow, mirror), and the hits the
+    // accelerator traces them into (glsl/common/scene_layout.h).
+    GPUFloatArray rayOrigin, rayDir, hit;
+    GlAccelerator& accel;
     // Per-bounce surface records and the per-pixel accumulators of eq. 5.1.
     GPUFloatArray surfacePoint, surfaceNormal, surfaceView, surfaceShading, localColor, color, weight;
     // The sum of the samples so far of each pixel (--spp; the viewer's running mean).
@@ -54,36 +56,27 @@ struct GpuPipeline {
     GPUFloatArray nextOrigin, nextDir, nextWeight, nextState, nextColor, pathCount, pixelColor, pathLives;
     // The box of the elements that have a ray in the next round of the ray tree (bounce.frag).
     GPUFloatArray rayBounds;
-    GPUMask activeMask, waitMask;
     // The path integrator's masks: paths alive at the start of a round (its trace, surface and
     // bounce passes) and paths with a hit in it (the shadow rays' passes).
     GPUMask aliveMask, surfaceMask;
-    GPUKernel raygen, raygenCentre, precalc, traverse, intersect, surface, shadowgen, light, bounce, lastBounce, accumulate;
+    GPUKernel raygen, raygenCentre, surface, shadowgen, light, bounce, lastBounce, accumulate;
     // shadowgen and light for the emitters (area lights): one emitter point per sample.
     GPUKernel emitterShadowgen, emitterLight;
     // The path integrator's variants (PATH) and its bounce (pathbounce.frag).
     GPUKernel pathSurface, pathShadowgen, pathLight, pathEmitterShadowgen, pathBounce, pathPack, pathDeposit,
         pathAccumulate;
-    // The one-pass trace kernels for the masked path rounds.
-    GPUKernel pathTrace, pathTraceAny;
-    // The fused traverser-intersector (trace.frag), closest hit and any hit (shadow rays), and
-    // the whole primary trace in one pass, generating its own rays (no ray streams; hits only).
-    GPUKernel trace, traceAny, traceCamera;
 
-    // traverseSteps: cells per traverse pass of the split pair; fusedSteps: cells per pass of the
-    // fused kernels, 0 for the whole traversal in one pass. stackSlots: rays a pixel's stack can
-    // hold (0 where nothing spawns two rays: a scene without glass).
-    GpuPipeline(int w, int h, const SceneTextures& textures, int traverseSteps, MaskMode mask,
-                int fusedSteps = 0, int slots = 0, bool pathStreams = false, bool progressiveAovs = false,
-                Needs needed = {})
+    // stackSlots: rays a pixel's stack can hold (0 where nothing spawns two rays: a scene without
+    // glass). The accelerator's passes are attached to the ray streams.
+    GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelerator& accelerator, MaskMode mask,
+                int slots = 0, bool pathStreams = false, bool progressiveAovs = false, Needs needed = {})
         : width(w),
           height(h),
           needs(needed),
           rayOrigin(w, h, 4, "rayOrigin"),
           rayDir(w, h, 4, "rayDir"),
-          dda(needs.rayStates ? w : 1, needs.rayStates ? h : 1, 4, "dda"),
-          voxel(w, h, GPUFormat::RGBA32I, "voxel"),
           hit(w, h, 4, "hit"),
+          accel(accelerator),
           surfacePoint(w, h, 4, "surfacePoint"),
           surfaceNormal(w, h, 4, "surfaceNormal"),
           surfaceView(w, h, 4, "surfaceView"),
@@ -112,16 +105,10 @@ struct GpuPipeline {
           pixelColor(paths ? w : 1, paths ? h : 1, 4, "pixelColor"),
           pathLives(paths ? w : 1, paths ? h : 1, 1, "pathLives"),
           rayBounds(4, 1, GPUFormat::R32UI, "rayBounds"),
-          activeMask("active", mask, dda, 3, float(RAY_ACTIVE_VALUE), float(RAY_ACTIVE_VALUE)),
-          waitMask("wait", mask, dda, 3, float(RAY_WAIT_VALUE), float(RAY_WAIT_VALUE)),
           aliveMask("alive", mask, weight, 3, 1.0f, 1.0f),
           surfaceMask("surface", mask, surfacePoint, 3, 0.0f, 1e30f),
           raygen("raygen", "trace/raygen.frag"),
           raygenCentre("raygen", "trace/raygen.frag", {"PIXEL_CENTRE"}),  // a variant: the same pass in --stats
-          precalc("precalc", "trace/precalc.frag"),
-          traverse("traverse", "trace/traverse.frag",
-                   {"TRAVERSE_STEPS " + std::to_string(std::max(1, traverseSteps))}),
-          intersect("intersect", "trace/intersect.frag"),
           surface("surface", "trace/surface.frag"),
           shadowgen("shadowgen", "trace/shadowgen.frag"),
           light("light", "trace/light.frag"),
@@ -137,24 +124,11 @@ struct GpuPipeline {
           pathBounce("pathBounce", "trace/pathbounce.frag"),
           pathPack("pathPack", "trace/pathbounce.frag", {"PACK"}),
           pathDeposit("pathDeposit", "trace/pathdeposit.frag"),
-          pathAccumulate("pathAccumulate", "trace/accumulate.frag"),
-          pathTrace("pathTrace", "trace/trace.frag", traceDefines(0, false)),
-          pathTraceAny("pathTraceAny", "trace/trace.frag", traceDefines(0, true)),
-          trace("trace", "trace/trace.frag", traceDefines(fusedSteps, false)),
-          traceAny("traceAny", "trace/trace.frag", traceDefines(fusedSteps, true)),
-          traceCamera("traceCamera", "trace/trace.frag", cameraTraceDefines()) {
-        for (GPUKernel* k : allKernels()) textures.bind(*k);
+          pathAccumulate("pathAccumulate", "trace/accumulate.frag") {
+        accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
+        for (GPUKernel* k : ownKernels()) textures.bind(*k);
         raygen.addOutput(rayOrigin).addOutput(rayDir);
         raygenCentre.addOutput(rayOrigin).addOutput(rayDir);
-        if (needs.rayStates) {
-            precalc.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-            precalc.addOutput(dda).addOutput(voxel).addOutput(hit);
-            traverse.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-            traverse.addInOut(dda, "ddaState").addInOut(voxel, "voxel").setMask(&activeMask);
-            intersect.addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-            intersect.addInOut(dda, "ddaState").addInOut(voxel, "voxel").addInOut(hit, "hitState");
-            intersect.setMask(&waitMask);
-        }
         for (GPUKernel* k : {&surface, &pathSurface}) {
             k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addInput(hit, "hitState");
             k->addInput(weight, "weight").addInOut(color, "colorState");
@@ -210,44 +184,20 @@ struct GpuPipeline {
         pathDeposit.addInput(color, "colorState").addInput(weight, "weightState").addInput(pathState, "pathStateIn");
         pathDeposit.addImage(pixelColor, "pixelColor").addOutput(pathLives);
         if (needs.sums) pathAccumulate.addInput(pixelColor, "colorState").addInOut(sampleSum, "sumState");
-        for (GPUKernel* k : {&pathTrace, &pathTraceAny})
-            k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir").addOutput(voxel).addOutput(hit);
-        pathTrace.setMask(&aliveMask, false);
-        pathTraceAny.setMask(&surfaceMask, false);
-        for (GPUKernel* k : {&trace, &traceAny}) {
-            k->addInput(rayOrigin, "rayOrigin").addInput(rayDir, "rayDir");
-            if (fusedSteps > 0) {  // needs.rayStates
-                k->addInOut(dda, "ddaState").addInOut(voxel, "voxel").addOutput(hit);
-                k->setMask(&activeMask, false);  // the trace loop updates the mask and counts with it
-            } else {
-                k->addOutput(voxel).addOutput(hit);  // from the start: no mask, no ray state out
-            }
-        }
-        traceCamera.addOutput(voxel).addOutput(hit);
     }
 
-    std::array<GPUKernel*, 26> allKernels() {
-        return {&raygen, &raygenCentre, &precalc, &traverse, &intersect, &surface, &shadowgen, &light, &bounce, &lastBounce,
-                &accumulate, &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight,
-                &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit, &pathAccumulate, &pathTrace, &pathTraceAny, &trace, &traceAny,
-                &traceCamera};
+    // The integrators' kernels (the accelerator's are accel.kernels()).
+    std::array<GPUKernel*, 18> ownKernels() {
+        return {&raygen, &raygenCentre, &surface, &shadowgen, &light, &bounce, &lastBounce, &accumulate,
+                &emitterShadowgen, &emitterLight, &pathSurface, &pathShadowgen, &pathLight, &pathEmitterShadowgen,
+                &pathBounce, &pathPack, &pathDeposit, &pathAccumulate};
     }
-
-    // fusedSteps 0: the fused kernels start from the ray streams (FROM_START, no precalc pass) and
-    // take the whole traversal in one pass: the per-ray cell limit ends the kernel's loop.
-    static std::vector<std::string> traceDefines(int fusedSteps, bool anyHit) {
-        std::vector<std::string> defines;
-        if (fusedSteps > 0) defines.push_back("TRACE_STEPS " + std::to_string(fusedSteps));
-        else defines.insert(defines.end(), {"FROM_START", "TRACE_STEPS (1 << 30)"});
-        if (anyHit) defines.push_back("ANY_HIT");
-        return defines;
-    }
-
-    // The one-pass trace (traceDefines with no step limit) that generates its own primary rays.
-    static std::vector<std::string> cameraTraceDefines() {
-        std::vector<std::string> defines = traceDefines(0, false);
-        defines.push_back("CAMERA");
-        return defines;
+    // Every kernel of a render: the integrators' and the accelerator's.
+    std::vector<GPUKernel*> allKernels() {
+        const std::array<GPUKernel*, 18> own = ownKernels();
+        std::vector<GPUKernel*> all(own.begin(), own.end());
+        for (GPUKernel* k : accel.kernels()) all.push_back(k);
+        return all;
     }
 
     // The path rounds' passes over the first `rows` rows only, where the live paths are packed
@@ -255,16 +205,17 @@ struct GpuPipeline {
     void setPathRows(std::optional<int> rows) {
         const std::optional<StreamRect> rect =
             rows ? std::optional<StreamRect>(StreamRect{0, 0, width, *rows}) : std::nullopt;
-        for (GPUKernel* k : {&trace, &traceAny, &pathTrace, &pathTraceAny, &pathSurface, &pathShadowgen, &pathLight,
-                             &pathEmitterShadowgen, &pathBounce, &pathPack, &pathDeposit})
+        for (GPUKernel* k : {&pathSurface, &pathShadowgen, &pathLight, &pathEmitterShadowgen, &pathBounce, &pathPack,
+                             &pathDeposit})
             k->setRect(rect);
+        accel.setRect(rect);
     }
 
     // The ray tree's round passes over `rect` only (the box of the elements with rays), or all.
     void setRoundRect(std::optional<StreamRect> rect) {
-        for (GPUKernel* k : {&trace, &traceAny, &surface, &shadowgen, &light, &emitterShadowgen, &emitterLight, &bounce,
-                             &lastBounce})
+        for (GPUKernel* k : {&surface, &shadowgen, &light, &emitterShadowgen, &emitterLight, &bounce, &lastBounce})
             k->setRect(rect);
+        accel.setRect(rect);
     }
 
     // The path rounds' shading passes under the masks (GpuTracerOptions::maskPaths), or not.
@@ -284,7 +235,9 @@ struct GpuPipeline {
         // The image row of the streams' row 0 (--tile): the kernels that key samples by pixel or
         // aim the camera add it (scene.glsl imagePixel).
         for (GPUKernel* k : allKernels()) k->setUniform("tileRow", c.rowBegin);
-        for (GPUKernel* k : {&raygen, &raygenCentre, &traceCamera})
+        std::vector<GPUKernel*> cameras = accel.kernels();  // the accelerator's camera trace
+        cameras.insert(cameras.end(), {&raygen, &raygenCentre});
+        for (GPUKernel* k : cameras)
             k->setUniform("eye", c.eye)
                 .setUniform("forward", c.forward)
                 .setUniform("right", c.right)
@@ -304,10 +257,6 @@ struct GpuPipeline {
     // The pass that generates the primary rays of the current sample: the pixel centres' own
     // variant when there is one sample a pixel.
     GPUKernel& primaryRays() { return sampleCount_ == 1 ? raygenCentre : raygen; }
-
-    // The ray states as mask values (glsl/common/raymath.h).
-    static constexpr int RAY_ACTIVE_VALUE = 1;
-    static constexpr int RAY_WAIT_VALUE = 2;
 
   private:
     uint32_t sampleCount_ = 1;

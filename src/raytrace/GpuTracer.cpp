@@ -2,6 +2,7 @@
 
 #include "raytrace/GpuPipeline.h"
 #include "raytrace/RayMath.h"
+#include "raytrace/accel/grid/GridGl.h"
 
 #include "../../glsl/common/scene_layout.h"
 
@@ -15,7 +16,10 @@
 namespace gpurt {
 
 GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options)
-    : scene_(scene), grid_(grid), options_(options), textures_(scene, grid) {
+    : scene_(scene),
+      options_(options),
+      textures_(scene, grid.rayOffset()),
+      accel_(std::make_unique<GridGl>(scene, grid, options)) {
     for (uint32_t m : scene.materialIds) {
         hasDielectric_ = hasDielectric_ || scene.materials[m].ior > 0.0f;
         hasSecondary_ = hasSecondary_ || scene.materials[m].ior > 0.0f || scene.materials[m].reflectivity != glm::vec3(0.0f);
@@ -33,22 +37,13 @@ bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
     return true;
 }
 
-bool GpuTracer::onePassTrace() const {
-    return options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0;
-}
-
 int GpuTracer::stackSlots(const RenderSettings& settings) const {
     if (!hasDielectric_ || settings.integrator == Integrator::Path) return 0;
     return std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
 }
 
-int GpuTracer::cellLimit() const {
-    return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps();
-}
-
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums) {
     GpuPipeline::Needs needs;
-    needs.rayStates = !onePassTrace();
     needs.emitters = !textures_.emitterTable().empty();
     needs.pathState = paths || hasSecondary_;
     needs.sums = sums || progressive;
@@ -57,58 +52,10 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         !(pipeline_->needs == needs)) {
         pipeline_.reset();
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
-        const int steps = options_.traverseSteps;
-        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, steps > 0 ? steps : 16, mask, steps,
-                                                  stackSlots, paths, progressive, needs);
-        if (options_.maxCellSteps > 0)
-            for (GPUKernel* k : pipeline_->allKernels()) k->setUniform("maxCellSteps", cellLimit());
+        pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, stackSlots, paths, progressive,
+                                                  needs);
     }
     return *pipeline_;
-}
-
-// Voxel precalculation, then the trace loop.
-//
-// Fused with traverseSteps 0: one pass of the kernel that starts from the ray streams and takes
-// the whole traversal (no ray can still be ACTIVE after it: the per-ray cell limit ends the
-// kernel's loop first). Its count is the number of rays. Fused with N cells a pass: precalc,
-// then trace passes until the active mask counts no ray.
-//
-// Split: traverse and intersect until no ray is ACTIVE or WAITing (both counts zero). Every traverser pass moves each active ray at least one cell and every
-// intersector pass finishes or advances each waiting ray, so the loop is bounded by the cells a
-// ray can cross; reaching the bound throws (never a hang). Load balancing: the wait mask's own
-// pass counts the waiting rays, and the intersector is skipped while they are fewer than
-// waitThreshold of the live rays. Returns the rays traced.
-uint64_t GpuTracer::traceLoop(GpuPipeline& p, bool anyHit) {
-    const int maxCells = cellLimit();
-    if (options_.kernel == TraceKernel::Fused) {
-        GPUKernel& trace = anyHit ? p.traceAny : p.trace;
-        if (onePassTrace()) return trace.execute();  // from the start, whole traversal: one pass
-        const int steps = options_.traverseSteps;
-        const uint64_t rays = p.precalc.execute();
-        whileLoop("trace", maxCells / steps + 2, [&] {
-            if (const std::optional<uint64_t> active = p.activeMask.updateAndCount()) {
-                if (*active > 0) trace.dispatch();
-                return *active;
-            }
-            return trace.execute();  // no mask pass to count with (early exit)
-        });
-        return rays;
-    }
-    const uint64_t rays = p.precalc.execute();
-    const int limit = 2 * maxCells + 2;
-    const bool balance = options_.waitThreshold > 0.0f;
-    p.intersect.setMask(&p.waitMask, !balance);
-    whileLoop("trace", limit, [&] {
-        const uint64_t active = p.traverse.execute();
-        if (balance) {
-            const std::optional<uint64_t> waiting = p.waitMask.updateAndCount();
-            if (waiting && *waiting == 0) return active;
-            if (waiting && active > 0 && double(*waiting) < options_.waitThreshold * double(active + *waiting))
-                return active;  // keep traversing: too few rays would share the intersector pass
-        }
-        return active + p.intersect.execute();
-    });
-    return rays;
 }
 
 namespace {
@@ -164,7 +111,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 void GpuTracer::readHitAovs(GpuPipeline& p, RenderOutput& out) {
     const size_t pixels = size_t(p.width) * size_t(p.height);
     const auto hits = p.hit.download();
-    const auto cells = p.voxel.downloadInt();
+    const auto cells = accel_->steps().downloadInt();
     out.depth.resize(pixels);
     out.prim.resize(pixels);
     out.steps.resize(pixels);
@@ -174,8 +121,8 @@ void GpuTracer::readHitAovs(GpuPipeline& p, RenderOutput& out) {
         out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
         out.steps[i] = float(cells[i * 4 + 3]);
         // Overflow, counted for primary rays (their cell counts are read back anyway): with the
-        // grid's limit, reaching it is the only way to visit that many cells.
-        if (cells[i * 4 + 3] >= cellLimit()) ++out.stats.overflowRays;
+        // accelerator's limit, reaching it is the only way to visit that many cells.
+        if (cells[i * 4 + 3] >= accel_->stepLimit()) ++out.stats.overflowRays;
     }
 }
 
@@ -210,8 +157,7 @@ void GpuTracer::tracePath(GpuPipeline& p, const std::vector<PointLight>& lights,
     // The rays of the round; masked: the one-pass trace under the mask of the live paths (their
     // rays), or of those with a hit (their shadow rays).
     auto traceRound = [&](bool anyHit) -> uint64_t {
-        if (!masked || !onePassTrace()) return traceLoop(p, anyHit);
-        return (anyHit ? p.pathTraceAny : p.pathTrace).execute();
+        return accel_->trace(anyHit, masked ? (anyHit ? &p.surfaceMask : &p.aliveMask) : nullptr);
     };
     p.maskPaths(masked);
     p.color.fill(0.0f);
@@ -286,12 +232,12 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
     p.bounce.setUniform("maxBounces", std::max(0, maxBounces));
     p.setRoundRect(std::nullopt);
     // The rounds after the first cover the box of the elements with rays (bounce.frag); only for
-    // the one-pass trace, whose passes need no mask over the whole image.
-    const bool boxed = onePassTrace();
+    // a one-pass trace, whose passes need no mask over the whole image.
+    const bool boxed = !accel_->needsRayStates();
     const uint32_t emptyBox[4] = {UINT32_MAX, UINT32_MAX, 0, 0};
     // Each round traces one ray of each pixel's tree; a tree has at most GPURT_TREE_RAYS rays.
     for (int b = 0; b < GPURT_TREE_RAYS; ++b) {
-        const uint64_t rays = traceLoop(p, false);
+        const uint64_t rays = accel_->trace(false);
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
         if (b > 0 && rays == 0) break;  // every tree is done (the count ends the loop)
         if (b == 0 && aovs) readHitAovs(p, *aovs);  // before shadow rays reuse the ray streams
@@ -300,7 +246,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
         if (maxBounces < 0) return;
         for (const PointLight& l : lights) {
             p.shadowgen.setUniform("lightPosition", l.position).dispatch();
-            stats.shadowRays += traceLoop(p, true);
+            stats.shadowRays += accel_->trace(true);
             p.light.setUniform("lightPosition", l.position)
                 .setUniform("lightColor", l.color)
                 .setUniform("lightIntensity", l.intensity)
@@ -308,7 +254,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
         }
         if (!textures_.emitterTable().empty()) {
             p.emitterShadowgen.setUniform("bounce", unsigned(b)).dispatch();  // the round's dimension
-            stats.shadowRays += traceLoop(p, true);
+            stats.shadowRays += accel_->trace(true);
             p.emitterLight.dispatch();
         }
         if (maxBounces == 0 || !hasSecondary_) {  // no ray spawns: the next round would trace none
@@ -336,7 +282,7 @@ GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const Render
     p.setCamera(camera);
     traceSample(p, progressive_.lights, -1, false, progressive_.output);  // pixel centres
     p.aovHit.copyFrom(p.hit);
-    p.aovCells.copyFrom(p.voxel);
+    p.aovCells.copyFrom(accel_->steps());
     p.aovNormal.copyFrom(p.surfaceNormal);
     p.sampleSum.fill(0.0f);
     return p;
@@ -353,15 +299,13 @@ void GpuTracer::addSample(uint32_t s, uint32_t n) {
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
     GpuPipeline& p = pipeline(camera.width, camera.rows());
     p.setCamera(camera);
-    uint64_t rays = 0;
-    if (onePassTrace()) {
-        rays = p.traceCamera.execute();  // one pass: the rays are generated in the trace kernel
-    } else {
+    std::optional<uint64_t> rays = accel_->traceCamera();
+    if (!rays) {
         p.primaryRays().dispatch();
-        rays = traceLoop(p, false);
+        rays = accel_->trace(false);
     }
     glFinish();
-    return rays;
+    return *rays;
 }
 
 void GpuTracer::setRays(const RayStream& rays) {
@@ -371,9 +315,7 @@ void GpuTracer::setRays(const RayStream& rays) {
     for (size_t i = 0; i < n; ++i) {
         const glm::vec3 o = rays.origin[i], d = rays.direction[i];
         const float tLimit = rays.tLimit[i];
-        // The grid entry, as gridEntry() in trace/scene.glsl (-1 is GPURT_MISSED_BOX).
-        const float w = tLimit >= 0.0f ? raymath::boxEntry(o, d, tLimit, grid_.min, grid_.max) : GPURT_NO_RAY;
-        const float ray[8] = {o.x, o.y, o.z, tLimit, d.x, d.y, d.z, w};
+        const float ray[8] = {o.x, o.y, o.z, tLimit, d.x, d.y, d.z, tLimit >= 0.0f ? GPURT_A_RAY : GPURT_NO_RAY};
         std::copy(ray, ray + 4, origin.begin() + std::ptrdiff_t(4 * i));
         std::copy(ray + 4, ray + 8, direction.begin() + std::ptrdiff_t(4 * i));
     }
@@ -383,7 +325,7 @@ void GpuTracer::setRays(const RayStream& rays) {
 
 uint64_t GpuTracer::traceRays(bool anyHit) {
     if (!pipeline_) throw UsageError("GpuTracer::traceRays before setRays");
-    const uint64_t rays = traceLoop(*pipeline_, anyHit);
+    const uint64_t rays = accel_->trace(anyHit);
     glFinish();
     return rays;
 }

@@ -5,10 +5,12 @@
 #pragma once
 
 #include "raytrace/Camera.h"
+#include "raytrace/GlOptions.h"
 #include "raytrace/RenderTypes.h"
 #include "scene/Scene.h"
 #include "raytrace/SceneTextures.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/GlAccelerator.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/GPUMask.h"
 
 #include <memory>
@@ -18,36 +20,6 @@
 namespace gpurt {
 
 struct GpuPipeline;
-
-// How the trace loop is split into kernels (docs/PERFORMANCE.md measures both).
-enum class TraceKernel {
-    Fused,  // trace.frag: traversal and intersection in one kernel (the default)
-    Split,  // traverse.frag then intersect.frag, the Purcell/Christen pair
-};
-
-const char* traceKernelName(TraceKernel kernel);
-bool parseTraceKernel(const std::string& text, TraceKernel& kernel);
-
-struct GpuTracerOptions {
-    MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
-    // Grid cells per pass; 0: the kernel's default (split: 16 per traverser pass, fused: the
-    // whole traversal in one pass). 1 with Split is the seed.
-    int traverseSteps = 0;
-    // Load balancing (Christen 2005, 5.6), Split only: the intersector runs only once at least
-    // this fraction of the live rays wait (or none is active any more). 0: after every traverser
-    // pass.
-    float waitThreshold = 0.0f;
-    TraceKernel kernel = TraceKernel::Fused;
-    // Cells a ray may visit before it is stopped (RAY_OVERFLOW) and counted in
-    // RenderStats::overflowRays; 0: UniformGrid::maxCellSteps(), which no ray reaches. Tests
-    // lower it to see that reaching it is reported.
-    int maxCellSteps = 0;
-    // The path integrator's rounds: run the trace and shading passes under masks of the live
-    // paths (the pipeline's mask mode) rather than leaving dead paths to each kernel's early exit.
-    // Off by default: slower on llvmpipe (docs/PERFORMANCE.md).
-    bool maskPaths = false;
-};
-
 
 class GpuTracer {
   public:
@@ -86,7 +58,6 @@ class GpuTracer {
     // progressive: the viewer's AOV copies).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
                           bool sums = false);
-    uint64_t traceLoop(GpuPipeline& p, bool anyHit);
     void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
                      bool readAovs, RenderOutput& out);
     // One sample of every pixel under the path integrator, as rounds of passes over the paths
@@ -100,17 +71,14 @@ class GpuTracer {
     // shading passes reuse them), and the normal AOV after the surface pass.
     void readHitAovs(GpuPipeline& p, RenderOutput& out);
     void readNormalAov(GpuPipeline& p, RenderOutput& out);
-    int cellLimit() const;  // options_.maxCellSteps or the grid's
     // Rays a pixel's stack holds for Whitted's ray tree (0 without glass, where nothing splits,
     // and for the path integrator, which takes one direction a hit).
     int stackSlots(const RenderSettings& settings) const;
-    // The fused kernel from the start with the whole traversal in one pass (the default).
-    bool onePassTrace() const;
 
     const Scene& scene_;
-    const UniformGrid& grid_;
     GpuTracerOptions options_;
     SceneTextures textures_;
+    std::unique_ptr<GlAccelerator> accel_;
     std::unique_ptr<GpuPipeline> pipeline_;
     bool hasDielectric_ = false;  // some triangle is glass: the ray tree needs its stacks
     bool hasSecondary_ = false;   // some triangle is a mirror or glass: rays spawn

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "raytrace/SceneLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 

@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/Scene.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 

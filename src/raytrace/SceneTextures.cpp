@@ -6,12 +6,14 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <string>
 
 namespace gpurt {
 
 namespace {
 using namespace glm;
 #include "../../glsl/common/scene_layout.h"
+}  // namespace
 
 void checkFits(const char* what, size_t width, size_t rows) {
     GLint maxSize = 0;
@@ -35,8 +37,7 @@ void checkFitsBuffer(const char* what, size_t width, size_t rows) {
                                std::to_string(maxTexels));
 }
 
-GPUFloatArray upload(const TextureTexels& texels, GPUFormat format,
-                     GPUStorage storage = GPUStorage::Texture2D) {
+GPUFloatArray uploadTexels(const TextureTexels& texels, GPUFormat format, GPUStorage storage) {
     GPUFloatArray array(texels.width, texels.rows, format, texels.name, storage);
     if (texels.isFloat)
         array.upload(texels.floats);
@@ -45,19 +46,9 @@ GPUFloatArray upload(const TextureTexels& texels, GPUFormat format,
     return array;
 }
 
+namespace {
+
 // Each texture's size is checked against the GL before its texels are laid out.
-GPUFloatArray makeVoxelIndex(const UniformGrid& grid) {
-    checkFitsBuffer("voxel index", GPURT_INDEX_WIDTH,
-                    textureRowsFor(grid.cells(), GPURT_INDEX_WIDTH));
-    return upload(voxelIndexTexels(grid), GPUFormat::RG32UI, GPUStorage::Buffer);
-}
-
-GPUFloatArray makeCellTriangles(const Scene& scene, const UniformGrid& grid) {
-    checkFitsBuffer("cell triangle", 3 * GPURT_REFS_PER_ROW,
-                    textureRowsFor(grid.cellTriangles.size(), GPURT_REFS_PER_ROW));
-    return upload(cellTriangleTexels(scene, grid), GPUFormat::RGBA32F, GPUStorage::Buffer);
-}
-
 GPUFloatArray makeTriangles(const Scene& scene) {
     const size_t n = scene.triangles.size();
     if (n > kMaxTextureTriangles)
@@ -65,49 +56,47 @@ GPUFloatArray makeTriangles(const Scene& scene) {
                                " triangles; the GL backend carries triangle ids as float32, exact "
                                "only below 16777216 (2^24)");
     checkFits("triangle", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(n, GPURT_TRIANGLES_PER_ROW));
-    return upload(triangleTexels(scene), GPUFormat::RGBA32F);
+    return uploadTexels(triangleTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
 GPUFloatArray makeMaterials(const Scene& scene) {
     checkFits("material", std::max<size_t>(1, scene.materials.size()) * GPURT_MATERIAL_TEXELS, 1);
-    return upload(materialTexels(scene), GPUFormat::RGBA32F);
+    return uploadTexels(materialTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
 GPUFloatArray makeVertexNormals(const Scene& scene) {
     checkFits("vertex normal", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(scene.normals.size(), GPURT_TRIANGLES_PER_ROW));
-    return upload(vertexNormalTexels(scene), GPUFormat::RGBA32F);
+    return uploadTexels(vertexNormalTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
 GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
-    return upload(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
+    return uploadTexels(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
 }
 
 GPUFloatArray makeTexcoords(const Scene& scene) {
     checkFits("texture coordinate", GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW,
               textureRowsFor(scene.texcoords.size(), GPURT_TRIANGLES_PER_ROW));
-    return upload(texcoordTexels(scene), GPUFormat::RGBA32F);
+    return uploadTexels(texcoordTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
 GPUFloatArray makeTextureTexels(const Scene& scene) {
     size_t n = 0;
     for (const Texture& t : scene.textures) n += t.image.texels.size();
     checkFitsBuffer("texture image", GPURT_INDEX_WIDTH, textureRowsFor(n, GPURT_INDEX_WIDTH));
-    return upload(textureImageTexels(scene), GPUFormat::R32UI, GPUStorage::Buffer);
+    return uploadTexels(textureImageTexels(scene), GPUFormat::R32UI, GPUStorage::Buffer);
 }
 
 GPUFloatArray makeTextureTable(const Scene& scene) {
     checkFitsBuffer("texture", std::max<size_t>(1, scene.textures.size()), 1);
-    return upload(textureTableTexels(scene), GPUFormat::RGBA32UI, GPUStorage::Buffer);
+    return uploadTexels(textureTableTexels(scene), GPUFormat::RGBA32UI, GPUStorage::Buffer);
 }
 
 }  // namespace
 
-SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
-    : grid_(grid),
-      voxelIndex_(makeVoxelIndex(grid)),
+SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
+    : rayOffset_(rayOffset),
       triangles_(makeTriangles(scene)),
-      cellTriangles_(makeCellTriangles(scene, grid)),
       materials_(makeMaterials(scene)),
       vertexNormals_(makeVertexNormals(scene)),
       hasVertexNormals_(!scene.normals.empty()),
@@ -117,7 +106,10 @@ SceneTextures::SceneTextures(const Scene& scene, const UniformGrid& grid)
       hasTexcoords_(!scene.texcoords.empty()),
       textureTexels_(makeTextureTexels(scene)),
       textureTable_(makeTextureTable(scene)),
-      srgbTable_(upload(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)) {}
+      srgbTable_(uploadTexels(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)) {
+    for (const Material& m : scene.materials)
+        if (m.model != 0) models_.insert(m.model);
+}
 
 void SceneTextures::bind(GPUKernel& kernel) const {
     // What the scene has, as defines: llvmpipe runs both sides of a branch under masks, so code
@@ -125,9 +117,8 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
-    kernel.addInput(voxelIndex_, "voxelIndex")
-        .addInput(cellTriangles_, "cellTriangles")
-        .addInput(triangles_, "triangles")
+    for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
+    kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .addInput(vertexNormals_, "vertexNormals")
         .addInput(emitters_, "emitters")
@@ -137,18 +128,12 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(textureTexels_, "textureTexels")
         .addInput(textureTable_, "textureTable")
         .addInput(srgbTable_, "srgbTable")
-        .setUniform("gridMin", grid_.min)
-        .setUniform("gridMax", grid_.max)
-        .setUniform("cellSize", grid_.cellSize)
-        .setUniform("gridRes", grid_.resolution)
-        .setUniform("cellTolerance", grid_.hitTolerance())
-        .setUniform("maxCellSteps", grid_.maxCellSteps())
-        .setUniform("rayOffset", grid_.rayOffset());
+        .setUniform("rayOffset", rayOffset_);
 }
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
-    return size(voxelIndex_) + size(cellTriangles_) + size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
+    return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
            size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_);
 }
 

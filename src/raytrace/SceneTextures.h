@@ -1,30 +1,39 @@
-// The scene in textures (Purcell et al. 2002, 3.1; Christen 2005, 5.3): the uniform grid's voxel
-// index and element lists, the triangles and the materials, laid out as glsl/common/
-// scene_layout.h says. Indices are exact: integer textures for the index and lists, and triangle
+// The scene in textures (Purcell et al. 2002, 3.1; Christen 2005, 5.3) for the integrators'
+// kernels: the triangles, materials, vertex normals, texture coordinates, textures and emitters,
+// laid out as glsl/common/scene_layout.h says. The accelerator uploads its own (accel/). Triangle
 // ids (carried as floats in the hit stream) are checked against 2^24.
 #pragma once
 
 #include "raytrace/EmitterTable.h"
 #include "scene/Scene.h"
-#include "raytrace/UniformGrid.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
 
+#include <set>
+
 namespace gpurt {
+
+struct TextureTexels;
+
+// Throw EnvironmentError naming `what` when a texture of width x rows texels, or a buffer texture
+// of that many, does not fit the GL's limits.
+void checkFits(const char* what, size_t width, size_t rows);
+void checkFitsBuffer(const char* what, size_t width, size_t rows);
+// A GL texture (or buffer texture) holding `texels`.
+GPUFloatArray uploadTexels(const TextureTexels& texels, GPUFormat format, GPUStorage storage);
 
 class SceneTextures {
   public:
     // Throws EnvironmentError when the scene does not fit the GL limits or the exact-index limits.
-    SceneTextures(const Scene& scene, const UniformGrid& grid);
+    // rayOffset: how far secondary rays start off a surface (UniformGrid::rayOffset).
+    SceneTextures(const Scene& scene, float rayOffset);
 
-    // Adds the scene textures as inputs of `kernel` (samplers voxelIndex, cellTriangles, triangles,
-    // materials, vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable,
-    // srgbTable) and sets the grid, emitter and texture uniforms.
+    // Adds the scene textures as inputs of `kernel` (samplers triangles, materials,
+    // vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable, srgbTable), sets
+    // the emitter uniforms and rayOffset, and defines what the scene has (SCENE_*).
     void bind(GPUKernel& kernel) const;
 
-    const GPUFloatArray& voxelIndex() const { return voxelIndex_; }
     const GPUFloatArray& triangles() const { return triangles_; }
-    const GPUFloatArray& cellTriangles() const { return cellTriangles_; }
     const GPUFloatArray& materials() const { return materials_; }
     const GPUFloatArray& vertexNormals() const { return vertexNormals_; }
     const GPUFloatArray& emitters() const { return emitters_; }
@@ -36,10 +45,8 @@ class SceneTextures {
     size_t bytes() const;
 
   private:
-    const UniformGrid& grid_;
-    GPUFloatArray voxelIndex_;
+    float rayOffset_;
     GPUFloatArray triangles_;
-    GPUFloatArray cellTriangles_;
     GPUFloatArray materials_;
     GPUFloatArray vertexNormals_;
     bool hasVertexNormals_;
@@ -50,6 +57,7 @@ class SceneTextures {
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;
+    std::set<int> models_;  // the material models other than the classic one (0) the scene uses
 };
 
 }  // namespace gpurt

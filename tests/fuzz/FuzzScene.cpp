@@ -14,7 +14,7 @@
 #include "raytrace/CpuTracer.h"
 #include "image/InputError.h"
 #include "raytrace/SceneScale.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::fuzz {
 namespace {

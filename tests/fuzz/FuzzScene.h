@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "scene/Scene.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::fuzz {
 

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "raytrace/RayMath.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 namespace {

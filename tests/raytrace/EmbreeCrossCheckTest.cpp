@@ -12,7 +12,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 namespace {

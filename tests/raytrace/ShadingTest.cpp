@@ -8,7 +8,7 @@
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/RayMath.h"
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"

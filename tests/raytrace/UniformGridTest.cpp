@@ -1,7 +1,7 @@
 // Uniform grid construction: no (triangle, cell) overlap may be missing (checked against an
 // independent brute force that clips each triangle to each cell), the lists are well formed and
 // the same for any thread count, and the box and resolution follow the stated rules.
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 #include <algorithm>
 #include <cmath>

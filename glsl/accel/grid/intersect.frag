@@ -3,7 +3,7 @@
 // parameter plus a small tolerance): a triangle that spans several cells must not end the ray
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
-#include "scene.glsl"
+#include "grid.glsl"
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;

@@ -8,9 +8,9 @@
 // triangle hit before the ray's limit ends the ray: whether it is blocked is all a shadow ray asks.
 // With CAMERA (and FROM_START) the kernel generates the camera's primary rays itself, as
 // raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
-#include "scene.glsl"
+#include "grid.glsl"
 #ifdef CAMERA
-#include "camera.glsl"
+#include "trace/camera.glsl"
 #endif
 
 #ifndef TRACE_STEPS
@@ -48,12 +48,14 @@ void main() {
     float tLimit = origin.w;
     vec4 dir = readStream(rayDir);
     vec3 d = dir.xyz;
-    float tEnter = dir.w;
+#ifdef FROM_START
+    if (dir.w == GPURT_NO_RAY) discard;
+    float tEnter = gridEntry(o, d, tLimit);
+#endif
 #endif
 #ifdef FROM_START
     // The whole traversal in this pass, so the voxel precalculation (precalc.frag) is done here
     // and needs no pass of its own.
-    if (tEnter == GPURT_NO_RAY) discard;
     if (tEnter == GPURT_MISSED_BOX) {
         voxelOut = ivec4(0);
         hitOut = vec4(GPURT_FAR, 0.0f, 0.0f, -1.0f);

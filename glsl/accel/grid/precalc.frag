@@ -4,7 +4,7 @@
 // index (common/raymath.h), which costs a few multiplies instead of a texture fetch and does not
 // drift. Elements without a ray this trace are discarded: their streams keep the terminal state
 // of an earlier trace, and the occlusion count of this pass is the number of rays.
-#include "scene.glsl"
+#include "grid.glsl"
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
@@ -16,15 +16,17 @@ layout(location = 2) out vec4 hit;     // (t, u, v, triangle | -1)
 void main() {
     vec4 dir = readStream(rayDir);
     if (dir.w == GPURT_NO_RAY) discard;
+    vec4 origin = readStream(rayOrigin);
+    float tEnter = gridEntry(origin.xyz, dir.xyz, origin.w);
     hit = vec4(GPURT_FAR, 0.0f, 0.0f, -1.0f);
-    if (dir.w == GPURT_MISSED_BOX) {
+    if (tEnter == GPURT_MISSED_BOX) {
         dda = vec4(GPURT_FAR, GPURT_FAR, GPURT_FAR, float(RAY_INACTIVE));
         voxel = ivec4(0);
         return;
     }
     ivec3 cell;
     vec3 tMax;
-    ddaSetup(readStream(rayOrigin).xyz, dir.xyz, dir.w, gridMin, cellSize, gridRes, cell, tMax);
+    ddaSetup(origin.xyz, dir.xyz, tEnter, gridMin, cellSize, gridRes, cell, tMax);
     dda = vec4(tMax, float(RAY_ACTIVE));
     voxel = ivec4(cell, 0);
 }

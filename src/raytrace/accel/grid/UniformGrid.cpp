@@ -4,7 +4,7 @@
 // test in double precision against cells enlarged by a small fraction of the cell size, so a
 // triangle on or near a cell boundary is entered into both cells: an extra reference costs one
 // intersection test, a missing one is a hole in the image.
-#include "raytrace/UniformGrid.h"
+#include "raytrace/accel/grid/UniformGrid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // ACTIVE rays. A non-empty cell puts the ray in WAIT for the intersector; leaving the grid or
 // passing the ray's limit makes it DEAD (a miss). The seed takes one cell per pass; this kernel
 // takes up to TRAVERSE_STEPS cells per pass (a define), trading passes for divergence.
-#include "scene.glsl"
+#include "grid.glsl"
 
 #ifndef TRAVERSE_STEPS
 #define TRAVERSE_STEPS 1

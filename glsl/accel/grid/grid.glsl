@@ -1,0 +1,35 @@
+// The uniform grid accelerator's scene textures and parameters (accel/grid/GridGl binds them),
+// for its kernels: precalc, traverse, intersect and the fused trace.
+#include "trace/pixel.glsl"
+
+uniform usamplerBuffer voxelIndex;   // (list start, count) per cell
+uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
+
+uniform vec3 gridMin;
+uniform vec3 gridMax;
+uniform vec3 cellSize;
+uniform ivec3 gridRes;
+uniform float cellTolerance;  // a hit up to this far beyond the cell's exit still counts in it
+uniform int maxCellSteps;     // more cells than a ray can cross: RAY_OVERFLOW
+
+#define GPURT_MISSED_BOX -1.0f  // gridEntry of a ray that misses the grid's box (a miss, counted)
+
+// (start, count) of the triangle list of cell v.
+uvec2 cellRange(ivec3 v) {
+    uint c = uint(v.x + gridRes.x * (v.y + gridRes.y * v.z));
+    return texelFetch(voxelIndex, int(c)).xy;
+}
+
+// Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.
+int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2) {
+    int at = int(3u * k);
+    vec4 a = texelFetch(cellTriangles, at);
+    v0 = a.xyz;
+    e1 = texelFetch(cellTriangles, at + 1).xyz;
+    e2 = texelFetch(cellTriangles, at + 2).xyz;
+    return int(a.w);
+}
+
+// The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX (-1) when the
+// segment [0, tLimit] misses the box.
+float gridEntry(vec3 o, vec3 d, float tLimit) { return boxEntry(o, d, tLimit, gridMin, gridMax); }

@@ -1,0 +1,35 @@
+// The uniform grid as the cpu backend's accelerator: the per-ray loop that the grid's kernels
+// (glsl/accel/grid/) run as passes, with the same float operations (glsl/common/raymath.h).
+#pragma once
+
+#include <vector>
+
+#include "raytrace/accel/CpuAccelerator.h"
+#include "raytrace/accel/grid/UniformGrid.h"
+#include "scene/Scene.h"
+
+namespace gpurt {
+
+class GridCpu final : public CpuAccelerator {
+  public:
+    // Keeps a reference to the grid: it must outlive the accelerator.
+    GridCpu(const Scene& scene, const UniformGrid& grid);
+
+    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return traceRay<false>(o, d, tLimit); }
+    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return traceRay<true>(o, d, tLimit); }
+
+  private:
+    template <bool AnyHit>
+    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;
+
+    struct PreparedTriangle {
+        glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
+    };
+
+    const UniformGrid& grid_;
+    std::vector<PreparedTriangle> triangles_;
+    float hitTolerance_;
+    int maxSteps_;
+};
+
+}  // namespace gpurt
