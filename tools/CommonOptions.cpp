@@ -64,15 +64,8 @@ glm::ivec2 parseSize(const std::string& option, const std::string& text) {
     return {w, h};
 }
 
-void checkRenderFitsInMemory(glm::ivec2 size, bool gl, bool paths) {
-    // Peak resident memory measured at 1024x1024 and 2048x2048 with every AOV (llvmpipe, Mesa
-    // 22.3): about 232 bytes a pixel for GL (eleven RGBA32F streams, masks, read-backs), 48 for
-    // the CPU backend, plus a fixed part; rounded up. The pictures' streams (sample sums, light
-    // samples, path state, shading normals, the viewer's AOV copies: 7 x 16 bytes) are added by
-    // count, not measured; a glass scene's ray stacks (48 bytes a slot, up to 8) are not counted.
-    const double pixels = double(size.x) * double(size.y);
-    // The path integrator's packed streams on GL: 8 more (7 x 16 bytes and 4).
-    const double needed = (gl ? 256.0 + 112.0 + (paths ? 116.0 : 0.0) : 64.0) * pixels + 256e6;
+void checkRenderFitsInMemory(glm::ivec2 size, Backend backend, Integrator integrator) {
+    const double needed = renderBytes(backend, integrator, double(size.x) * double(size.y));
     std::ifstream meminfo("/proc/meminfo");
     std::string key;
     double availableKiB = 0.0;
@@ -89,7 +82,7 @@ void checkRenderFitsInMemory(glm::ivec2 size, bool gl, bool paths) {
         std::snprintf(text, sizeof text,
                       "--size %dx%d: the %s backend needs about %.1f GB, only %.1f GB of memory "
                       "is available",
-                      size.x, size.y, gl ? "gl" : "cpu", needed / 1e9, availableKiB * 1024.0 / 1e9);
+                      size.x, size.y, backend == Backend::Gl ? "gl" : "cpu", needed / 1e9, availableKiB * 1024.0 / 1e9);
         throw EnvironmentError(text);
     }
 }

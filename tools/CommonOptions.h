@@ -5,7 +5,8 @@
 #include "raytrace/Camera.h"
 #include "image/Colour.h"
 #include "image/InputError.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/GlOptions.h"
+#include "raytrace/Renderer.h"
 #include "scene/Scene.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
@@ -50,10 +51,10 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with 1 <= W, H <= 16384 and W * H <= 8192 * 8192.
 glm::ivec2 parseSize(const std::string& option, const std::string& text);
 
-// Throws EnvironmentError (exit 2) when a render of `size` on the GL (`gl`) or CPU backend would
+// Throws EnvironmentError (exit 2) when a render of `size` (raytrace/Renderer.h renderBytes) would
 // need more memory than the machine has available (MemAvailable): Linux overcommits, so past
 // that point the render would be killed instead of failing cleanly.
-void checkRenderFitsInMemory(glm::ivec2 size, bool gl, bool paths = false);
+void checkRenderFitsInMemory(glm::ivec2 size, Backend backend, Integrator integrator);
 
 // Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
 inline const CLI::Validator kNotEmpty(

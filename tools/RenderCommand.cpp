@@ -8,8 +8,7 @@
 #include "image/AtomicFile.h"
 #include "image/Colour.h"
 #include "image/ExrIO.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/Renderer.h"
 #include "image/ImageIO.h"
 #include "raytrace/SceneScale.h"
 #include "scene/SmoothNormals.h"
@@ -236,8 +235,8 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
     outputs.commit();
 }
 
-int runRender(const RenderOptions& o) {
-    // Everything that can be refused is checked before anything is rendered or written.
+// The files of the render: -o and each --aov NAME=FILE, checked before anything is rendered.
+OutputFiles outputNames(const RenderOptions& o) {
     OutputFiles names;
     names.png = o.output;
     for (const std::string& a : o.aovs) {
@@ -250,29 +249,71 @@ int runRender(const RenderOptions& o) {
         if (names.aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         names.aovs[name] = a.substr(eq + 1);
     }
-    // --frames: every output name holds the frame number; the first frame's names are checked.
-    const bool animated = !o.frames.empty();
-    int firstFrame = 0, lastFrame = 0;
-    if (animated) {
-        parseFrames(o.frames, firstFrame, lastFrame);
-        checkFramePattern("-o", names.png);
-        for (const auto& [name, file] : names.aovs) checkFramePattern("--aov " + name, file);
-    }
-    auto frameFiles = [&](int frame) {
+    return names;
+}
+
+// --frames A:B, or the only image: which frames and each frame's file names (every name holds
+// the frame number when animated).
+struct Frames {
+    bool animated = false;
+    int first = 0, last = 0;
+    OutputFiles names;
+
+    OutputFiles files(int frame) const {
         if (!animated) return names;
-        OutputFiles files{frameFileName(names.png, frame), {}};
-        for (const auto& [name, file] : names.aovs) files.aovs[name] = frameFileName(file, frame);
-        return files;
-    };
-    {
-        const OutputFiles first = frameFiles(firstFrame);
-        std::vector<std::filesystem::path> outputPaths = {first.png};
-        for (const auto& [name, file] : first.aovs) outputPaths.push_back(file);
-        checkOutputPaths(outputPaths);
+        OutputFiles f{frameFileName(names.png, frame), {}};
+        for (const auto& [name, file] : names.aovs) f.aovs[name] = frameFileName(file, frame);
+        return f;
     }
+};
+
+// The frames and their names, checked (the first frame's paths must be writable).
+Frames renderFrames(const RenderOptions& o) {
+    Frames frames;
+    frames.names = outputNames(o);
+    frames.animated = !o.frames.empty();
+    if (frames.animated) {
+        parseFrames(o.frames, frames.first, frames.last);
+        checkFramePattern("-o", frames.names.png);
+        for (const auto& [name, file] : frames.names.aovs) checkFramePattern("--aov " + name, file);
+    }
+    const OutputFiles first = frames.files(frames.first);
+    std::vector<std::filesystem::path> outputPaths = {first.png};
+    for (const auto& [name, file] : first.aovs) outputPaths.push_back(file);
+    checkOutputPaths(outputPaths);
+    return frames;
+}
+
+// Every frame's camera, before anything is rendered (an interpolated camera can be unusable), each
+// for the tile's rows when `tile` (its place filled in).
+std::vector<CameraBasis> frameCameras(const RenderOptions& o, const Frames& frames, const LoadedScene& loaded,
+                                      glm::ivec2 size, int scaleExponent, TileInfo* tile) {
+    if (tile) parseTile(o.tile, size.y, tile->tile, tile->tiles);
+    std::vector<CameraBasis> cameras;
+    for (int frame = frames.first; frame <= frames.last; ++frame) {
+        try {
+            cameras.push_back(o.camera.camera(loaded.scene, size, scaleExponent,
+                                              frames.animated ? std::optional(frame) : std::nullopt));
+        } catch (const InputError& e) {
+            if (!frames.animated) throw;
+            throw InputError(o.scene + ": frame " + std::to_string(frame) + ": " + e.what());
+        }
+        if (tile) tileRows(size.y, tile->tile, tile->tiles, cameras.back().rowBegin, cameras.back().rowCount);
+    }
+    if (tile) {
+        tile->width = size.x;
+        tile->height = size.y;
+        tile->row = cameras.front().rowBegin;
+        tile->rows = cameras.front().rowCount;
+    }
+    return cameras;
+}
+
+int runRender(const RenderOptions& o) {
+    // Everything that can be refused is checked before anything is rendered or written.
+    const Frames frames = renderFrames(o);
     const PictureCliOptions::Values picture = o.picture.values();
-    const ColourSettings& colour = picture.colour;
-    const GpuTracerOptions tracerOptions = o.tracer.options();
+    const Backend backend = o.backend == "cpu" ? Backend::Cpu : Backend::Gl;
 
     Phases phases;
     auto phaseStart = std::chrono::steady_clock::now();
@@ -280,30 +321,13 @@ int runRender(const RenderOptions& o) {
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     phases.load = msSince(phaseStart);
     const Scene& scene = loaded.scene;
-    if (animated && !scene.animation)
+    if (frames.animated && !scene.animation)
         throw InputError("--frames: " + o.scene + " has no camera animation (a JSON scene's \"animation\")");
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    checkRenderFitsInMemory(size, o.backend != "cpu", picture.integrator == Integrator::Path);
+    checkRenderFitsInMemory(size, backend, picture.integrator);
     TileInfo tile;
     const bool tiled = !o.tile.empty();
-    if (tiled) parseTile(o.tile, size.y, tile.tile, tile.tiles);
-    // Every frame's camera, before anything is rendered: an interpolated camera can be unusable.
-    std::vector<CameraBasis> cameras;
-    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
-        try {
-            cameras.push_back(o.camera.camera(scene, size, scaleExponent, animated ? std::optional(frame) : std::nullopt));
-        } catch (const InputError& e) {
-            if (!animated) throw;
-            throw InputError(o.scene + ": frame " + std::to_string(frame) + ": " + e.what());
-        }
-        if (tiled) tileRows(size.y, tile.tile, tile.tiles, cameras.back().rowBegin, cameras.back().rowCount);
-    }
-    if (tiled) {
-        tile.width = size.x;
-        tile.height = size.y;
-        tile.row = cameras.front().rowBegin;
-        tile.rows = cameras.front().rowCount;
-    }
+    const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
     RenderSettings settings;
     settings.width = size.x;
     settings.height = size.y;
@@ -318,43 +342,31 @@ int runRender(const RenderOptions& o) {
     phases.grid = msSince(start);
     // The GL context, the kernels and the scene textures serve every frame.
     std::optional<GLContext> context;
-    std::unique_ptr<GpuTracer> tracer;
-    KernelStats& kernels = KernelStats::global();
-    if (o.backend != "cpu") {
+    if (backend == Backend::Gl) {
         phaseStart = std::chrono::steady_clock::now();
         context.emplace(o.context.makeContext());
         phases.context = msSince(phaseStart);
-        kernels.setTiming(o.statsGiven);
-        phaseStart = std::chrono::steady_clock::now();
-        tracer = std::make_unique<GpuTracer>(scene, grid, tracerOptions);
-        phases.upload = msSince(phaseStart);
+        KernelStats::global().setTiming(o.statsGiven);
     }
-    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
-        const CameraBasis& camera = cameras[size_t(frame - firstFrame)];
+    phaseStart = std::chrono::steady_clock::now();
+    const std::unique_ptr<Renderer> renderer =
+        makeRenderer(RendererConfig{backend, picture.integrator, "grid", o.tracer.options()}, scene, grid);
+    if (backend == Backend::Gl) phases.upload = msSince(phaseStart);
+    for (int frame = frames.first; frame <= frames.last; ++frame) {
+        const CameraBasis& camera = cameras[size_t(frame - frames.first)];
         const auto frameStart = std::chrono::steady_clock::now();
-        RenderOutput out;
-        if (!tracer) {
-            phaseStart = std::chrono::steady_clock::now();
-            out = CpuTracer(scene, grid).render(camera, settings);
-            phases.trace = msSince(phaseStart);
-        } else {
-            kernels.reset();
-            phaseStart = std::chrono::steady_clock::now();
-            const double compileBefore = kernels.compileMs, readBackBefore = kernels.readBackMs;
-            out = tracer->render(camera, settings);
-            const double renderMs = msSince(phaseStart);
-            phases.compile = kernels.compileMs - compileBefore;
-            phases.readBack = kernels.readBackMs - readBackBefore;
-            phases.trace = phases.shade = 0;
-            for (const auto& [name, p] : kernels.passes()) {
-                const bool tracing = name.find("trace") != std::string::npos || name.find("Trace") != std::string::npos ||
-                                     name == "precalc" || name == "traverse" || name == "intersect";
-                (tracing ? phases.trace : phases.shade) += p.gpuMs;
-            }
-            phases.other = std::max(0.0, renderMs - phases.compile - phases.readBack - phases.trace - phases.shade);
-        }
+        phaseStart = std::chrono::steady_clock::now();
+        RenderOutput out = renderer->render(camera, settings);
+        const double renderMs = msSince(phaseStart);
+        const RenderPhases ran = renderer->phases();
+        phases.compile = ran.compile;
+        phases.trace = ran.trace;
+        phases.shade = ran.shade;
+        phases.readBack = ran.readBack;
+        if (backend == Backend::Gl)
+            phases.other = std::max(0.0, renderMs - ran.compile - ran.readBack - ran.trace - ran.shade);
         // The first frame's total counts the set-up (grid, context, upload); later frames their own.
-        const double totalMs = msSince(frame == firstFrame ? start : frameStart);
+        const double totalMs = msSince(frame == frames.first ? start : frameStart);
         unscaleDepth(out.depth, scaleExponent);
         if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
             std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
@@ -363,11 +375,11 @@ int runRender(const RenderOptions& o) {
 
         const auto writeStart = std::chrono::steady_clock::now();
         if (tiled) tile.fingerprint = renderFingerprint(scene, camera, grid, settings, o.picture, o.backend);
-        writeOutputs(frameFiles(frame), out, colour, tiled ? &tile : nullptr);
+        writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr);
         phases.write = msSince(writeStart);
         if (o.statsGiven)
             printStats(o, scene, grid, built ? "built" : "packed", out, totalMs, phases,
-                       animated ? std::optional(frame) : std::nullopt);
+                       frames.animated ? std::optional(frame) : std::nullopt);
         phases = Phases{};
     }
     return 0;

@@ -1,4 +1,4 @@
-// `gpurt view SCENE`: the scene in a window (GLFW), rendered by the same GpuTracer kernel chain as
+// `gpurt view SCENE`: the scene in a window (GLFW), rendered by the same gl renderer as
 // `gpurt render`, progressively: while the camera is still each frame adds one sample per pixel to
 // the pixels' sums and a present pass (glsl/view/present.frag) shows their mean, tone mapped as
 // the PNG is, or an AOV in false colour. No image passes through the CPU per frame. Controls:
@@ -7,8 +7,8 @@
 #include "CommonOptions.h"
 
 #include "image/AtomicFile.h"
-#include "raytrace/GpuPipeline.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/Renderer.h"
+#include "stream/GPUKernel.h"
 #include "image/ImageIO.h"
 #include "raytrace/SceneScale.h"
 #include "scene/SmoothNormals.h"
@@ -132,16 +132,208 @@ glm::vec3 unscaled(glm::vec3 p, int exponent) {
 
 std::string formatVec3(glm::vec3 v) { return formatFloat(v.x) + "," + formatFloat(v.y) + "," + formatFloat(v.z); }
 
+// The viewer's window, its progressive renderer and the display pass, frame after frame.
+class Viewer {
+  public:
+    Viewer(const ViewOptions& o, const Scene& scene, const UniformGrid& grid, const PictureCliOptions::Values& picture,
+           CameraControl control, RenderSettings settings, uint32_t samples, int frames)
+        : o_(o), control_(std::move(control)), settings_(settings), samples_(samples), frames_(frames),
+          bounds_(scene.bounds()), toneMapMode_(toneMapCode(picture.colour.toneMap)),
+          exposure_(exposureScale(picture.colour.exposure)) {
+        try {
+            window_ = std::make_unique<GLWindow>(settings.width, settings.height, "gpurt view");
+        } catch (const EnvironmentError& e) {
+            throw EnvironmentError(std::string("view: ") + e.what() + "; gpurt render writes the picture to a file instead");
+        }
+        if (!o.glslDir.empty()) ShaderLibrary::global().setDirectory(o.glslDir);
+        renderer_ = makeRenderer(RendererConfig{Backend::Gl, settings.integrator, "grid", o.tracer.options()}, scene, grid);
+        progressive_ = renderer_->progressive();
+        width_ = window_->width();
+        height_ = window_->height();
+    }
+
+    // Frames until the window closes or --frames / --bench are done; then the last frame again,
+    // the screenshot, the bench's JSON.
+    void run() {
+        while (!window_->closeRequested()) {
+            const bool screenshotNow = handleEvents();
+            if (window_->closeRequested()) break;
+            if (dirty_) restart();
+            if (done_ < samples_) progressive_->addSample(done_++, samples_);
+            show();
+            if (screenshotNow) screenshot();
+            window_->swapBuffers();
+            ++frame_;
+            afterFrame();
+            if (frames_ > 0 && frame_ >= frames_) break;
+        }
+        if (present_) {
+            // The camera of the last events (closing with them unrendered would show the old one).
+            if (dirty_) {
+                restart();
+                progressive_->addSample(done_++, samples_);
+            }
+            show();  // the last frame again into the back buffer, for the screenshot
+            if (!o_.screenshot.empty()) writeScreenshot(o_.screenshot);
+        }
+        if (o_.bench) printBench();
+    }
+
+    const CameraSpec& camera() const { return control_.spec; }
+    glm::ivec2 size() const { return {width_, height_}; }
+
+  private:
+    // The window's events: resize, display modes, escape, camera moves. Returns whether P asked
+    // for a screenshot.
+    bool handleEvents() {
+        window_->pollEvents();
+        bool screenshotNow = false;
+        for (const WindowEvent& e : window_->events()) {
+            if (e.type == WindowEvent::Resize && e.x > 0 && e.y > 0) {
+                width_ = int(e.x);
+                height_ = int(e.y);
+                dirty_ = true;
+            } else if (e.type == WindowEvent::Key && e.press && e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_5) {
+                mode_ = e.key - GLFW_KEY_1;
+            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_ESCAPE) {
+                window_->requestClose();
+            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_P) {
+                screenshotNow = true;
+            } else {
+                const CameraSpec before = control_.spec;
+                if (control_.handle(e, height_)) {
+                    try {
+                        makeCamera(control_.spec, width_, height_);
+                        dirty_ = true;
+                    } catch (const InputError&) {
+                        control_.spec = before;  // a move that would break the camera is ignored
+                    }
+                }
+            }
+        }
+        return screenshotNow;
+    }
+
+    // A new camera or size: the pixel centres' AOVs, and the sample sums start again.
+    void restart() {
+        const CameraBasis camera = makeCamera(control_.spec, width_, height_);
+        settings_.width = width_;
+        settings_.height = height_;
+        progressive_->begin(camera, settings_);
+        // New streams (first frame, resize; new streams may reuse the old ones' addresses): a new
+        // display pass.
+        if (!present_ || presentSize_ != glm::ivec2(width_, height_)) {
+            presentSize_ = glm::ivec2(width_, height_);
+            present_ = std::make_unique<GPUKernel>("present", "view/present.frag");
+            progressive_->bindDisplay(*present_);
+        }
+        const float dist = glm::length(control_.spec.eye - bounds_.center());
+        const float radius = bounds_.empty() ? 1.0f : glm::length(bounds_.halfExtent());
+        depthRange_ = glm::vec2(std::max(0.0f, dist - radius), dist + radius);
+        done_ = 0;
+        dirty_ = false;
+    }
+
+    void show() {
+        present_->setScreenTarget(width_, height_)
+            .setUniform("mode", mode_)
+            .setUniform("samples", float(std::max(1u, done_)))
+            .setUniform("exposureScale", exposure_)
+            .setUniform("toneMapMode", toneMapMode_)
+            .setUniform("depthRange", depthRange_)
+            .dispatch();
+    }
+
+    void writeScreenshot(const std::string& path) { writePngRgb8(path, width_, height_, window_->readPixels()); }
+
+    void screenshot() {
+        std::string path = o_.screenshot;
+        if (path.empty()) {
+            char name[32];
+            std::snprintf(name, sizeof name, "gpurt-view-%04d.png", screenshots_++);
+            path = name;
+        }
+        writeScreenshot(path);
+        std::fprintf(stderr, "gpurt: screenshot %s\n", path.c_str());
+    }
+
+    uint64_t raysSoFar() const {
+        const RenderStats& s = progressive_->stats();
+        return s.primaryRays + s.shadowRays + s.secondaryRays;
+    }
+
+    // The bench's clock starts after the first frame (it compiles the kernels); the title shows
+    // the frame rate twice a second.
+    void afterFrame() {
+        ++titleFrames_;
+        if (o_.bench && frame_ == 1) {
+            glFinish();
+            benchStart_ = std::chrono::steady_clock::now();
+            benchRays_ = raysSoFar();
+        }
+        const auto now = std::chrono::steady_clock::now();
+        const double sinceTitle = std::chrono::duration<double>(now - lastTitle_).count();
+        if (sinceTitle < 0.5) return;
+        const uint64_t rays = raysSoFar();
+        char title[160];
+        std::snprintf(title, sizeof title, "gpurt view: %.1f fps, %.0f ms/frame, %.1f Mrays/s, %u/%u samples, %s",
+                      titleFrames_ / sinceTitle, 1e3 * sinceTitle / titleFrames_,
+                      double(rays - titleRays_) / sinceTitle * 1e-6, done_, samples_, kModeNames[mode_]);
+        window_->setTitle(title);
+        titleRays_ = rays;
+        lastTitle_ = now;
+        titleFrames_ = 0;
+    }
+
+    void printBench() const {
+        glFinish();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - benchStart_).count();
+        const uint64_t rays = raysSoFar() - benchRays_;
+        nlohmann::json j;
+        j["fps"] = double(frame_ - 1) / seconds;
+        j["ms_per_frame"] = 1e3 * seconds / double(frame_ - 1);
+        j["mrays_per_s"] = double(rays) / seconds * 1e-6;
+        j["width"] = width_;
+        j["height"] = height_;
+        j["frames"] = frame_ - 1;
+        j["renderer"] = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        std::printf("%s\n", j.dump().c_str());
+    }
+
+    const ViewOptions& o_;
+    CameraControl control_;
+    RenderSettings settings_;
+    uint32_t samples_;
+    int frames_;
+    Bounds bounds_;
+    int toneMapMode_;
+    float exposure_;
+    std::unique_ptr<GLWindow> window_;
+    std::unique_ptr<Renderer> renderer_;
+    ProgressiveRenderer* progressive_ = nullptr;
+    std::unique_ptr<GPUKernel> present_;
+    glm::ivec2 presentSize_{0};
+    int width_ = 0, height_ = 0;
+    uint32_t done_ = 0;
+    int mode_ = 0, frame_ = 0, screenshots_ = 0;
+    bool dirty_ = true;
+    glm::vec2 depthRange_{0.0f, 1.0f};
+    std::chrono::steady_clock::time_point benchStart_ = std::chrono::steady_clock::now();
+    std::chrono::steady_clock::time_point lastTitle_ = benchStart_;
+    uint64_t benchRays_ = 0, titleRays_ = 0;
+    int titleFrames_ = 0;
+};
+
 int runView(const ViewOptions& o) {
     // Everything that can be refused is checked before a window opens.
     const PictureCliOptions::Values picture = o.picture.values();
     if (!o.screenshot.empty()) checkOutputPaths({o.screenshot});
-    const GpuTracerOptions tracerOptions = o.tracer.options();
+    o.tracer.options();  // refuses a bad --mask now
     int scaleExponent = 0;
     LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
-    checkRenderFitsInMemory(size, true, picture.integrator == Integrator::Path);
+    checkRenderFitsInMemory(size, Backend::Gl, picture.integrator);
     CameraControl control;
     control.spec = control.initial = o.camera.spec(scene, size, scaleExponent);
     makeCamera(control.spec, size.x, size.y);  // refuses an unusable camera now
@@ -149,6 +341,8 @@ int runView(const ViewOptions& o) {
     const float diagonal = bounds.empty() ? 1.0f : 2.0f * glm::length(bounds.halfExtent());
     control.step = 0.02f * (diagonal > 0.0f ? diagonal : 1.0f);
     RenderSettings settings;
+    settings.width = size.x;
+    settings.height = size.y;
     settings.maxBounces = PictureCliOptions::bounces(o.bounces, scene, picture.integrator);
     settings.integrator = picture.integrator;
     settings.seed = picture.seed;
@@ -160,155 +354,13 @@ int runView(const ViewOptions& o) {
     const std::optional<UniformGrid> built = o.grid.build(loaded);
     const UniformGrid& grid = built ? *built : *loaded.grid;
 
-    std::unique_ptr<GLWindow> window;
-    try {
-        window = std::make_unique<GLWindow>(size.x, size.y, "gpurt view");
-    } catch (const EnvironmentError& e) {
-        throw EnvironmentError(std::string("view: ") + e.what() + "; gpurt render writes the picture to a file instead");
-    }
-    if (!o.glslDir.empty()) ShaderLibrary::global().setDirectory(o.glslDir);
-    GpuTracer tracer(scene, grid, tracerOptions);
-    const int toneMapMode = toneMapCode(picture.colour.toneMap);
-    const float exposure = exposureScale(picture.colour.exposure);
-
-    int width = window->width(), height = window->height();
-    std::unique_ptr<GPUKernel> present;
-    glm::ivec2 presentSize(0);
-    uint32_t done = 0;
-    int mode = 0, frame = 0, screenshots = 0;
-    bool dirty = true;
-    glm::vec2 depthRange(0.0f, 1.0f);
-    auto show = [&] {
-        present->setScreenTarget(width, height)
-            .setUniform("mode", mode)
-            .setUniform("samples", float(std::max(1u, done)))
-            .setUniform("exposureScale", exposure)
-            .setUniform("toneMapMode", toneMapMode)
-            .setUniform("depthRange", depthRange)
-            .dispatch();
-    };
-    auto writeScreenshot = [&](const std::string& path) {
-        writePngRgb8(path, width, height, window->readPixels());
-    };
-    // A new camera or size: the pixel centres' AOVs, and the sample sums start again.
-    auto restart = [&] {
-        const CameraBasis camera = makeCamera(control.spec, width, height);
-        settings.width = width;
-        settings.height = height;
-        GpuPipeline& p = tracer.beginProgressive(camera, settings);
-        // New streams (first frame, resize; a new pipeline may reuse the old one's address): a
-        // new present pass.
-        if (!present || presentSize != glm::ivec2(width, height)) {
-            presentSize = glm::ivec2(width, height);
-            present = std::make_unique<GPUKernel>("present", "view/present.frag");
-            present->addInput(p.sampleSum, "sampleSum").addInput(p.aovHit, "aovHit");
-            present->addInput(p.aovCells, "aovCells").addInput(p.aovNormal, "aovNormal");
-        }
-        const float dist = glm::length(control.spec.eye - bounds.center());
-        const float radius = bounds.empty() ? 1.0f : glm::length(bounds.halfExtent());
-        depthRange = glm::vec2(std::max(0.0f, dist - radius), dist + radius);
-        done = 0;
-        dirty = false;
-    };
-    const auto started = std::chrono::steady_clock::now();
-    auto benchStart = started;
-    uint64_t benchRays = 0;
-    auto lastTitle = started;
-    int titleFrames = 0;
-    while (!window->closeRequested()) {
-        window->pollEvents();
-        bool screenshotNow = false;
-        for (const WindowEvent& e : window->events()) {
-            if (e.type == WindowEvent::Resize && e.x > 0 && e.y > 0) {
-                width = int(e.x);
-                height = int(e.y);
-                dirty = true;
-            } else if (e.type == WindowEvent::Key && e.press && e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_5) {
-                mode = e.key - GLFW_KEY_1;
-            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_ESCAPE) {
-                window->requestClose();
-            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_P) {
-                screenshotNow = true;
-            } else {
-                const CameraSpec before = control.spec;
-                if (control.handle(e, height)) {
-                    try {
-                        makeCamera(control.spec, width, height);
-                        dirty = true;
-                    } catch (const InputError&) {
-                        control.spec = before;  // a move that would break the camera is ignored
-                    }
-                }
-            }
-        }
-        if (window->closeRequested()) break;
-        if (dirty) restart();
-        if (done < samples) tracer.addSample(done++, samples);
-        show();
-        if (screenshotNow) {
-            const std::string path = !o.screenshot.empty() ? o.screenshot : [&] {
-                char name[32];
-                std::snprintf(name, sizeof name, "gpurt-view-%04d.png", screenshots++);
-                return std::string(name);
-            }();
-            writeScreenshot(path);
-            std::fprintf(stderr, "gpurt: screenshot %s\n", path.c_str());
-        }
-        window->swapBuffers();
-        ++frame;
-        ++titleFrames;
-        if (o.bench && frame == 1) {  // the first frame compiles the kernels: not timed
-            glFinish();
-            benchStart = std::chrono::steady_clock::now();
-            benchRays = tracer.progressiveStats().primaryRays + tracer.progressiveStats().shadowRays +
-                        tracer.progressiveStats().secondaryRays;
-        }
-        const auto now = std::chrono::steady_clock::now();
-        const double sinceTitle = std::chrono::duration<double>(now - lastTitle).count();
-        if (sinceTitle >= 0.5) {
-            const RenderStats& s = tracer.progressiveStats();
-            static uint64_t raysBefore = 0;
-            const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
-            char title[160];
-            std::snprintf(title, sizeof title, "gpurt view: %.1f fps, %.0f ms/frame, %.1f Mrays/s, %u/%u samples, %s",
-                          titleFrames / sinceTitle, 1e3 * sinceTitle / titleFrames,
-                          double(rays - raysBefore) / sinceTitle * 1e-6, done, samples, kModeNames[mode]);
-            window->setTitle(title);
-            raysBefore = rays;
-            lastTitle = now;
-            titleFrames = 0;
-        }
-        if (frames > 0 && frame >= frames) break;
-    }
-    if (present) {
-        // The camera of the last events (closing with them unrendered would show the old one).
-        if (dirty) {
-            restart();
-            tracer.addSample(done++, samples);
-        }
-        show();  // the last frame again into the back buffer, for the screenshot
-        if (!o.screenshot.empty()) writeScreenshot(o.screenshot);
-    }
-    if (o.bench) {
-        glFinish();
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - benchStart).count();
-        const RenderStats& s = tracer.progressiveStats();
-        const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays - benchRays;
-        nlohmann::json j;
-        j["fps"] = double(frame - 1) / seconds;
-        j["ms_per_frame"] = 1e3 * seconds / double(frame - 1);
-        j["mrays_per_s"] = double(rays) / seconds * 1e-6;
-        j["width"] = width;
-        j["height"] = height;
-        j["frames"] = frame - 1;
-        j["renderer"] = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        std::printf("%s\n", j.dump().c_str());
-    }
+    Viewer viewer(o, scene, grid, picture, control, settings, samples, frames);
+    viewer.run();
     // The camera in use, as options of gpurt render (in the scene file's units).
+    const CameraSpec& c = viewer.camera();
     std::printf("--eye %s --target %s --up %s --fovy %s --size %dx%d\n",
-                formatVec3(unscaled(control.spec.eye, scaleExponent)).c_str(),
-                formatVec3(unscaled(control.spec.target, scaleExponent)).c_str(),
-                formatVec3(control.spec.up).c_str(), formatFloat(control.spec.fovy).c_str(), width, height);
+                formatVec3(unscaled(c.eye, scaleExponent)).c_str(), formatVec3(unscaled(c.target, scaleExponent)).c_str(),
+                formatVec3(c.up).c_str(), formatFloat(c.fovy).c_str(), viewer.size().x, viewer.size().y);
     return 0;
 }
 

@@ -272,7 +272,7 @@ void GpuTracer::traceSample(GpuPipeline& p, const std::vector<PointLight>& light
     p.setRoundRect(std::nullopt);
 }
 
-GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
+void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
     GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true);
     progressive_.settings = settings;
@@ -285,7 +285,18 @@ GpuPipeline& GpuTracer::beginProgressive(const CameraBasis& camera, const Render
     p.aovCells.copyFrom(accel_->steps());
     p.aovNormal.copyFrom(p.surfaceNormal);
     p.sampleSum.fill(0.0f);
-    return p;
+}
+
+void GpuTracer::bindDisplay(GPUKernel& display) {
+    if (!pipeline_) throw UsageError("GpuTracer::bindDisplay before beginProgressive");
+    display.addInput(pipeline_->sampleSum, "sampleSum").addInput(pipeline_->aovHit, "aovHit");
+    display.addInput(pipeline_->aovCells, "aovCells").addInput(pipeline_->aovNormal, "aovNormal");
+}
+
+std::set<std::string> GpuTracer::accelerationPasses() {
+    std::set<std::string> names;
+    for (GPUKernel* k : accel_->kernels()) names.insert(k->name());
+    return names;
 }
 
 void GpuTracer::addSample(uint32_t s, uint32_t n) {

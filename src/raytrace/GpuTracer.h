@@ -14,6 +14,7 @@
 #include "stream/GPUMask.h"
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,15 @@ class GpuTracer {
     // keeps their AOVs in the pipeline's aov streams, and clears the sample sums; each addSample
     // adds sample s of n of every pixel to the pipeline's sampleSum (as render does). Nothing is
     // read back. The rays traced so far count in progressiveStats().
-    GpuPipeline& beginProgressive(const CameraBasis& camera, const RenderSettings& settings);
+    void beginProgressive(const CameraBasis& camera, const RenderSettings& settings);
     void addSample(uint32_t s, uint32_t n);
     const RenderStats& progressiveStats() const { return progressive_.output.stats; }
+    // The progressive sums and AOVs as inputs of a display pass (samplers sampleSum, aovHit,
+    // aovCells, aovNormal).
+    void bindDisplay(GPUKernel& display);
+
+    // The names of the accelerator's passes (the trace phase of --stats; the others shade).
+    std::set<std::string> accelerationPasses();
 
     // Tracing only (gpurt bench). tracePrimary traces the camera's rays: with the default fused
     // kernel in one pass that generates them itself (traceCamera), otherwise raygen and the trace

@@ -1,0 +1,76 @@
+// One renderer interface for the commands (gpurt render, view, the tests): built by makeRenderer
+// from (backend, integrator, accelerator). The commands never see kernels, streams or tracers:
+// a renderer renders images, renders progressively where it can (the viewer), says where its
+// time went and how much memory a render needs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "raytrace/Camera.h"
+#include "raytrace/GlOptions.h"
+#include "raytrace/RenderTypes.h"
+#include "raytrace/accel/grid/UniformGrid.h"
+#include "scene/Scene.h"
+
+namespace gpurt {
+
+class GPUKernel;
+
+enum class Backend {
+    Gl,   // the stream kernels on the GL context (GpuTracer)
+    Cpu,  // the same algorithm in C++ (CpuTracer)
+};
+
+struct RendererConfig {
+    Backend backend = Backend::Gl;
+    Integrator integrator = Integrator::Whitted;
+    std::string accelerator = "grid";  // the one accelerator today (accel/grid)
+    GpuTracerOptions gl;               // the gl backend's masks and trace kernels
+};
+
+// Where the latest render's time went, in milliseconds: trace and shade are the kernel passes
+// (the accelerator's and the integrator's), compile the GL programs' builds, readBack the
+// downloads. The CPU backend's render is all trace.
+struct RenderPhases {
+    double compile = 0, trace = 0, shade = 0, readBack = 0;
+};
+
+// Progressive rendering on the GL context (gpurt view): sample after sample into per-pixel sums
+// that stay on the GPU, shown by a display pass.
+class ProgressiveRenderer {
+  public:
+    virtual ~ProgressiveRenderer() = default;
+    // Traces the camera's pixel centres (their AOVs are kept) and clears the sums.
+    virtual void begin(const CameraBasis& camera, const RenderSettings& settings) = 0;
+    // Adds sample s of n of every pixel to the sums.
+    virtual void addSample(uint32_t s, uint32_t n) = 0;
+    // The sums and the AOVs as inputs of a display pass (samplers sampleSum, aovHit, aovCells,
+    // aovNormal), valid until a begin with another image size.
+    virtual void bindDisplay(GPUKernel& display) = 0;
+    // The rays traced since the first begin.
+    virtual const RenderStats& stats() const = 0;
+};
+
+class Renderer {
+  public:
+    virtual ~Renderer() = default;
+    // The whole image (or the camera's tile of rows): colour, the mean of settings.samples
+    // samples a pixel, and the primary AOVs. settings.integrator is the renderer's.
+    virtual RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) = 0;
+    virtual RenderPhases phases() const = 0;
+    // nullptr where the backend cannot render progressively (cpu).
+    virtual ProgressiveRenderer* progressive() { return nullptr; }
+};
+
+// The bytes a render of `pixels` pixels needs (its streams or buffers, masks, read-backs, and a
+// fixed part): what the commands check against the free memory before they start.
+double renderBytes(Backend backend, Integrator integrator, double pixels);
+
+// The renderer for `config` over `scene` and its grid, which must outlive it. The gl backend
+// needs a current GL context and uploads the scene textures now. Throws InputError for an
+// unknown accelerator.
+std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid);
+
+}  // namespace gpurt
