@@ -146,8 +146,8 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
                                         "#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
                 variants.push_back(library.assemble(path, defines));
         if (path == "accel/grid/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
-        if (path == "trace/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
-        if (path == "trace/shadowgen.frag" || path == "trace/light.frag")
+        if (path == "integrators/whitted/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
+        if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag")
             variants.push_back(library.assemble(path, "#define EMITTER\n"));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));

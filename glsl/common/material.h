@@ -4,7 +4,8 @@
 // raytrace/MaterialRecord.h materialRecord); the integrators then ask it only through the
 // functions below, which dispatch on the record's model to the model's file in materials/:
 //   Whitted:  materialAmbient (the ambient term), materialLight (one unshadowed point light),
-//             materialSpawns / materialChildren (the reflected and refracted rays of the ray tree);
+//             materialSpawns / materialSplits / materialChildren (the reflected and refracted
+//             rays of the ray tree);
 //   both:     materialEmitted (radiance the surface sends itself, area lights);
 //   path:     materialLit (whether next-event estimation can light it: a non-delta lobe),
 //             materialEval (pi times the BSDF), materialPdf (the solid-angle pdf materialSample
@@ -35,6 +36,7 @@ struct MaterialRecord {
     vec3 emission;      // radiance emitted from both sides
 };
 
+#include "raytree.h"
 #include "materials/classic.h"
 
 // The radiance the surface sends along the ray by itself at shading normal ns (emission).
@@ -48,6 +50,9 @@ GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 light
 }
 
 GPURT_FN bool materialSpawns(MaterialRecord m) { return classicSpawns(m); }
+
+// Whether a hit may spawn two rays (glass: the ray tree's stacks are needed).
+GPURT_FN bool materialSplits(MaterialRecord m) { return classicSplits(m); }
 
 GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec3 w,
                               GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA,

@@ -77,4 +77,14 @@ GPURT_FN float survival(int b, vec3 w, float u) {
     return u < q ? q : 0.0f;
 }
 
+// The Russian roulette step of a path at hit depth b whose throughput w already carries the
+// scattering factor, for the random number u: false when the path ends here, else w divided by
+// its survival probability.
+GPURT_FN bool russianRoulette(int b, GPURT_INOUT(vec3) w, float u) {
+    float q = survival(b, w, u);
+    if (q == 0.0f) return false;
+    w = w / q;
+    return true;
+}
+
 #endif

@@ -1,4 +1,4 @@
-// How the scene is laid out in textures (SceneTextures.cpp writes it, glsl/trace/scene.glsl reads
+// How the scene is laid out in textures (SceneTextures.cpp writes it, glsl/scene/scene.glsl reads
 // it). Valid C++ and GLSL; tests/raytrace checks that both sides agree.
 #ifndef GPURT_SCENE_LAYOUT_H
 #define GPURT_SCENE_LAYOUT_H

@@ -89,14 +89,6 @@ GPURT_FN vec3 shadingReflection(vec3 d, vec3 ns, vec3 ng) {
     return dot(r, ng) > 0.0f ? r : reflectedDirection(d, ng);
 }
 
-// The ray tree (Whitted 1980): each pixel sample's tree holds at most GPURT_TREE_RAYS rays;
-// children weighing less than GPURT_MIN_WEIGHT (their largest channel) are not traced (Hall &
-// Greenberg 1983, adaptive tree depth); a pixel's stack of pending second children holds at most
-// min(bounces, GPURT_STACK_SLOTS) rays (a child that finds it full is dropped).
-#define GPURT_TREE_RAYS 64
-#define GPURT_MIN_WEIGHT 1e-4f
-#define GPURT_STACK_SLOTS 8
-
 // Whether the ray d meets the side of the triangle (edges e1, e2) its winding faces: the outside
 // of a dielectric's closed surface.
 GPURT_FN bool frontFace(vec3 e1, vec3 e2, vec3 d) { return dot(cross(e1, e2), d) < 0.0f; }

@@ -1,4 +1,4 @@
-// Texture filtering shared word for word by the GLSL kernels (glsl/trace/shading.glsl, which
+// Texture filtering shared word for word by the GLSL kernels (glsl/scene/shading.glsl, which
 // fetches the texels) and the CPU backend (src/raytrace/SurfaceTexture.cpp), after
 // common/raymath.h. Same rules as raymath.h.
 //

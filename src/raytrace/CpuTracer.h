@@ -10,6 +10,7 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/EmitterTable.h"
+#include "raytrace/RayMath.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/RenderTypes.h"
 #include "scene/Scene.h"
@@ -33,21 +34,28 @@ class CpuTracer {
     // rays traced (gpurt bench).
     uint64_t traceStream(const RayStream& rays, bool anyHit, int threads, std::vector<glm::vec4>& hits) const;
 
-    // Renders the camera's image (its width x height) with Whitted shading and the AOVs, on
+    // Renders the camera's image (its width x height) under settings.integrator with the AOVs, on
     // settings.threads threads (0: all cores), rows handed out dynamically.
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) const;
 
-  private:
-    // One sample of the path integrator through pixel (i, j): the path of the camera ray d
-    // (glsl/common/path.h; GpuTracer::tracePath is this as rounds of passes). With `aovs`,
-    // writes the pixel's primary AOVs there.
-    glm::vec3 pathSample(int i, int j, uint32_t sample, uint32_t samples, glm::vec3 eye, glm::vec3 d,
-                         const RenderSettings& settings, const std::vector<PointLight>& lights,
-                         RenderOutput* aovs, size_t pixel, RenderStats& stats) const;
-    // Traces one shadow ray (counted in stats); true when nothing blocks it.
-    bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
+    // What the integrators' samples use (integrators/whitted/WhittedCpu, integrators/path/PathCpu).
+    struct PreparedTriangle {
+        glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
+    };
+    const Scene& scene() const { return scene_; }
+    const PreparedTriangle& triangle(uint32_t id) const { return triangles_[id]; }
+    // How far secondary rays start off a surface (UniformGrid::rayOffset).
+    float rayOffset() const { return rayOffset_; }
+    const EmitterTable& emitters() const { return emitters_; }
+    // The surface at a hit of the ray from o along d: the point, the facing geometric normal, the
+    // shading normal (common/shading.h) and the material record.
+    struct Surface {
+        glm::vec3 p, n, ns;
+        raymath::MaterialRecord material;
+    };
+    Surface surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const;
     // Whether the point light at lightPos lights the hit p (facing normal n): in front of it and
-    // its shadow ray unblocked (shadowgen.frag, the trace, light.frag).
+    // its shadow ray unblocked (shadowgen.frag, the trace, light.frag), counted in stats.
     bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, RenderStats& stats) const;
     // The emitter point q (on triangle id) that sample `sample` of `samples` of pixel (i, j) takes
     // at hit depth `depth` (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in
@@ -55,9 +63,9 @@ class CpuTracer {
     bool emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
                         glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const;
 
-    struct PreparedTriangle {
-        glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
-    };
+  private:
+    // Traces one shadow ray (counted in stats); true when nothing blocks it.
+    bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
 
     const Scene& scene_;
     std::unique_ptr<CpuAccelerator> accel_;

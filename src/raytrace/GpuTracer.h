@@ -1,7 +1,8 @@
-// The ray tracer as a chain of stream kernels on the GL context (Purcell et al. 2002; Christen
-// 2005, chapter 5): ray generation, voxel precalculation, a traverse/intersect loop under
-// occlusion-query control, then Whitted shading with shadow rays and mirror bounces, each a
-// GPUKernel over image-sized streams.
+// The gl backend: the ray tracer as a chain of stream kernels on the GL context (Purcell et al.
+// 2002; Christen 2005, chapter 5). It owns the scene textures, the accelerator (accel/: its
+// kernels trace the ray streams), the shared streams (GpuPipeline) and the integrators
+// (integrators/whitted, integrators/path: their rounds of passes), and runs the sample loop, the
+// sums, the AOVs and the viewer's progressive rendering around them.
 #pragma once
 
 #include "raytrace/Camera.h"
@@ -21,6 +22,9 @@
 namespace gpurt {
 
 struct GpuPipeline;
+class GlIntegrator;
+class WhittedGl;
+class PathGl;
 
 class GpuTracer {
   public:
@@ -61,34 +65,29 @@ class GpuTracer {
     void flushStats();
 
   private:
-    // The pipeline for this size, ray stacks and integrator (paths: the path integrator's streams;
-    // progressive: the viewer's AOV copies).
+    // The pipeline and integrators for this size, ray stacks and integrator (paths: the path
+    // integrator's streams; progressive: the viewer's AOV copies; sums: more than one sample).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
                           bool sums = false);
-    void traceSample(GpuPipeline& p, const std::vector<PointLight>& lights, int maxBounces,
-                     bool readAovs, RenderOutput& out);
-    // One sample of every pixel under the path integrator, as rounds of passes over the paths
-    // still alive (CpuTracer::pathSample is one path of it).
-    void tracePath(GpuPipeline& p, const std::vector<PointLight>& lights, int maxDepth, bool readAovs,
-                   RenderOutput& out);
-    // The sample of the integrator `settings` asks for (traceSample or tracePath).
-    void traceIntegrator(GpuPipeline& p, const std::vector<PointLight>& lights, const RenderSettings& settings,
-                         bool readAovs, RenderOutput& out);
-    // The primary rays' depth, prim and steps AOVs from the hit and cell streams (before the
-    // shading passes reuse them), and the normal AOV after the surface pass.
-    void readHitAovs(GpuPipeline& p, RenderOutput& out);
-    void readNormalAov(GpuPipeline& p, RenderOutput& out);
+    // The integrator `settings` asks for.
+    GlIntegrator& integrator(const RenderSettings& settings);
+    // Sets the camera on the pipeline and every integrator's kernels (the tile's first row).
+    void setCamera(const CameraBasis& camera);
+    void setSample(uint32_t s, uint32_t n, uint32_t seed);
     // Rays a pixel's stack holds for Whitted's ray tree (0 without glass, where nothing splits,
     // and for the path integrator, which takes one direction a hit).
     int stackSlots(const RenderSettings& settings) const;
+    std::vector<GPUKernel*> allKernels();
 
     const Scene& scene_;
     GpuTracerOptions options_;
     SceneTextures textures_;
     std::unique_ptr<GlAccelerator> accel_;
     std::unique_ptr<GpuPipeline> pipeline_;
-    bool hasDielectric_ = false;  // some triangle is glass: the ray tree needs its stacks
-    bool hasSecondary_ = false;   // some triangle is a mirror or glass: rays spawn
+    std::unique_ptr<WhittedGl> whitted_;
+    std::unique_ptr<PathGl> path_;
+    bool splits_ = false;  // some material may spawn two rays (glass): the ray tree needs its stacks
+    bool spawns_ = false;  // some material spawns rays (mirror, glass)
     struct Progressive {
         RenderSettings settings;
         std::vector<PointLight> lights;

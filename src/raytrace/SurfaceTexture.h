@@ -1,4 +1,4 @@
-// Textured diffuse colour on the CPU: what glsl/trace/shading.glsl's texturedDiffuse does in the
+// Textured diffuse colour on the CPU: what glsl/scene/shading.glsl's texturedDiffuse does in the
 // kernels, with the filtering of glsl/common/texture.h shared word for word.
 #pragma once
 

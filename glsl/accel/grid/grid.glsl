@@ -1,6 +1,6 @@
 // The uniform grid accelerator's scene textures and parameters (accel/grid/GridGl binds them),
 // for its kernels: precalc, traverse, intersect and the fused trace.
-#include "trace/pixel.glsl"
+#include "scene/pixel.glsl"
 
 uniform usamplerBuffer voxelIndex;   // (list start, count) per cell
 uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2

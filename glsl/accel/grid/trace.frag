@@ -10,7 +10,7 @@
 // raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
 #include "grid.glsl"
 #ifdef CAMERA
-#include "trace/camera.glsl"
+#include "scene/camera.glsl"
 #endif
 
 #ifndef TRACE_STEPS

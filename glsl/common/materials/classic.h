@@ -178,6 +178,8 @@ GPURT_FN vec3 classicLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightP
 
 GPURT_FN bool classicSpawns(MaterialRecord m) { return m.ior > 0.0f || m.reflectivity != vec3(0.0f); }
 
+GPURT_FN bool classicSplits(MaterialRecord m) { return m.ior > 0.0f; }
+
 GPURT_FN int classicChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec3 w,
                              GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA,
                              GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {

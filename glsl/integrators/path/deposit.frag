@@ -1,7 +1,7 @@
 // The end of the path integrator's last round: every path still alive leaves its colour in its
 // pixel's element of pixelColor, as the bounce pass does for the paths that end before
 // (pathbounce.frag), so that each pixel has its sample's colour there once.
-#include "shading.glsl"
+#include "scene/shading.glsl"
 
 uniform sampler2D colorState;
 uniform sampler2D weightState;

@@ -8,9 +8,9 @@
 // with PACK are packed to the front of the next round's streams (an atomic counter gives each
 // its slot: Purcell's stream compaction), so that the next rounds' passes cover only them; the
 // packing costs, so GpuTracer::tracePath packs only once many paths end.
-#include "shading.glsl"
-#include "../common/sampling.h"
-#include "../common/path.h"
+#include "scene/shading.glsl"
+#include "common/sampling.h"
+#include "common/path.h"
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
@@ -80,9 +80,7 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     if (!materialSample(m, d, nm.xyz, n, frontFace(e1, e2, d), u, choice.x, dir, factor, pdf, side))
         return false;
     throughput = w * factor;
-    float survive = survival(depth, throughput, choice.y);
-    if (survive == 0.0f) return false;
-    throughput = throughput / survive;
+    if (!russianRoulette(depth, throughput, choice.y)) return false;
     o = offsetOrigin(s.xyz, side * nm.xyz, rayOffset);
     return true;
 }

@@ -3,7 +3,8 @@
 // materialChildren: the reflected and refracted rays of glass, the mirror ray) are spawned while the
 // ray's depth is below `maxBounces` and the tree has rays left: the first continues as the pixel's
 // ray, the second is pushed on the pixel's stack. A ray without children hands over to the top of
-// the stack (its depth and weight with it); with the stack empty the pixel's tree is done. One ray
+// the stack (its depth and weight with it); with the stack empty the pixel's tree is done
+// (common/raytree.h, the same steps as the CPU backend's). One ray
 // per pixel per round, so the passes stay image-sized and the rounds end when the trace counts no
 // ray (GpuTracer::traceSample). The stack is the one store outside the pixel's own element: slot s
 // of pixel (x, y) is element (x, y + s H) of the stack images, written only by that pixel.
@@ -12,7 +13,7 @@
 // cost the pixels that see it, not the image.
 // LAST_ROUND: the variant for a round after which no ray can follow (no mirror or glass in the
 // scene, or no bounce allowed): only the colour, one output instead of five.
-#include "shading.glsl"
+#include "scene/shading.glsl"
 
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
@@ -60,7 +61,7 @@ void main() {
     int imageHeight = textureSize(colorState, 0).y;
     if (s.w >= 0.0f) {  // a miss was shaded by the surface pass; a hit adds its local colour
         color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
-        if (depth < maxBounces && rays < GPURT_TREE_RAYS) {
+        if (rayTreeMaySpawn(depth, rays, maxBounces)) {
             vec4 nm = readStream(surfaceNormal);
             vec4 view = readStream(surfaceView);
             vec4 shading = readStream(surfaceShading);
@@ -73,26 +74,23 @@ void main() {
                 children = materialChildren(m, d, nm.xyz, shading.xyz, frontFace(e1, e2, d), w.xyz, dirA, weightA,
                                             sideA, dirB, weightB);
             }
-            vec3 o = offsetOrigin(s.xyz, sideA * nm.xyz, rayOffset);
-            if (children > 0) {
-                weight = vec4(weightA, 1.0f);
-                rayOrigin = vec4(o, GPURT_FAR);
-                rayDir = vec4(dirA, GPURT_A_RAY);
-                depth += 1;
-                rays += 1;
-            }
-            if (children == 2 && rays < GPURT_TREE_RAYS && height < stackSlots) {
-                ivec2 at = streamIndex() + ivec2(0, height * imageHeight);
-                imageStore(stackOrigin, at, vec4(offsetOrigin(s.xyz, nm.xyz, rayOffset), float(depth)));
-                imageStore(stackDir, at, vec4(dirB, 0.0f));
-                imageStore(stackWeight, at, vec4(weightB, 0.0f));
-                height += 1;
-                rays += 1;
-            }
         }
     }
-    if (children == 0 && height > 0) {  // the pending ray on top of the stack
-        height -= 1;
+    bool push;
+    int next = rayTreeNext(children, stackSlots, depth, height, rays, push);
+    if (next == GPURT_TREE_CONTINUE) {
+        vec4 nm = readStream(surfaceNormal);
+        vec3 o = offsetOrigin(s.xyz, sideA * nm.xyz, rayOffset);
+        weight = vec4(weightA, 1.0f);
+        rayOrigin = vec4(o, GPURT_FAR);
+        rayDir = vec4(dirA, GPURT_A_RAY);
+        if (push) {
+            ivec2 at = streamIndex() + ivec2(0, (height - 1) * imageHeight);
+            imageStore(stackOrigin, at, vec4(offsetOrigin(s.xyz, nm.xyz, rayOffset), float(depth)));
+            imageStore(stackDir, at, vec4(dirB, 0.0f));
+            imageStore(stackWeight, at, vec4(weightB, 0.0f));
+        }
+    } else if (next == GPURT_TREE_POP) {  // the pending ray on top of the stack
         ivec2 at = streamIndex() + ivec2(0, height * imageHeight);
         vec4 o = imageLoad(stackOrigin, at);
         vec3 d = imageLoad(stackDir, at).xyz;

@@ -5,10 +5,10 @@
 // emitter by a binary search of the area table), stores it for the light pass, and aims the ray
 // at it. PATH: only from surfaces that the path integrator's diffuse or glossy lobe can light
 // (not from mirrors and glass: common/material.h materialLit).
-#include "shading.glsl"
-#include "../common/sampling.h"
+#include "scene/shading.glsl"
+#include "common/sampling.h"
 #ifdef PATH
-#include "../common/path.h"
+#include "common/path.h"
 uniform sampler2D pathState;  // the path's pixel (packed paths: shading.glsl pathPixel)
 #endif
 

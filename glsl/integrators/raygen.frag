@@ -2,8 +2,8 @@
 // through the pixel centre, exactly the contract's camera (common/raymath.h), or, for --spp, through
 // the pass's sample of the pixel (common/sampling.h; one pass per sample). Rays that miss the
 // (The grid's trace.frag with CAMERA generates the same rays itself when only the hits are wanted.)
-#include "scene.glsl"
-#include "camera.glsl"
+#include "scene/scene.glsl"
+#include "scene/camera.glsl"
 
 layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
 layout(location = 1) out vec4 rayDir;     // (d, GPURT_A_RAY)

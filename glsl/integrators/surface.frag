@@ -5,9 +5,9 @@
 // PATH: for the path integrator: the emission is weighed against next-event estimation of the
 // same point (common/path.h emissionWeight, from the pdf of the direction the last hit chose), and
 // the local colour starts at 0 (no ambient term).
-#include "shading.glsl"
+#include "scene/shading.glsl"
 #ifdef PATH
-#include "../common/path.h"
+#include "common/path.h"
 uniform sampler2D pathState;  // (pdf of the ray's direction at the last hit, 0: delta or camera)
 #endif
 

@@ -1,7 +1,7 @@
 // The sample loop's sum (--spp): adds this sample's pixel colour to the running sum of the
 // pixel's samples. The mean is the sum divided by the samples taken (GpuTracer::render, and the
 // viewer's present pass), so each sample costs one more pass over the chain, not more.
-#include "../common/stream.glsl"
+#include "common/stream.glsl"
 
 uniform sampler2D colorState;  // this sample's colour
 uniform sampler2D sumState;    // in place

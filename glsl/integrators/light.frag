@@ -2,9 +2,9 @@
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
 // PATH: the path integrator's light through the BSDF (common/path.h) instead of Whitted's terms, for point lights (its emitter point is lit in pathbounce.frag).
-#include "shading.glsl"
+#include "scene/shading.glsl"
 #ifdef PATH
-#include "../common/path.h"
+#include "common/path.h"
 #endif
 
 uniform sampler2D surfacePoint;

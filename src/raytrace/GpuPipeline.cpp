@@ -1,0 +1,92 @@
+#include "raytrace/GpuPipeline.h"
+
+#include <limits>
+
+namespace gpurt {
+
+GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelerator& accelerator, MaskMode mask,
+                         bool paths, bool progressiveAovs, Needs needed)
+    : width(w),
+      height(h),
+      needs(needed),
+      rayOrigin(w, h, 4, "rayOrigin"),
+      rayDir(w, h, 4, "rayDir"),
+      hit(w, h, 4, "hit"),
+      accel(accelerator),
+      surfacePoint(w, h, 4, "surfacePoint"),
+      surfaceNormal(w, h, 4, "surfaceNormal"),
+      surfaceView(w, h, 4, "surfaceView"),
+      surfaceShading(w, h, 4, "surfaceShading"),
+      localColor(w, h, 4, "localColor"),
+      color(w, h, 4, "color"),
+      weight(w, h, 4, "weight"),
+      sampleSum(needs.sums ? w : 1, needs.sums ? h : 1, 4, "sampleSum"),
+      lightSample(needs.emitters ? w : 1, needs.emitters ? h : 1, 4, "lightSample"),
+      pathState(needs.pathState || paths ? w : 1, needs.pathState || paths ? h : 1, 4, "pathState"),
+      progressive(progressiveAovs),
+      aovHit(progressive ? w : 1, progressive ? h : 1, 4, "aovHit"),
+      aovCells(progressive ? w : 1, progressive ? h : 1, GPUFormat::RGBA32I, "aovCells"),
+      aovNormal(progressive ? w : 1, progressive ? h : 1, 4, "aovNormal"),
+      raygen("raygen", "integrators/raygen.frag"),
+      raygenCentre("raygen", "integrators/raygen.frag", {"PIXEL_CENTRE"}) {  // a variant: the same pass in --stats
+    accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
+    for (GPUKernel* k : kernels()) {
+        textures.bind(*k);
+        k->addOutput(rayOrigin).addOutput(rayDir);
+    }
+}
+
+void GpuPipeline::setCamera(const CameraBasis& c, const std::vector<GPUKernel*>& others) {
+    setSample(0, 1, 0);
+    std::vector<GPUKernel*> all = accel.kernels();  // the accelerator's camera trace among them
+    all.insert(all.end(), {&raygen, &raygenCentre});
+    for (GPUKernel* k : all)
+        k->setUniform("eye", c.eye)
+            .setUniform("forward", c.forward)
+            .setUniform("right", c.right)
+            .setUniform("upOrtho", c.upOrtho)
+            .setUniform("tanHalf", c.tanHalf)
+            .setUniform("aspect", c.aspect)
+            .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
+    all.insert(all.end(), others.begin(), others.end());
+    for (GPUKernel* k : all) k->setUniform("tileRow", c.rowBegin);
+}
+
+void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {
+    sampleCount_ = n;
+    raygen.setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
+}
+
+namespace {
+std::vector<glm::vec3> toVec3(const std::vector<float>& flat) {
+    std::vector<glm::vec3> out(flat.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2]);
+    return out;
+}
+}  // namespace
+
+void GpuPipeline::readHitAovs(RenderOutput& out) {
+    const size_t pixels = size_t(width) * size_t(height);
+    const auto hits = hit.download();
+    const auto steps = accel.steps().downloadInt();
+    out.depth.resize(pixels);
+    out.prim.resize(pixels);
+    out.steps.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const bool isHit = hits[i * 4 + 3] >= 0.0f;
+        out.depth[i] = isHit ? hits[i * 4] : std::numeric_limits<float>::infinity();
+        out.prim[i] = isHit ? hits[i * 4 + 3] : -1.0f;
+        out.steps[i] = float(steps[i * 4 + 3]);
+        // Overflow, counted for primary rays (their step counts are read back anyway): with the
+        // accelerator's limit, reaching it is the only way to visit that many cells.
+        if (steps[i * 4 + 3] >= accel.stepLimit()) ++out.stats.overflowRays;
+    }
+}
+
+void GpuPipeline::readNormalAov(RenderOutput& out) {
+    out.normal = toVec3(surfaceNormal.download());
+    for (size_t i = 0; i < out.normal.size(); ++i)
+        if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
+}
+
+}  // namespace gpurt

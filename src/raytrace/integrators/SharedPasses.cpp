@@ -1,0 +1,34 @@
+#include "raytrace/integrators/SharedPasses.h"
+
+namespace gpurt {
+
+void declareSurfacePass(GPUKernel& k, GpuPipeline& p, bool path) {
+    k.addInput(p.rayOrigin, "rayOrigin").addInput(p.rayDir, "rayDir").addInput(p.hit, "hitState");
+    k.addInput(p.weight, "weight").addInOut(p.color, "colorState");
+    k.addOutput(p.surfacePoint).addOutput(p.surfaceNormal).addOutput(p.surfaceView).addOutput(p.localColor);
+    k.addOutput(p.surfaceShading);
+    if (path) k.addInput(p.pathState, "pathState");
+}
+
+void declareShadowgenPass(GPUKernel& k, GpuPipeline& p, bool path, bool emitter) {
+    k.addInput(p.surfacePoint, "surfacePoint").addInput(p.surfaceNormal, "surfaceNormal");
+    k.addOutput(p.rayOrigin).addOutput(p.rayDir);
+    if (emitter && p.needs.emitters) k.addOutput(p.lightSample);
+    if (emitter && path) k.addInput(p.pathState, "pathState");
+    if (path)  // the lobes at the hit's texture coordinates
+        k.addInput(p.surfaceView, "surfaceView").addInput(p.surfaceShading, "surfaceShading");
+}
+
+void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter) {
+    k.addInput(p.surfacePoint, "surfacePoint").addInput(p.surfaceNormal, "surfaceNormal");
+    k.addInput(p.surfaceView, "surfaceView").addInput(p.hit, "hitState");
+    if (emitter) k.addInput(p.lightSample, "lightSample");
+    k.addInOut(p.localColor, "localState");
+    k.addInput(p.surfaceShading, "surfaceShading");
+}
+
+void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& colour) {
+    if (p.needs.sums) k.addInput(colour, "colorState").addInOut(p.sampleSum, "sumState");
+}
+
+}  // namespace gpurt

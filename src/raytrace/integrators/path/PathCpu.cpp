@@ -1,0 +1,70 @@
+#include "raytrace/integrators/path/PathCpu.h"
+
+namespace gpurt {
+
+using namespace raymath;
+
+namespace {
+
+// Next-event estimation at a hit (shadowgen.frag and light.frag PATH, the emitter's part of
+// path/bounce.frag): each visible point light through the BSDF, and the round's emitter point
+// weighed against the BSDF's sampling of the same direction.
+glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer::Surface& s, glm::vec3 d,
+                      const std::vector<PointLight>& lights, int depth, RenderStats& stats) {
+    glm::vec3 local(0.0f);
+    for (const PointLight& light : lights)
+        if (t.lightVisible(s.p, s.n, light.position, stats))
+            local += pathLightContribution(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
+    vec3 q;
+    uint32_t id;
+    if (t.emitterVisible(px.i, px.j, px.index, px.count, px.seed, depth, s.p, s.n, stats, q, id)) {
+        const CpuTracer::PreparedTriangle& e = t.triangle(id);
+        const float area = t.emitters().totalArea;
+        local += pathLightContribution(s.material, s.p, s.ns, d, q, t.scene().materials[t.scene().materialIds[id]].emission,
+                                       emitterIntensity(s.p, q, e.e1, e.e2, area)) *
+                 emitterSampleWeight(s.material, s.p, q, e.e1, e.e2, area, s.ns, d);
+    }
+    return local;
+}
+
+}  // namespace
+
+glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+                     const std::vector<PointLight>& lights, int maxDepth, PixelAovs aovs, RenderStats& stats) {
+    glm::vec3 o = eye, color(0.0f), weight(1.0f);
+    float prevPdf = 0.0f;  // the camera ray: its emission counts in full
+    for (int b = 0;; ++b) {
+        const TraceHit hit = t.trace(o, d, GPURT_FAR);
+        stats.addLivePaths(size_t(b), 1);
+        ++(b == 0 ? stats.primaryRays : stats.secondaryRays);
+        if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
+        if (b == 0 && aovs.out) aovs.out->steps[aovs.pixel] = static_cast<float>(hit.steps);
+        if (hit.prim < 0) {
+            color += weight * t.scene().background;
+            break;
+        }
+        const CpuTracer::Surface s = t.surfaceAt(hit, o, d);
+        if (b == 0 && aovs.out) aovs.write(hit.t, static_cast<float>(hit.prim), s.n);
+        color += weight * (materialEmitted(s.material, s.ns) * emissionWeight(prevPdf, hit.t, s.n, d, t.emitters().totalArea));
+        if (b == maxDepth) break;
+        if (materialLit(s.material)) color += weight * directLight(t, px, s, d, lights, b, stats);
+
+        // The next direction (path/bounce.frag).
+        const uint32_t dim = GPURT_DIM_SCATTER + 2u * uint32_t(b);
+        const vec2 u = cmjSample(px.index, px.count, samplePattern(uint32_t(px.i), uint32_t(px.j), px.seed, dim));
+        const vec2 choice = randomPair(px.index, samplePattern(uint32_t(px.i), uint32_t(px.j), px.seed, dim + 1u));
+        const CpuTracer::PreparedTriangle& tri = t.triangle(uint32_t(hit.prim));
+        vec3 dir, factor;
+        float pdf, side;
+        if (!materialSample(s.material, d, s.n, s.ns, frontFace(tri.e1, tri.e2, d), u, choice.x, dir, factor, pdf, side))
+            break;
+        weight *= factor;
+        if (!russianRoulette(b, weight, choice.y)) break;
+        prevPdf = pdf;
+        o = offsetOrigin(s.p, side * s.n, t.rayOffset());
+        d = dir;
+    }
+    return color;
+}
+
+}  // namespace gpurt

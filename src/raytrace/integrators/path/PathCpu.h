@@ -1,0 +1,17 @@
+// The path integrator on the cpu backend (common/path.h): one path through a pixel, iteration b
+// here being round b of the gl twin (PathGl) in the same order of operations: the hit's emission
+// (weighed against next-event estimation), then below the last depth the point lights and one
+// emitter point, each with a shadow ray, then the next direction and Russian roulette.
+#pragma once
+
+#include "raytrace/integrators/CpuIntegrator.h"
+
+#include <vector>
+
+namespace gpurt {
+
+// The colour of the path of the camera ray from eye along d, with hits up to maxDepth.
+glm::vec3 pathSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+                     const std::vector<PointLight>& lights, int maxDepth, PixelAovs aovs, RenderStats& stats);
+
+}  // namespace gpurt
