@@ -191,6 +191,58 @@ nlohmann::json resultJson(const BenchResult& r, const BenchResult* embree) {
     return j;
 }
 
+// The results as one JSON object (--json): the backend's fields at the top for one backend, a
+// list of them for several.
+void printBenchJson(const BenchOptions& o, const BenchInput& in, double gridMs, const std::vector<BenchResult>& results,
+                    const BenchResult* embree) {
+    const UniformGrid& grid = in.grid;
+    nlohmann::json j;
+    if (results.size() == 1) j = resultJson(results.front(), embree);
+    j["scene"] = o.scene;
+    j["triangles"] = in.scene.triangles.size();
+    j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
+    j["grid_ms"] = gridMs;
+    j["width"] = in.camera.width;
+    j["height"] = in.camera.height;
+    j["ray_kind"] = o.rays;
+    j["runs"] = o.runs;
+    if (results.size() > 1) {
+        j["backends"] = nlohmann::json::array();
+        for (const BenchResult& r : results) j["backends"].push_back(resultJson(r, embree));
+    }
+    std::printf("%s\n", j.dump().c_str());
+}
+
+// The results as a table, then each backend's passes.
+void printBenchTable(const BenchOptions& o, const BenchInput& in, bool built, double gridMs,
+                     const std::vector<BenchResult>& results, const BenchResult* embree) {
+    const UniformGrid& grid = in.grid;
+    const CameraBasis& camera = in.camera;
+    const uint64_t rayCount = in.rays.rays();
+    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (%s in %.0f ms)\n", o.scene.c_str(),
+                in.scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z,
+                built ? "built" : "packed, read", gridMs);
+    std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
+                (unsigned long long)rayCount, camera.width, camera.height, o.runs);
+    std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",
+                "renderer");
+    for (const BenchResult& r : results) {
+        char ratio[32] = "-", agree[32] = "-";
+        if (embree) std::snprintf(ratio, sizeof ratio, "%.3f", mraysPerSecond(r) / std::max(1e-12, mraysPerSecond(*embree)));
+        if (r.agreement >= 0.0) std::snprintf(agree, sizeof agree, "%.4f%%", 100.0 * r.agreement);
+        std::printf("%-8s %7d %10.2f %10.2f %9s %9s  %s\n", r.backend.c_str(), r.threads, r.ms, mraysPerSecond(r),
+                    ratio, agree, r.renderer.c_str());
+    }
+    for (const BenchResult& r : results) {
+        if (r.passes.empty()) continue;
+        std::printf("%s passes (one extra run with GPU timers)\n", r.backend.c_str());
+        std::printf("  %-14s %8s %14s %10s\n", "pass", "calls", "fragments", "ms");
+        for (const auto& [name, p] : r.passes.items())
+            std::printf("  %-14s %8llu %14llu %10.2f\n", name.c_str(), (unsigned long long)p["calls"].get<uint64_t>(),
+                        (unsigned long long)p["fragments"].get<uint64_t>(), p["ms"].get<double>());
+    }
+}
+
 int runBench(const BenchOptions& o) {
     o.tracer.options();  // refuses a bad --mask before any work
     std::vector<std::string> backends = o.backends.empty() ? availableBackends() : o.backends;
@@ -236,47 +288,8 @@ int runBench(const BenchOptions& o) {
         for (BenchResult& r : results)
             if (&r != &reference) r.agreement = agreement(r.hits, reference.hits, rays, shadow);
 
-    const uint64_t rayCount = rays.rays();
-    if (o.json) {
-        nlohmann::json j;
-        if (results.size() == 1) j = resultJson(results.front(), embree);
-        j["scene"] = o.scene;
-        j["triangles"] = scene.triangles.size();
-        j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
-        j["grid_ms"] = gridMs;
-        j["width"] = camera.width;
-        j["height"] = camera.height;
-        j["ray_kind"] = o.rays;
-        j["runs"] = o.runs;
-        if (results.size() > 1) {
-            j["backends"] = nlohmann::json::array();
-            for (const BenchResult& r : results) j["backends"].push_back(resultJson(r, embree));
-        }
-        std::printf("%s\n", j.dump().c_str());
-        return 0;
-    }
-    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (%s in %.0f ms)\n", o.scene.c_str(),
-                scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z,
-                built ? "built" : "packed, read", gridMs);
-    std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
-                (unsigned long long)rayCount, camera.width, camera.height, o.runs);
-    std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",
-                "renderer");
-    for (const BenchResult& r : results) {
-        char ratio[32] = "-", agree[32] = "-";
-        if (embree) std::snprintf(ratio, sizeof ratio, "%.3f", mraysPerSecond(r) / std::max(1e-12, mraysPerSecond(*embree)));
-        if (r.agreement >= 0.0) std::snprintf(agree, sizeof agree, "%.4f%%", 100.0 * r.agreement);
-        std::printf("%-8s %7d %10.2f %10.2f %9s %9s  %s\n", r.backend.c_str(), r.threads, r.ms, mraysPerSecond(r),
-                    ratio, agree, r.renderer.c_str());
-    }
-    for (const BenchResult& r : results) {
-        if (r.passes.empty()) continue;
-        std::printf("%s passes (one extra run with GPU timers)\n", r.backend.c_str());
-        std::printf("  %-14s %8s %14s %10s\n", "pass", "calls", "fragments", "ms");
-        for (const auto& [name, p] : r.passes.items())
-            std::printf("  %-14s %8llu %14llu %10.2f\n", name.c_str(), (unsigned long long)p["calls"].get<uint64_t>(),
-                        (unsigned long long)p["fragments"].get<uint64_t>(), p["ms"].get<double>());
-    }
+    if (o.json) printBenchJson(o, input, gridMs, results, embree);
+    else printBenchTable(o, input, built.has_value(), gridMs, results, embree);
     return 0;
 }
 

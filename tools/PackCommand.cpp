@@ -134,8 +134,9 @@ void dumpOccupancy(const std::filesystem::path& dir, const UniformGrid& grid, ui
     }
 }
 
-int runPack(const PackOptions& o) {
-    // Options first: nothing is read or written for a bad one.
+// The grid's options from --grid and --lambda, and the output's and --dump's folders, checked
+// before anything is read or written.
+GridOptions checkedOptions(const PackOptions& o) {
     GridOptions gridOptions;
     gridOptions.resolution = parseGrid(o.grid);
     gridOptions.lambda = o.lambda;
@@ -154,42 +155,33 @@ int runPack(const PackOptions& o) {
             throw InputError("--dump: " + o.dump + ": cannot create folder" +
                              (ec ? " (" + ec.message() + ")" : ""));
     }
+    return gridOptions;
+}
 
-    const auto start = std::chrono::steady_clock::now();
-    LoadedScene loaded = loadScene(o.scene);
-    loaded.grid.reset();  // a packed input is repacked with a grid built as asked
-    const auto gridStart = std::chrono::steady_clock::now();
-    const UniformGrid grid = buildGrid(loaded.scene, gridOptions);
-    const double gridMs = millisecondsSince(gridStart);
-    const std::vector<unsigned char> bytes = encodePackedScene(loaded, grid, o.scene);
-
-    const std::vector<TextureTexels> textures = sceneTextureTexels(loaded.scene, grid);
+// The grid's occupancy: non-empty cells and the longest cell list (its length and cell).
+struct Occupancy {
     size_t nonEmpty = 0;
     uint32_t longest = 0;
     size_t longestCell = 0;
+};
+
+Occupancy occupancyOf(const UniformGrid& grid) {
+    Occupancy o;
     for (size_t c = 0; c < grid.cells(); ++c) {
         const uint32_t length = grid.cellStart[c + 1] - grid.cellStart[c];
-        nonEmpty += length > 0;
-        if (length > longest) {
-            longest = length;
-            longestCell = c;
+        o.nonEmpty += length > 0;
+        if (length > o.longest) {
+            o.longest = length;
+            o.longestCell = c;
         }
     }
-    if (!o.dump.empty()) {
-        for (const TextureTexels& t : textures) dumpTexture(o.dump, t);
-        dumpOccupancy(o.dump, grid, longest);
-    }
-    writePackedScene(o.output, bytes);
-    const double totalMs = millisecondsSince(start);
+    return o;
+}
 
-    const Scene& scene = loaded.scene;
-    const size_t n = scene.triangles.size();
-    const glm::ivec3 r = grid.resolution;
-    const glm::ivec3 longestAt(int(longestCell % size_t(r.x)),
-                               int(longestCell / size_t(r.x) % size_t(r.y)),
-                               int(longestCell / (size_t(r.x) * size_t(r.y))));
-    std::printf("scene        %s\n", o.scene.c_str());
-    std::printf("triangles    %zu\n", n);
+// The scene's counts and its textures (name, size, wrap, users).
+void printScene(const std::string& name, const Scene& scene) {
+    std::printf("scene        %s\n", name.c_str());
+    std::printf("triangles    %zu\n", scene.triangles.size());
     std::printf("materials    %zu\n", scene.materials.size());
     std::printf("lights       %zu\n", scene.lights.size());
     static const char* const kWrapNames[] = {"repeat", "clamp", "mirror"};
@@ -202,16 +194,48 @@ int runPack(const PackOptions& o) {
         std::printf("  texture %zu  %s %dx%d, wrap %s/%s, %zu material%s\n", k, printable(t.name).c_str(), t.image.width,
                     t.image.height, kWrapNames[t.wrapS], kWrapNames[t.wrapT], users, users == 1 ? "" : "s");
     }
-    if (gridOptions.resolution)
+}
+
+// The grid: resolution, cells, references, the longest list.
+void printGrid(const PackOptions& o, const GridOptions& options, const UniformGrid& grid, size_t triangles,
+               const Occupancy& occupancy) {
+    const glm::ivec3 r = grid.resolution;
+    const size_t c = occupancy.longestCell;
+    const glm::ivec3 longestAt(int(c % size_t(r.x)), int(c / size_t(r.x) % size_t(r.y)), int(c / (size_t(r.x) * size_t(r.y))));
+    if (options.resolution)
         std::printf("grid         %dx%dx%d (given)\n", r.x, r.y, r.z);
     else
         std::printf("grid         %dx%dx%d (auto, lambda %g)\n", r.x, r.y, r.z, double(o.lambda));
-    std::printf("cells        %zu, %zu non-empty (%.1f%%)\n", grid.cells(), nonEmpty,
-                100.0 * double(nonEmpty) / double(grid.cells()));
+    std::printf("cells        %zu, %zu non-empty (%.1f%%)\n", grid.cells(), occupancy.nonEmpty,
+                100.0 * double(occupancy.nonEmpty) / double(grid.cells()));
     std::printf("references   %zu, %.2f per triangle\n", grid.cellTriangles.size(),
-                n ? double(grid.cellTriangles.size()) / double(n) : 0.0);
-    std::printf("longest list %u triangles (cell %d,%d,%d)\n", longest, longestAt.x, longestAt.y,
+                triangles ? double(grid.cellTriangles.size()) / double(triangles) : 0.0);
+    std::printf("longest list %u triangles (cell %d,%d,%d)\n", occupancy.longest, longestAt.x, longestAt.y,
                 longestAt.z);
+}
+
+int runPack(const PackOptions& o) {
+    // Options first: nothing is read or written for a bad one.
+    const GridOptions gridOptions = checkedOptions(o);
+    const auto start = std::chrono::steady_clock::now();
+    LoadedScene loaded = loadScene(o.scene);
+    loaded.grid.reset();  // a packed input is repacked with a grid built as asked
+    const auto gridStart = std::chrono::steady_clock::now();
+    const UniformGrid grid = buildGrid(loaded.scene, gridOptions);
+    const double gridMs = millisecondsSince(gridStart);
+    const std::vector<unsigned char> bytes = encodePackedScene(loaded, grid, o.scene);
+
+    const std::vector<TextureTexels> textures = sceneTextureTexels(loaded.scene, grid);
+    const Occupancy occupancy = occupancyOf(grid);
+    if (!o.dump.empty()) {
+        for (const TextureTexels& t : textures) dumpTexture(o.dump, t);
+        dumpOccupancy(o.dump, grid, occupancy.longest);
+    }
+    writePackedScene(o.output, bytes);
+    const double totalMs = millisecondsSince(start);
+
+    printScene(o.scene, loaded.scene);
+    printGrid(o, gridOptions, grid, loaded.scene.triangles.size(), occupancy);
     size_t textureBytes = 0;
     for (const TextureTexels& t : textures) {
         std::printf("texture      %-10s %-8s %5dx%-6d %12zu bytes\n", t.name.c_str(),

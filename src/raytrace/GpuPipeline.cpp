@@ -1,5 +1,7 @@
 #include "raytrace/GpuPipeline.h"
 
+#include "raytrace/integrators/SharedPasses.h"
+
 #include <limits>
 
 namespace gpurt {
@@ -28,7 +30,7 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       aovCells(progressive ? w : 1, progressive ? h : 1, GPUFormat::RGBA32I, "aovCells"),
       aovNormal(progressive ? w : 1, progressive ? h : 1, 4, "aovNormal"),
       raygen("raygen", "integrators/raygen.frag"),
-      raygenCentre("raygen", "integrators/raygen.frag", {"PIXEL_CENTRE"}) {  // a variant: the same pass in --stats
+      raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)) {  // a variant: the same pass in --stats
     accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
     for (GPUKernel* k : kernels()) {
         textures.bind(*k);

@@ -2,6 +2,16 @@
 
 namespace gpurt {
 
+std::vector<std::string> passDefines(unsigned flags) {
+    std::vector<std::string> defines;
+    if (flags & kEmitterPass) defines.push_back("EMITTER");
+    if (flags & kPathPass) defines.push_back("PATH");
+    if (flags & kPackPass) defines.push_back("PACK");
+    if (flags & kLastRound) defines.push_back("LAST_ROUND");
+    if (flags & kPixelCentre) defines.push_back("PIXEL_CENTRE");
+    return defines;
+}
+
 void declareSurfacePass(GPUKernel& k, GpuPipeline& p, bool path) {
     k.addInput(p.rayOrigin, "rayOrigin").addInput(p.rayDir, "rayDir").addInput(p.hit, "hitState");
     k.addInput(p.weight, "weight").addInOut(p.color, "colorState");

@@ -5,7 +5,21 @@
 
 #include "raytrace/GpuPipeline.h"
 
+#include <string>
+#include <vector>
+
 namespace gpurt {
+
+// The variants of the integrators' kernels, as flags (Magnum's shaders choose theirs alike); each
+// is a #define of the kernel's source (passDefines).
+enum PassFlag : unsigned {
+    kPathPass = 1,      // PATH: the path integrator's variant
+    kEmitterPass = 2,   // EMITTER: for the emitters' sample point instead of a point light
+    kPackPass = 4,      // PACK: the path bounce that packs the live paths
+    kLastRound = 8,     // LAST_ROUND: Whitted's bounce when no ray can follow
+    kPixelCentre = 16,  // PIXEL_CENTRE: raygen through the pixel centres
+};
+std::vector<std::string> passDefines(unsigned flags);
 
 // surface.frag: the round's hits into surface records (point, facing normal and material, view
 // direction and texture coordinates, shading normal), emission and misses into the colour.

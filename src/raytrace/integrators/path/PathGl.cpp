@@ -45,12 +45,12 @@ PathGl::PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode ma
       pathLives_(paths ? p_.width : 1, paths ? p_.height : 1, 1, "pathLives"),
       aliveMask_("alive", mask, p_.weight, 3, 1.0f, 1.0f),
       surfaceMask_("surface", mask, p_.surfacePoint, 3, 0.0f, 1e30f),
-      surface_("pathSurface", "integrators/surface.frag", {"PATH"}),
-      shadowgen_("pathShadowgen", "integrators/shadowgen.frag", {"PATH"}),
-      light_("pathLight", "integrators/light.frag", {"PATH"}),
-      emitterShadowgen_("pathEmitterShadowgen", "integrators/shadowgen.frag", {"EMITTER", "PATH"}),
+      surface_("pathSurface", "integrators/surface.frag", passDefines(kPathPass)),
+      shadowgen_("pathShadowgen", "integrators/shadowgen.frag", passDefines(kPathPass)),
+      light_("pathLight", "integrators/light.frag", passDefines(kPathPass)),
+      emitterShadowgen_("pathEmitterShadowgen", "integrators/shadowgen.frag", passDefines(kEmitterPass | kPathPass)),
       bounce_("pathBounce", "integrators/path/bounce.frag"),
-      pack_("pathPack", "integrators/path/bounce.frag", {"PACK"}),
+      pack_("pathPack", "integrators/path/bounce.frag", passDefines(kPackPass)),
       deposit_("pathDeposit", "integrators/path/deposit.frag"),
       accumulate_("pathAccumulate", "integrators/accumulate.frag") {
     for (GPUKernel* k : kernels()) textures.bind(*k);

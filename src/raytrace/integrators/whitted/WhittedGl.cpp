@@ -50,10 +50,10 @@ WhittedGl::WhittedGl(GpuPipeline& pipeline, const SceneTextures& textures, int s
       surface_("surface", "integrators/surface.frag"),
       shadowgen_("shadowgen", "integrators/shadowgen.frag"),
       light_("light", "integrators/light.frag"),
-      emitterShadowgen_("emitterShadowgen", "integrators/shadowgen.frag", {"EMITTER"}),
-      emitterLight_("emitterLight", "integrators/light.frag", {"EMITTER"}),
+      emitterShadowgen_("emitterShadowgen", "integrators/shadowgen.frag", passDefines(kEmitterPass)),
+      emitterLight_("emitterLight", "integrators/light.frag", passDefines(kEmitterPass)),
       bounce_("bounce", "integrators/whitted/bounce.frag"),
-      lastBounce_("lastBounce", "integrators/whitted/bounce.frag", {"LAST_ROUND"}),
+      lastBounce_("lastBounce", "integrators/whitted/bounce.frag", passDefines(kLastRound)),
       accumulate_("accumulate", "integrators/accumulate.frag") {
     for (GPUKernel* k : kernels()) textures.bind(*k);
     declareSurfacePass(surface_, p_, false);
