@@ -179,3 +179,45 @@ TEST_F(Pictures, SmoothBunnyWithSamplesAgreesAcrossBackends) {
 
 }  // namespace
 }  // namespace gpurt::test
+
+namespace gpurt::test {
+namespace {
+
+// The toy material model GPURT_MODEL_DEBUG_NORMAL (glsl/common/materials/debug_normal.h), added as
+// docs/ARCHITECTURE.md says a model is added: an icosphere of it beside a classic floor under a
+// light shows 0.5 n + 0.5 of its facet normals (the normal AOV: no vertex normals), on both
+// backends and under both integrators, whatever the light; the floor agrees across backends.
+TEST_F(Pictures, DebugNormalModelShowsItsNormalsUnderBothIntegrators) {
+    Scene scene;
+    scene.background = glm::vec3(0.0f);
+    const uint32_t debug = addMaterial(scene, glm::vec3(0.8f));
+    scene.materials[debug].model = GPURT_MODEL_DEBUG_NORMAL;
+    addIcosphere(scene, {0.0f, 0.6f, 0.0f}, 0.5f, 1, debug);
+    addPolygon(scene, {{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}, addMaterial(scene, glm::vec3(0.5f)));
+    scene.lights.push_back({{0.0f, 3.0f, 2.0f}, glm::vec3(1.0f), 4.0f});
+    CameraSpec spec;
+    spec.eye = {0.3f, 1.2f, 2.5f};
+    spec.target = {0.0f, 0.4f, 0.0f};
+    for (const Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
+        SCOPED_TRACE(integrator == Integrator::Path ? "path" : "whitted");
+        const Both both = renderBoth(scene, spec, 40, 30, 1, 3, integrator);
+        size_t sphere = 0, floor = 0;
+        for (size_t i = 0; i < both.gl.color.size(); ++i) {
+            ASSERT_EQ(both.gl.prim[i], both.cpu.prim[i]) << i;
+            if (both.gl.prim[i] < 0.0f) continue;
+            const uint32_t material = scene.materialIds[size_t(both.gl.prim[i])];
+            if (material == debug) {
+                for (const RenderOutput* out : {&both.gl, &both.cpu})
+                    for (int c = 0; c < 3; ++c) ASSERT_NEAR(out->color[i][c], 0.5f * out->normal[i][c] + 0.5f, 1e-6f) << i;
+            } else {  // the floor, lit as the backends light it (the sphere's shadow included)
+                for (int c = 0; c < 3; ++c) ASSERT_NEAR(both.gl.color[i][c], both.cpu.color[i][c], 1e-4f) << i;
+            }
+            (material == debug ? sphere : floor) += 1;
+        }
+        EXPECT_GT(sphere, 100u);
+        EXPECT_GT(floor, 100u);
+    }
+}
+
+}  // namespace
+}  // namespace gpurt::test

@@ -22,7 +22,8 @@
 #endif
 
 // Material models (the record's `model`; Material::model in the scene).
-#define GPURT_MODEL_CLASSIC 0  // Phong lobes, mirror, smooth glass (materials/classic.h)
+#define GPURT_MODEL_CLASSIC 0       // Phong lobes, mirror, smooth glass (materials/classic.h)
+#define GPURT_MODEL_DEBUG_NORMAL 1  // the shading normal as a colour (materials/debug_normal.h)
 
 // What the integrators know of a material at one hit.
 struct MaterialRecord {
@@ -38,37 +39,87 @@ struct MaterialRecord {
 
 #include "raytree.h"
 #include "materials/classic.h"
+// A model other than the classic one is compiled into the kernels only for a scene that uses it
+// (SceneTextures::bind defines SCENE_MODEL_<id>): llvmpipe runs both sides of a branch.
+#if defined(__cplusplus) || defined(SCENE_MODEL_1)
+#define GPURT_WITH_DEBUG_NORMAL
+#include "materials/debug_normal.h"
+#endif
 
 // The radiance the surface sends along the ray by itself at shading normal ns (emission).
-GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) { return m.emission; }
+GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return debugNormalEmitted(ns);
+#endif
+    return m.emission;
+}
 
-GPURT_FN vec3 materialAmbient(MaterialRecord m) { return classicAmbient(m); }
+GPURT_FN vec3 materialAmbient(MaterialRecord m) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#endif
+    return classicAmbient(m);
+}
 
 GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
                             float intensity) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#endif
     return classicLight(m, p, n, d, lightPos, lightColor, intensity);
 }
 
-GPURT_FN bool materialSpawns(MaterialRecord m) { return classicSpawns(m); }
+GPURT_FN bool materialSpawns(MaterialRecord m) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+    return classicSpawns(m);
+}
 
 // Whether a hit may spawn two rays (glass: the ray tree's stacks are needed).
-GPURT_FN bool materialSplits(MaterialRecord m) { return classicSplits(m); }
+GPURT_FN bool materialSplits(MaterialRecord m) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+    return classicSplits(m);
+}
 
 GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec3 w,
                               GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA,
                               GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0;
+#endif
     return classicChildren(m, d, ng, ns, entering, w, dirA, weightA, sideA, dirB, weightB);
 }
 
-GPURT_FN bool materialLit(MaterialRecord m) { return classicLit(m); }
+GPURT_FN bool materialLit(MaterialRecord m) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+    return classicLit(m);
+}
 
-GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return classicEval(m, n, d, wi); }
+GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#endif
+    return classicEval(m, n, d, wi);
+}
 
-GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return classicPdf(m, n, d, wi); }
+GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0.0f;
+#endif
+    return classicPdf(m, n, d, wi);
+}
 
 GPURT_FN bool materialSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec2 u, float lobe,
                              GPURT_OUT(vec3) dir, GPURT_OUT(vec3) factor, GPURT_OUT(float) pdf,
                              GPURT_OUT(float) side) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
     return classicSample(m, d, ng, ns, entering, u, lobe, dir, factor, pdf, side);
 }
 
