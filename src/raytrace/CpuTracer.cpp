@@ -19,10 +19,10 @@ namespace gpurt {
 using namespace raymath;
 
 CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
-    : scene_(scene),
-      accel_(std::make_unique<GridCpu>(scene, grid)),
-      rayOffset_(grid.rayOffset()),
-      emitters_(buildEmitterTable(scene)) {
+    : CpuTracer(scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset()) {}
+
+CpuTracer::CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset)
+    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)) {
     triangles_.reserve(scene.triangles.size());
     for (const Triangle& t : scene.triangles)
         triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});

@@ -22,6 +22,8 @@ class CpuTracer {
   public:
     // Keeps references to both: they must outlive the tracer.
     CpuTracer(const Scene& scene, const UniformGrid& grid);
+    // Over any accelerator of the scene; rayOffset: how far secondary rays start off a surface.
+    CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset);
 
     // First hit of o + t d with 0 < t < tLimit; d must be normalised.
     TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit) const;

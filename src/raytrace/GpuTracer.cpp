@@ -19,10 +19,10 @@
 namespace gpurt {
 
 GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options)
-    : scene_(scene),
-      options_(options),
-      textures_(scene, grid.rayOffset()),
-      accel_(std::make_unique<GridGl>(scene, grid, options)) {
+    : GpuTracer(scene, std::make_unique<GridGl>(scene, grid, options), grid.rayOffset(), options) {}
+
+GpuTracer::GpuTracer(const Scene& scene, std::unique_ptr<GlAccelerator> accel, float rayOffset, GpuTracerOptions options)
+    : scene_(scene), options_(options), textures_(scene, rayOffset), accel_(std::move(accel)) {
     for (uint32_t m : scene.materialIds) {
         const raymath::MaterialRecord r = materialRecord(scene.materials[m]);
         splits_ = splits_ || raymath::materialSplits(r);

@@ -30,6 +30,8 @@ class GpuTracer {
   public:
     // Uploads the scene textures; `scene` and `grid` must outlive the tracer.
     GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptions options = {});
+    // Over any accelerator of the scene; rayOffset: how far secondary rays start off a surface.
+    GpuTracer(const Scene& scene, std::unique_ptr<GlAccelerator> accel, float rayOffset, GpuTracerOptions options = {});
     ~GpuTracer();
 
     // The whole image: colour (the mean of settings.samples samples a pixel) and the primary AOVs

@@ -3,6 +3,8 @@
 #include "image/InputError.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
+#include "raytrace/accel/grid/GridCpu.h"
+#include "raytrace/accel/grid/GridGl.h"
 #include "stream/KernelStats.h"
 
 #include <chrono>
@@ -14,8 +16,9 @@ namespace {
 
 class CpuRenderer final : public Renderer {
   public:
-    CpuRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid)
-        : config_(config), tracer_(scene, grid) {}
+    CpuRenderer(const RendererConfig& config, const Scene& scene, std::unique_ptr<CpuAccelerator> accel,
+                float rayOffset)
+        : config_(config), tracer_(scene, std::move(accel), rayOffset) {}
 
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) override {
         RenderSettings s = settings;
@@ -35,8 +38,9 @@ class CpuRenderer final : public Renderer {
 
 class GlRenderer final : public Renderer, public ProgressiveRenderer {
   public:
-    GlRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid)
-        : config_(config), tracer_(scene, grid, config.gl) {}
+    GlRenderer(const RendererConfig& config, const Scene& scene, std::unique_ptr<GlAccelerator> accel,
+               float rayOffset)
+        : config_(config), tracer_(scene, std::move(accel), rayOffset, config.gl) {}
 
     RenderOutput render(const CameraBasis& camera, const RenderSettings& settings) override {
         RenderSettings s = settings;
@@ -84,10 +88,13 @@ double renderBytes(Backend backend, Integrator integrator, double pixels) {
     return perPixel * pixels + 256e6;
 }
 
+// The accelerator by name, for the backend: the uniform grid is the one today (a second one is
+// built here from the scene, and its packed section read by PackedScene).
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid) {
     if (config.accelerator != "grid") throw InputError("--accel: unknown accelerator '" + config.accelerator + "' (grid)");
-    if (config.backend == Backend::Cpu) return std::make_unique<CpuRenderer>(config, scene, grid);
-    return std::make_unique<GlRenderer>(config, scene, grid);
+    if (config.backend == Backend::Cpu)
+        return std::make_unique<CpuRenderer>(config, scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset());
+    return std::make_unique<GlRenderer>(config, scene, std::make_unique<GridGl>(scene, grid, config.gl), grid.rayOffset());
 }
 
 }  // namespace gpurt
