@@ -195,6 +195,17 @@ void PictureCliOptions::add(CLI::App& cmd) {
         ->check(CLI::IsMember({"whitted", "path"}));
 }
 
+RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size, int given, const Scene& scene) {
+    RenderSettings settings;
+    settings.width = size.x;
+    settings.height = size.y;
+    settings.maxBounces = bounces(given, scene, values.integrator);
+    settings.integrator = values.integrator;
+    settings.samples = values.samples;
+    settings.seed = values.seed;
+    return settings;
+}
+
 int PictureCliOptions::bounces(int given, const Scene& scene, Integrator integrator) {
     if (given >= 0) return given;
     return integrator == Integrator::Path ? kDefaultPathBounces : scene.maxBounces;

@@ -105,6 +105,8 @@ struct PictureCliOptions {
     // --bounces as given (>= 0), else the integrator's default: the scene's for Whitted (its
     // mirror and glass levels, 3 unless it says), kDefaultPathBounces for path.
     static int bounces(int given, const Scene& scene, Integrator integrator);
+    // The render settings of the values for an image of `size`, with bounces(given, ...).
+    static RenderSettings settings(const Values& values, glm::ivec2 size, int given, const Scene& scene);
 };
 
 // The scene as render and view trace it: loaded, with smooth normals for the crease angle

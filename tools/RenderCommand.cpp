@@ -328,13 +328,7 @@ int runRender(const RenderOptions& o) {
     TileInfo tile;
     const bool tiled = !o.tile.empty();
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
-    RenderSettings settings;
-    settings.width = size.x;
-    settings.height = size.y;
-    settings.maxBounces = PictureCliOptions::bounces(o.bounces, scene, picture.integrator);
-    settings.integrator = picture.integrator;
-    settings.samples = picture.samples;
-    settings.seed = picture.seed;
+    const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
 
     const auto start = std::chrono::steady_clock::now();
     const std::optional<UniformGrid> built = o.grid.build(loaded);

@@ -340,12 +340,7 @@ int runView(const ViewOptions& o) {
     const Bounds bounds = scene.bounds();
     const float diagonal = bounds.empty() ? 1.0f : 2.0f * glm::length(bounds.halfExtent());
     control.step = 0.02f * (diagonal > 0.0f ? diagonal : 1.0f);
-    RenderSettings settings;
-    settings.width = size.x;
-    settings.height = size.y;
-    settings.maxBounces = PictureCliOptions::bounces(o.bounces, scene, picture.integrator);
-    settings.integrator = picture.integrator;
-    settings.seed = picture.seed;
+    const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
     // Samples of one camera: --spp, else --frames (so that N frames are N samples, as render
     // --spp N), else 256; --bench: one a frame for all its frames.
     const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
