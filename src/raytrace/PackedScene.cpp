@@ -41,13 +41,15 @@ constexpr char kCellList[] = "LIST";
 constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
+constexpr char kModels[] = "MODL";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates and the textures are required.
+// texture coordinates, the textures and the material models are required.
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,   kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals, kAnimation,  kTexcoords,
-                                         kTextures};
+                                         kTextures,  kModels};
 constexpr bool optionalSection(std::string_view tag) {
-    return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures;
+    return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
+           tag == kModels;
 }
 bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kCamera) return bool(loaded.scene.camera);
@@ -55,12 +57,21 @@ bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kAnimation) return bool(loaded.scene.animation);
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
     if (tag == kTextures) return !loaded.scene.textures.empty();
+    // Only when some material is not of the classic model: files of classic scenes stay as they
+    // were before the section existed.
+    if (tag == kModels)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return m.model != 0; });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
 constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
+constexpr size_t kModelBytes = 4;
+// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*): 0 is
+// the classic model, 1 the test-only GPURT_MODEL_DEBUG_NORMAL.
+constexpr uint32_t kLastMaterialModel = 1;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
@@ -87,6 +98,11 @@ std::string formatFloat(float value) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", double(value));
     return text;
+}
+
+std::string unknownModel(size_t material, int64_t model) {
+    return "material " + std::to_string(material) + ": unknown material model " + std::to_string(model) +
+           " (this gpurt knows 0.." + std::to_string(kLastMaterialModel) + ")";
 }
 
 uint32_t crc32Of(std::span<const unsigned char> bytes) {
@@ -207,7 +223,7 @@ void checkTriangles(const FileLoc& file, const Scene& scene) {
 }
 
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
-// them), then every material's texture.
+// them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
@@ -221,6 +237,7 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             glm::any(glm::greaterThan(mat.transmission, glm::vec3(1.0f))))
             failAt(file, "material " + std::to_string(m) +
                              ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
+        if (mat.model < 0 || uint32_t(mat.model) > kLastMaterialModel) failAt(file, unknownModel(m, mat.model));
     }
     for (size_t m = 0; m < scene.materials.size(); ++m)
         if (scene.materials[m].diffuseTexture < -1 || scene.materials[m].diffuseTexture >= int(scene.textures.size()))
@@ -469,14 +486,20 @@ class SectionDecoder {
         }
     }
 
-    // The leading count of a section of one record per triangle (read after the triangles).
+    // The leading count of a section of one record per triangle or per material (read after
+    // those), which must be `expected`, the count of `of`; `limit` as for count.
+    uint64_t oneEach(ByteReader& in, const Section& s, uint64_t recordBytes, const char* what, uint64_t limit,
+                     uint64_t expected, const char* of) const {
+        const uint64_t n = count(in, s, recordBytes, true, limit, what);
+        if (n != expected)
+            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " for " + std::to_string(expected) +
+                 " " + of);
+        return n;
+    }
+
     uint64_t perTriangle(ByteReader& in, const Section& s, uint64_t recordBytes, const char* what,
                          const Scene& scene) const {
-        const uint64_t n = count(in, s, recordBytes, true, kMaxTextureTriangles, what);
-        if (n != scene.triangles.size())
-            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " for " +
-                 std::to_string(scene.triangles.size()) + " triangles");
-        return n;
+        return oneEach(in, s, recordBytes, what, kMaxTextureTriangles, scene.triangles.size(), "triangles");
     }
 
     void normals(const Section& s, Scene& scene) const {
@@ -536,6 +559,18 @@ class SectionDecoder {
             fail("section " + s.tag + ": " + std::to_string(materials) + " material textures in " +
                  std::to_string(in.remaining()) + " bytes for " + std::to_string(scene.materials.size()) + " materials");
         for (Material& m : scene.materials) m.diffuseTexture = int(int32_t(in.u32()));
+    }
+
+    // Each material's model (count = the materials', then a u32 each). Read after the materials.
+    void models(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kModelBytes, "material models", kMaxTextureMaterials,
+                                   scene.materials.size(), "materials");
+        for (uint64_t m = 0; m < n; ++m) {
+            const uint32_t model = in.u32();
+            if (model > kLastMaterialModel) fail("section " + s.tag + ": " + unknownModel(size_t(m), model));
+            scene.materials[size_t(m)].model = int(model);
+        }
     }
 
     void fixedSize(const Section& s, uint64_t bytes) const {
@@ -669,6 +704,7 @@ class SectionEncoder {
         else if (tag == kNormals) normals();
         else if (tag == kTexcoords) texcoords();
         else if (tag == kTextures) textures();
+        else if (tag == kModels) models();
     }
 
   private:
@@ -778,6 +814,11 @@ class SectionEncoder {
         }
         out_.u64(scene_.materials.size());
         for (const Material& m : scene_.materials) out_.u32(uint32_t(int32_t(m.diffuseTexture)));
+    }
+
+    void models() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) out_.u32(uint32_t(m.model));
     }
 
     ByteWriter& out_;
@@ -943,6 +984,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kAnimation)) decoder.animation(*section(kAnimation), loaded.scene);
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
+    if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
 
     validateScene(name, loaded, grid);
     // The skip distances are derived from cellStart (computeSkip) rather than stored.
