@@ -7,6 +7,7 @@
 #include "raytrace/PackedScene.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -40,13 +41,15 @@ constexpr char kCellList[] = "LIST";
 constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
+constexpr char kModels[] = "MODL";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates and the textures are required.
+// texture coordinates, the textures and the material models are required.
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,   kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals, kAnimation,  kTexcoords,
-                                         kTextures};
+                                         kTextures,  kModels};
 constexpr bool optionalSection(std::string_view tag) {
-    return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures;
+    return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
+           tag == kModels;
 }
 bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kCamera) return bool(loaded.scene.camera);
@@ -54,12 +57,21 @@ bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kAnimation) return bool(loaded.scene.animation);
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
     if (tag == kTextures) return !loaded.scene.textures.empty();
+    // Only when some material is not of the classic model: files of classic scenes stay as they
+    // were before the section existed.
+    if (tag == kModels)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return m.model != 0; });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
 constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
+constexpr size_t kModelBytes = 4;
+// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*): 0 is
+// the classic model, 1 the test-only GPURT_MODEL_DEBUG_NORMAL.
+constexpr uint32_t kLastMaterialModel = 1;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
@@ -86,6 +98,11 @@ std::string formatFloat(float value) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", double(value));
     return text;
+}
+
+std::string unknownModel(size_t material, int64_t model) {
+    return "material " + std::to_string(material) + ": unknown material model " + std::to_string(model) +
+           " (this gpurt knows 0.." + std::to_string(kLastMaterialModel) + ")";
 }
 
 uint32_t crc32Of(std::span<const unsigned char> bytes) {
@@ -142,8 +159,9 @@ uint64_t load64(const unsigned char* p) {
 // first, so that is a second line of defence, not the way errors are found.
 class ByteReader {
   public:
-    ByteReader(std::span<const unsigned char> bytes, std::string where)
-        : bytes_(bytes), where_(std::move(where)) {}
+    // `section` ("section TAG") names the section in `file` in messages.
+    ByteReader(std::span<const unsigned char> bytes, FileLoc file, std::string section)
+        : bytes_(bytes), file_(std::move(file)), section_(std::move(section)) {}
 
     uint32_t u32() { return load32(take(4)); }
     uint64_t u64() { return load64(take(8)); }
@@ -156,7 +174,7 @@ class ByteReader {
         return v;
     }
     const unsigned char* take(size_t n) {
-        if (n > remaining()) throw InputError(where_ + ": section ends early");
+        if (n > remaining()) failAt(file_, section_ + ": section ends early");
         const unsigned char* p = bytes_.data() + at_;
         at_ += n;
         return p;
@@ -166,7 +184,8 @@ class ByteReader {
   private:
     std::span<const unsigned char> bytes_;
     size_t at_ = 0;
-    std::string where_;
+    FileLoc file_;
+    std::string section_;
 };
 
 bool isFinite(glm::vec3 v) {
@@ -175,53 +194,62 @@ bool isFinite(glm::vec3 v) {
 
 bool nonNegative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 
-// Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
-// the writer (name = the source scene) and the reader (name = the packed file).
-void validateScene(const std::string& name, const LoadedScene& loaded, const UniformGrid& grid) {
-    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
-    const Scene& scene = loaded.scene;
-    const size_t n = scene.triangles.size();
+// The checks of validateScene, in its order; `file` names the scene in each message.
 
+// The triangle and material counts the GL backend can carry, and each triangle's vertices and
+// material id.
+void checkTriangles(const FileLoc& file, const Scene& scene) {
+    const size_t n = scene.triangles.size();
     if (n > kMaxTextureTriangles)
-        fail(std::to_string(n) + " triangles; at most " + std::to_string(kMaxTextureTriangles) +
-             " fit the GL backend (triangle ids travel as float32, exact below 2^24)");
-    if (scene.materials.empty()) fail("no materials (a scene has at least the default material)");
+        failAt(file, std::to_string(n) + " triangles; at most " + std::to_string(kMaxTextureTriangles) +
+                         " fit the GL backend (triangle ids travel as float32, exact below 2^24)");
+    if (scene.materials.empty()) failAt(file, "no materials (a scene has at least the default material)");
     if (scene.materials.size() > kMaxTextureMaterials)
-        fail(std::to_string(scene.materials.size()) + " materials; at most " +
-             std::to_string(kMaxTextureMaterials) +
-             " fit the GL backend (material ids travel as float32, exact below 2^24)");
+        failAt(file, std::to_string(scene.materials.size()) + " materials; at most " +
+                         std::to_string(kMaxTextureMaterials) +
+                         " fit the GL backend (material ids travel as float32, exact below 2^24)");
     if (scene.materialIds.size() != n)
-        fail(std::to_string(scene.materialIds.size()) + " material ids for " + std::to_string(n) +
-             " triangles");
+        failAt(file, std::to_string(scene.materialIds.size()) + " material ids for " + std::to_string(n) +
+                         " triangles");
     for (size_t t = 0; t < n; ++t) {
         const Triangle& tri = scene.triangles[t];
         if (!isFinite(tri.v0) || !isFinite(tri.v1) || !isFinite(tri.v2))
-            fail("triangle " + std::to_string(t) + ": vertex coordinates are not finite");
+            failAt(file, "triangle " + std::to_string(t) + ": vertex coordinates are not finite");
         if (scene.materialIds[t] >= scene.materials.size())
-            fail("triangle " + std::to_string(t) + ": material id " +
-                 std::to_string(scene.materialIds[t]) + " out of range (" +
-                 std::to_string(scene.materials.size()) + " materials)");
+            failAt(file, "triangle " + std::to_string(t) + ": material id " +
+                             std::to_string(scene.materialIds[t]) + " out of range (" +
+                             std::to_string(scene.materials.size()) + " materials)");
     }
+}
+
+// Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
+// them) and model, then every material's texture.
+void checkMaterials(const FileLoc& file, const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         if (!isFinite(mat.diffuse) || !isFinite(mat.specular) || !std::isfinite(mat.shininess) ||
             !isFinite(mat.reflectivity) || !isFinite(mat.emission) || !std::isfinite(mat.ior) ||
             !isFinite(mat.transmission))
-            fail("material " + std::to_string(m) + ": values are not finite");
-        // The ranges a JSON scene allows (docs/SCENE_FORMAT.md): the shading relies on them.
+            failAt(file, "material " + std::to_string(m) + ": values are not finite");
         if (!nonNegative(mat.diffuse) || !nonNegative(mat.specular) || !(mat.shininess >= 0.0f) ||
             !nonNegative(mat.reflectivity) || glm::any(glm::greaterThan(mat.reflectivity, glm::vec3(1.0f))) ||
             !nonNegative(mat.emission) || !(mat.ior >= 0.0f) || !nonNegative(mat.transmission) ||
             glm::any(glm::greaterThan(mat.transmission, glm::vec3(1.0f))))
-            fail("material " + std::to_string(m) +
-                 ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
+            failAt(file, "material " + std::to_string(m) +
+                             ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
+        if (mat.model < 0 || uint32_t(mat.model) > kLastMaterialModel) failAt(file, unknownModel(m, mat.model));
     }
     for (size_t m = 0; m < scene.materials.size(); ++m)
         if (scene.materials[m].diffuseTexture < -1 || scene.materials[m].diffuseTexture >= int(scene.textures.size()))
-            fail("material " + std::to_string(m) + ": texture " + std::to_string(scene.materials[m].diffuseTexture) +
-                 " out of range (" + std::to_string(scene.textures.size()) + " textures)");
+            failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(scene.materials[m].diffuseTexture) +
+                             " out of range (" + std::to_string(scene.textures.size()) + " textures)");
+}
+
+// The texture coordinates' count, and each texture's size and wrap modes.
+void checkTextures(const FileLoc& file, const Scene& scene) {
+    const size_t n = scene.triangles.size();
     if (!scene.texcoords.empty() && scene.texcoords.size() != n)
-        fail(std::to_string(scene.texcoords.size()) + " texture coordinates for " + std::to_string(n) + " triangles");
+        failAt(file, std::to_string(scene.texcoords.size()) + " texture coordinates for " + std::to_string(n) + " triangles");
     uint64_t texels = 0;
     for (size_t k = 0; k < scene.textures.size(); ++k) {
         const Texture& t = scene.textures[k];
@@ -229,107 +257,144 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
         if (image.width < 1 || image.height < 1 || image.width > kMaxTextureSide || image.height > kMaxTextureSide ||
             uint64_t(image.width) * uint64_t(image.height) > kMaxTextureTexels ||
             image.texels.size() != size_t(image.width) * size_t(image.height))
-            fail("texture " + std::to_string(k) + ": size " + std::to_string(image.width) + "x" +
-                 std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
+            failAt(file, "texture " + std::to_string(k) + ": size " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
         if (t.wrapS > kWrapMirror || t.wrapT > kWrapMirror)
-            fail("texture " + std::to_string(k) + ": wrap modes " + std::to_string(t.wrapS) + ", " +
-                 std::to_string(t.wrapT) + " are not 0 (repeat), 1 (clamp) or 2 (mirror)");
+            failAt(file, "texture " + std::to_string(k) + ": wrap modes " + std::to_string(t.wrapS) + ", " +
+                             std::to_string(t.wrapT) + " are not 0 (repeat), 1 (clamp) or 2 (mirror)");
         texels += image.texels.size();
     }
     if (texels > kMaxTextureTexels * 2)
-        fail(std::to_string(texels) + " texels in all textures; at most " + std::to_string(2 * kMaxTextureTexels));
+        failAt(file, std::to_string(texels) + " texels in all textures; at most " + std::to_string(2 * kMaxTextureTexels));
+}
+
+void checkLights(const FileLoc& file, const Scene& scene) {
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
         if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
-            fail("light " + std::to_string(l) + ": values are not finite");
+            failAt(file, "light " + std::to_string(l) + ": values are not finite");
         if (!nonNegative(light.color) || !(light.intensity >= 0.0f))
-            fail("light " + std::to_string(l) + ": colour and intensity must be >= 0");
+            failAt(file, "light " + std::to_string(l) + ": colour and intensity must be >= 0");
     }
-    // The checks of a JSON scene's camera: the contract's basis must exist.
-    auto checkCamera = [&](const CameraSpec& c, const std::string& what) {
-        if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up)) fail(what + ": values are not finite");
-        if (!(c.fovy > 0.0f && c.fovy < 180.0f))
-            fail(what + ": fovy " + formatFloat(c.fovy) + " is outside (0, 180)");
-        const glm::vec3 forward = c.target - c.eye;
-        const float forwardLength2 = glm::dot(forward, forward);
-        if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
-            fail(what + ": target - eye must be a non-zero vector of finite length");
-        const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), c.up);
-        const float rightLength2 = glm::dot(right, right);
-        if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
-            fail(what + ": up must be non-zero and not parallel to target - eye");
-    };
-    if (scene.camera) checkCamera(*scene.camera, "camera");
+}
+
+// The checks of a JSON scene's camera (`what` names it): the contract's basis must exist.
+void checkCamera(const FileLoc& file, const CameraSpec& c, const std::string& what) {
+    if (!isFinite(c.eye) || !isFinite(c.target) || !isFinite(c.up)) failAt(file, what + ": values are not finite");
+    if (!(c.fovy > 0.0f && c.fovy < 180.0f))
+        failAt(file, what + ": fovy " + formatFloat(c.fovy) + " is outside (0, 180)");
+    const glm::vec3 forward = c.target - c.eye;
+    const float forwardLength2 = glm::dot(forward, forward);
+    if (!(forwardLength2 > 0.0f) || !std::isfinite(forwardLength2))
+        failAt(file, what + ": target - eye must be a non-zero vector of finite length");
+    const glm::vec3 right = glm::cross(forward / std::sqrt(forwardLength2), c.up);
+    const float rightLength2 = glm::dot(right, right);
+    if (!(rightLength2 > 0.0f) || !std::isfinite(rightLength2))
+        failAt(file, what + ": up must be non-zero and not parallel to target - eye");
+}
+
+// The camera and the animation's keys, each a camera at a later time than the one before.
+void checkCameras(const FileLoc& file, const Scene& scene) {
+    if (scene.camera) checkCamera(file, *scene.camera, "camera");
     if (const std::optional<CameraAnimation>& a = scene.animation) {
-        if (!(a->fps > 0.0f && a->fps <= 1000.0f)) fail("animation: fps " + formatFloat(a->fps) + " is outside (0, 1000]");
-        if (a->keys.empty()) fail("animation: no keys");
+        if (!(a->fps > 0.0f && a->fps <= 1000.0f)) failAt(file, "animation: fps " + formatFloat(a->fps) + " is outside (0, 1000]");
+        if (a->keys.empty()) failAt(file, "animation: no keys");
         for (size_t k = 0; k < a->keys.size(); ++k) {
             const std::string what = "animation key " + std::to_string(k);
-            if (!std::isfinite(a->keys[k].time)) fail(what + ": time is not finite");
-            if (k > 0 && !(a->keys[k].time > a->keys[k - 1].time)) fail(what + ": time is not after the key before");
-            checkCamera(a->keys[k].camera, what);
+            if (!std::isfinite(a->keys[k].time)) failAt(file, what + ": time is not finite");
+            if (k > 0 && !(a->keys[k].time > a->keys[k - 1].time)) failAt(file, what + ": time is not after the key before");
+            checkCamera(file, a->keys[k].camera, what);
         }
     }
-    if (!isFinite(scene.background)) fail("background colour is not finite");
-    if (!nonNegative(scene.background)) fail("background colour must be >= 0");
+}
+
+// The background, the bounce limit and the image size, in a JSON scene's ranges.
+void checkRenderSettings(const FileLoc& file, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    if (!isFinite(scene.background)) failAt(file, "background colour is not finite");
+    if (!nonNegative(scene.background)) failAt(file, "background colour must be >= 0");
     if (scene.maxBounces < 0 || uint32_t(scene.maxBounces) > kMaxBounces)
-        fail("max bounces " + std::to_string(scene.maxBounces) + " outside 0.." +
-             std::to_string(kMaxBounces));
+        failAt(file, "max bounces " + std::to_string(scene.maxBounces) + " outside 0.." +
+                         std::to_string(kMaxBounces));
     if (loaded.size) {
         const glm::ivec2 s = *loaded.size;
         if (s.x < 1 || s.y < 1 || uint32_t(s.x) > kMaxImageSide || uint32_t(s.y) > kMaxImageSide)
-            fail("image size " + std::to_string(s.x) + "x" + std::to_string(s.y) + " outside 1.." +
-                 std::to_string(kMaxImageSide) + " per side");
+            failAt(file, "image size " + std::to_string(s.x) + "x" + std::to_string(s.y) + " outside 1.." +
+                             std::to_string(kMaxImageSide) + " per side");
     }
+}
 
-    // The grid: the shape buildGrid gives and the traversal relies on.
+// The grid's resolution, box and cell size, the shape buildGrid gives and the traversal relies
+// on; returns the number of cells.
+uint64_t checkGridShape(const FileLoc& file, const Scene& scene, const UniformGrid& grid) {
     const glm::ivec3 r = grid.resolution;
     if (r.x < 1 || r.y < 1 || r.z < 1)
-        fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
-             std::to_string(r.z) + " is not at least 1 on every axis");
+        failAt(file, "grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
+                         std::to_string(r.z) + " is not at least 1 on every axis");
     uint64_t cells = 1;
     for (int a = 0; a < 3; ++a) {
         // Each factor is checked before the product grows, so the product cannot overflow.
         if (uint64_t(r[a]) > kMaxGridCells || cells * uint64_t(r[a]) > kMaxGridCells)
-            fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
-                 std::to_string(r.z) + " has more than " + std::to_string(kMaxGridCells) +
-                 " cells");
+            failAt(file, "grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
+                             std::to_string(r.z) + " has more than " + std::to_string(kMaxGridCells) +
+                             " cells");
         cells *= uint64_t(r[a]);
     }
     if (!isFinite(grid.min) || !isFinite(grid.max) || !isFinite(grid.cellSize))
-        fail("grid: bounds or cell size are not finite");
+        failAt(file, "grid: bounds or cell size are not finite");
     for (int a = 0; a < 3; ++a)
         if (!(grid.min[a] < grid.max[a]))
-            fail("grid: bounds are empty on axis " + std::to_string(a));
+            failAt(file, "grid: bounds are empty on axis " + std::to_string(a));
     const glm::vec3 cellSize = (grid.max - grid.min) / glm::vec3(r);
-    if (cellSize != grid.cellSize) fail("grid: cell size is not (max - min) / resolution");
+    if (cellSize != grid.cellSize) failAt(file, "grid: cell size is not (max - min) / resolution");
     const Bounds bounds = scene.bounds();
     if (!bounds.empty())
         for (int a = 0; a < 3; ++a)
             if (!(grid.min[a] <= bounds.min[a] && bounds.max[a] <= grid.max[a]))
-                fail("grid: bounds do not contain the scene's triangles");
+                failAt(file, "grid: bounds do not contain the scene's triangles");
+    return cells;
+}
+
+// The grid's cell lists: cellStart from 0, never decreasing, no cell past the list, the last
+// ending at the list's end; every id a triangle, each cell's ids strictly ascending.
+void checkGridLists(const FileLoc& file, const Scene& scene, const UniformGrid& grid, uint64_t cells) {
+    const size_t n = scene.triangles.size();
     if (grid.cellStart.size() != cells + 1)
-        fail("grid: " + std::to_string(grid.cellStart.size()) + " cell starts for " +
-             std::to_string(cells) + " cells (expected cells + 1)");
-    if (grid.cellStart[0] != 0) fail("grid: the first cell does not start at 0");
+        failAt(file, "grid: " + std::to_string(grid.cellStart.size()) + " cell starts for " +
+                         std::to_string(cells) + " cells (expected cells + 1)");
+    if (grid.cellStart[0] != 0) failAt(file, "grid: the first cell does not start at 0");
     for (size_t c = 0; c < cells; ++c) {
         const uint32_t begin = grid.cellStart[c], end = grid.cellStart[c + 1];
-        if (end < begin) fail("grid: cell starts decrease at cell " + std::to_string(c + 1));
+        if (end < begin) failAt(file, "grid: cell starts decrease at cell " + std::to_string(c + 1));
         if (end > grid.cellTriangles.size())
-            fail("grid: cell " + std::to_string(c) + " ends at " + std::to_string(end) +
-                 ", past the " + std::to_string(grid.cellTriangles.size()) + " list entries");
+            failAt(file, "grid: cell " + std::to_string(c) + " ends at " + std::to_string(end) +
+                             ", past the " + std::to_string(grid.cellTriangles.size()) + " list entries");
         for (uint32_t k = begin; k < end; ++k) {
             const uint32_t id = grid.cellTriangles[k];
             if (id >= n)
-                fail("grid: cell " + std::to_string(c) + " lists triangle " + std::to_string(id) +
-                     " of " + std::to_string(n));
+                failAt(file, "grid: cell " + std::to_string(c) + " lists triangle " + std::to_string(id) +
+                                 " of " + std::to_string(n));
             if (k > begin && !(grid.cellTriangles[k - 1] < id))
-                fail("grid: the list of cell " + std::to_string(c) + " is not strictly ascending");
+                failAt(file, "grid: the list of cell " + std::to_string(c) + " is not strictly ascending");
         }
     }
     if (grid.cellStart[cells] != grid.cellTriangles.size())
-        fail("grid: the last cell ends at " + std::to_string(grid.cellStart[cells]) +
-             ", not at the " + std::to_string(grid.cellTriangles.size()) + " list entries");
+        failAt(file, "grid: the last cell ends at " + std::to_string(grid.cellStart[cells]) +
+                         ", not at the " + std::to_string(grid.cellTriangles.size()) + " list entries");
+}
+
+// Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
+// the writer (name = the source scene) and the reader (name = the packed file).
+void validateScene(const std::string& name, const LoadedScene& loaded, const UniformGrid& grid) {
+    const FileLoc file{name};
+    const Scene& scene = loaded.scene;
+    checkTriangles(file, scene);
+    checkMaterials(file, scene);
+    checkTextures(file, scene);
+    checkLights(file, scene);
+    checkCameras(file, scene);
+    checkRenderSettings(file, loaded);
+    checkGridLists(file, scene, grid, checkGridShape(file, scene, grid));
 }
 
 struct Section {
@@ -343,11 +408,11 @@ class SectionDecoder {
     SectionDecoder(std::span<const unsigned char> file, const std::string& name)
         : file_(file), name_(name) {}
 
-    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": " + what); }
+    [[noreturn]] void fail(const std::string& what) const { failAt(FileLoc{name_}, what); }
 
     ByteReader reader(const Section& s) const {
-        return ByteReader(file_.subspan(size_t(s.offset), size_t(s.size)),
-                          name_ + ": section " + s.tag);
+        return ByteReader(file_.subspan(size_t(s.offset), size_t(s.size)), FileLoc{name_},
+                          "section " + s.tag);
     }
 
     // A section's leading u64 count of records of `recordBytes` each (at least, for records of
@@ -421,14 +486,20 @@ class SectionDecoder {
         }
     }
 
-    // The leading count of a section of one record per triangle (read after the triangles).
+    // The leading count of a section of one record per triangle or per material (read after
+    // those), which must be `expected`, the count of `of`; `limit` as for count.
+    uint64_t oneEach(ByteReader& in, const Section& s, uint64_t recordBytes, const char* what, uint64_t limit,
+                     uint64_t expected, const char* of) const {
+        const uint64_t n = count(in, s, recordBytes, true, limit, what);
+        if (n != expected)
+            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " for " + std::to_string(expected) +
+                 " " + of);
+        return n;
+    }
+
     uint64_t perTriangle(ByteReader& in, const Section& s, uint64_t recordBytes, const char* what,
                          const Scene& scene) const {
-        const uint64_t n = count(in, s, recordBytes, true, kMaxTextureTriangles, what);
-        if (n != scene.triangles.size())
-            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " for " +
-                 std::to_string(scene.triangles.size()) + " triangles");
-        return n;
+        return oneEach(in, s, recordBytes, what, kMaxTextureTriangles, scene.triangles.size(), "triangles");
     }
 
     void normals(const Section& s, Scene& scene) const {
@@ -488,6 +559,18 @@ class SectionDecoder {
             fail("section " + s.tag + ": " + std::to_string(materials) + " material textures in " +
                  std::to_string(in.remaining()) + " bytes for " + std::to_string(scene.materials.size()) + " materials");
         for (Material& m : scene.materials) m.diffuseTexture = int(int32_t(in.u32()));
+    }
+
+    // Each material's model (count = the materials', then a u32 each). Read after the materials.
+    void models(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kModelBytes, "material models", kMaxTextureMaterials,
+                                   scene.materials.size(), "materials");
+        for (uint64_t m = 0; m < n; ++m) {
+            const uint32_t model = in.u32();
+            if (model > kLastMaterialModel) fail("section " + s.tag + ": " + unknownModel(size_t(m), model));
+            scene.materials[size_t(m)].model = int(model);
+        }
     }
 
     void fixedSize(const Section& s, uint64_t bytes) const {
@@ -601,12 +684,235 @@ class SectionDecoder {
     std::string name_;
 };
 
+// Writes the sections of one scene and its grid, in the layout docs/PACKED_FORMAT.md gives.
+class SectionEncoder {
+  public:
+    SectionEncoder(ByteWriter& out, const LoadedScene& loaded, const UniformGrid& grid, const std::string& name)
+        : out_(out), loaded_(loaded), scene_(loaded.scene), grid_(grid), name_(name) {}
+
+    void section(std::string_view tag) {
+        if (tag == kTriangles) triangles();
+        else if (tag == kMaterials) materials();
+        else if (tag == kLights) lights();
+        else if (tag == kCamera) camera(*scene_.camera);
+        else if (tag == kAnimation) animation();
+        else if (tag == kBackground) out_.vec3(scene_.background);
+        else if (tag == kRender) render();
+        else if (tag == kGrid) grid();
+        else if (tag == kCellStart) u32s(grid_.cellStart);
+        else if (tag == kCellList) u32s(grid_.cellTriangles);
+        else if (tag == kNormals) normals();
+        else if (tag == kTexcoords) texcoords();
+        else if (tag == kTextures) textures();
+        else if (tag == kModels) models();
+    }
+
+  private:
+    void u32s(const std::vector<uint32_t>& values) {
+        for (uint32_t v : values) out_.u32(v);
+    }
+
+    void triangles() {
+        out_.u64(scene_.triangles.size());
+        for (const Triangle& t : scene_.triangles) {
+            out_.vec3(t.v0);
+            out_.vec3(t.v1);
+            out_.vec3(t.v2);
+        }
+        u32s(scene_.materialIds);
+    }
+
+    // A name's length, then the name padded to 4 bytes.
+    void name(const std::string& text, const char* what) {
+        if (text.size() > UINT32_MAX) failAt(FileLoc{name_}, std::string("a ") + what + " name is too long");
+        out_.u32(static_cast<uint32_t>(text.size()));
+        out_.raw(text.data(), text.size());
+        out_.padTo(4);
+    }
+
+    void materials() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) {
+            out_.vec3(m.diffuse);
+            out_.vec3(m.specular);
+            out_.f32(m.shininess);
+            out_.vec3(m.reflectivity);
+            out_.vec3(m.emission);
+            out_.f32(m.ior);
+            out_.vec3(m.transmission);
+            name(m.name, "material");
+        }
+    }
+
+    void lights() {
+        out_.u64(scene_.lights.size());
+        for (const PointLight& l : scene_.lights) {
+            out_.vec3(l.position);
+            out_.vec3(l.color);
+            out_.f32(l.intensity);
+        }
+    }
+
+    void camera(const CameraSpec& c) {
+        out_.vec3(c.eye);
+        out_.vec3(c.target);
+        out_.vec3(c.up);
+        out_.f32(c.fovy);
+    }
+
+    void animation() {
+        out_.u64(scene_.animation->keys.size());
+        for (const CameraKey& key : scene_.animation->keys) {
+            out_.f32(key.time);
+            camera(key.camera);
+        }
+        out_.f32(scene_.animation->fps);
+    }
+
+    void render() {
+        const std::optional<glm::ivec2>& size = loaded_.size;
+        out_.u32(static_cast<uint32_t>(scene_.maxBounces));
+        out_.u32(size ? 1 : 0);
+        out_.u32(size ? static_cast<uint32_t>(size->x) : 0);
+        out_.u32(size ? static_cast<uint32_t>(size->y) : 0);
+    }
+
+    void grid() {
+        for (int a = 0; a < 3; ++a) out_.u32(static_cast<uint32_t>(grid_.resolution[a]));
+        out_.vec3(grid_.min);
+        out_.vec3(grid_.max);
+        out_.vec3(grid_.cellSize);
+    }
+
+    void normals() {
+        out_.u64(scene_.normals.size());
+        for (const TriangleNormals& n : scene_.normals) {
+            out_.vec3(n.n0);
+            out_.vec3(n.n1);
+            out_.vec3(n.n2);
+        }
+    }
+
+    void texcoords() {
+        out_.u64(scene_.texcoords.size());
+        for (const TriangleTexcoords& t : scene_.texcoords)
+            for (const glm::vec2 c : {t.t0, t.t1, t.t2}) {
+                out_.f32(c.x);
+                out_.f32(c.y);
+            }
+    }
+
+    void textures() {
+        out_.u64(scene_.textures.size());
+        for (const Texture& t : scene_.textures) {
+            out_.u32(uint32_t(t.image.width));
+            out_.u32(uint32_t(t.image.height));
+            out_.u32(t.wrapS);
+            out_.u32(t.wrapT);
+            name(t.name, "texture");
+            for (uint32_t texel : t.image.texels) out_.u32(texel);
+        }
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) out_.u32(uint32_t(int32_t(m.diffuseTexture)));
+    }
+
+    void models() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) out_.u32(uint32_t(m.model));
+    }
+
+    ByteWriter& out_;
+    const LoadedScene& loaded_;
+    const Scene& scene_;
+    const UniformGrid& grid_;
+    std::string name_;
+};
+
+// The section table: each known section's entry, by its place in kSectionOrder.
+using SectionTable = std::array<std::optional<Section>, std::size(kSectionOrder)>;
+
+size_t sectionIndex(std::string_view tag) {
+    for (size_t k = 0; k < std::size(kSectionOrder); ++k)
+        if (tag == kSectionOrder[k]) return k;
+    return std::size(kSectionOrder);
+}
+
+// Magic and version first: a later version may lay out (and checksum) the rest differently. Then
+// the file's size against the header's and the checksum.
+void checkHeader(std::span<const unsigned char> bytes, const FileLoc& file) {
+    const size_t size = bytes.size();
+    const size_t magicSize = sizeof kPackedSceneMagic - 1;
+    if (size > 0 && std::memcmp(bytes.data(), kPackedSceneMagic, std::min(size, magicSize)) != 0)
+        failAt(file, "not a packed gpurt scene (wrong magic '" +
+                         printable(std::string_view(reinterpret_cast<const char*>(bytes.data()),
+                                                    std::min(size, magicSize))) +
+                         "', expected " + std::string(kPackedSceneMagic) + ")");
+    if (size < 12)
+        failAt(file, "truncated: " + std::to_string(size) + " bytes, less than the " +
+                         std::to_string(kPackedHeaderBytes) + "-byte header");
+    const uint32_t version = load32(bytes.data() + 8);
+    if (version != kPackedSceneVersion)
+        failAt(file, "unknown packed format version " + std::to_string(version) +
+                         " (this gpurt reads version " + std::to_string(kPackedSceneVersion) + ")");
+    if (size < kPackedHeaderBytes)
+        failAt(file, "truncated: " + std::to_string(size) + " bytes, less than the " +
+                         std::to_string(kPackedHeaderBytes) + "-byte header");
+    const uint64_t declared = load64(bytes.data() + 16);
+    if (declared > size)
+        failAt(file, "truncated: " + std::to_string(size) + " of the " + std::to_string(declared) +
+                         " bytes the header gives");
+    if (declared < size)
+        failAt(file, std::to_string(size) + " bytes, but the header gives " + std::to_string(declared) +
+                         " (trailing data or a damaged header)");
+    const uint32_t stored = load32(bytes.data() + 12);
+    const uint32_t computed = crc32Of(bytes.subspan(16));
+    if (stored != computed)
+        failAt(file, "checksum mismatch (the contents have CRC-32 " + hex32(computed) +
+                         ", the header says " + hex32(stored) + "): the file is damaged");
+}
+
+// The section table of a file whose header was checked: known tags, none twice, each section
+// after the one before and inside the file, every required one present.
+SectionTable readSectionTable(std::span<const unsigned char> bytes, const FileLoc& file) {
+    const size_t size = bytes.size();
+    const uint32_t sectionCount = load32(bytes.data() + 24);
+    if (load32(bytes.data() + 28) != 0) failAt(file, "reserved header field is not 0");
+    if (sectionCount > kMaxSections ||
+        kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes > size)
+        failAt(file, "section table of " + std::to_string(sectionCount) + " entries does not fit the " +
+                         std::to_string(size) + "-byte file");
+    SectionTable sections;
+    uint64_t end = kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes;
+    for (uint32_t k = 0; k < sectionCount; ++k) {
+        const unsigned char* entry =
+            bytes.data() + kPackedHeaderBytes + size_t(k) * kPackedSectionEntryBytes;
+        Section s;
+        s.tag.assign(reinterpret_cast<const char*>(entry), 4);
+        s.offset = load64(entry + 8);
+        s.size = load64(entry + 16);
+        const size_t index = sectionIndex(s.tag);
+        if (index == sections.size()) failAt(file, "unknown section '" + printable(s.tag) + "'");
+        if (load32(entry + 4) != 0) failAt(file, "section " + s.tag + ": reserved field is not 0");
+        if (sections[index]) failAt(file, "section " + s.tag + " appears twice");
+        // Sections follow the table in table order, 8-byte aligned, without overlapping.
+        if (s.offset % 8 != 0 || s.offset < end || s.offset > size || s.size > size - s.offset)
+            failAt(file, "section " + s.tag + " (offset " + std::to_string(s.offset) + ", " +
+                             std::to_string(s.size) + " bytes) does not fit the " + std::to_string(size) +
+                             "-byte file");
+        end = s.offset + s.size;
+        sections[index] = s;
+    }
+    for (size_t k = 0; k < std::size(kSectionOrder); ++k)
+        if (!sections[k] && !optionalSection(kSectionOrder[k]))
+            failAt(file, std::string("section ") + kSectionOrder[k] + " is missing");
+    return sections;
+}
+
 }  // namespace
 
 std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const UniformGrid& grid,
                                              const std::string& name) {
     validateScene(name, loaded, grid);
-    const Scene& scene = loaded.scene;
 
     ByteWriter out;
     out.raw(kPackedSceneMagic, sizeof kPackedSceneMagic - 1);
@@ -626,102 +932,11 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
         out.u64(0);  // size, patched below
     }
 
+    SectionEncoder encoder(out, loaded, grid, name);
     for (size_t k = 0; k < tags.size(); ++k) {
-        const std::string_view tag = tags[k];
         out.padTo(8);
         const size_t start = out.size();
-        if (tag == kTriangles) {
-            out.u64(scene.triangles.size());
-            for (const Triangle& t : scene.triangles) {
-                out.vec3(t.v0);
-                out.vec3(t.v1);
-                out.vec3(t.v2);
-            }
-            for (uint32_t id : scene.materialIds) out.u32(id);
-        } else if (tag == kMaterials) {
-            out.u64(scene.materials.size());
-            for (const Material& m : scene.materials) {
-                out.vec3(m.diffuse);
-                out.vec3(m.specular);
-                out.f32(m.shininess);
-                out.vec3(m.reflectivity);
-                out.vec3(m.emission);
-                out.f32(m.ior);
-                out.vec3(m.transmission);
-                if (m.name.size() > UINT32_MAX)
-                    throw InputError(name + ": a material name is too long");
-                out.u32(static_cast<uint32_t>(m.name.size()));
-                out.raw(m.name.data(), m.name.size());
-                out.padTo(4);
-            }
-        } else if (tag == kLights) {
-            out.u64(scene.lights.size());
-            for (const PointLight& l : scene.lights) {
-                out.vec3(l.position);
-                out.vec3(l.color);
-                out.f32(l.intensity);
-            }
-        } else if (tag == kCamera) {
-            out.vec3(scene.camera->eye);
-            out.vec3(scene.camera->target);
-            out.vec3(scene.camera->up);
-            out.f32(scene.camera->fovy);
-        } else if (tag == kAnimation) {
-            out.u64(scene.animation->keys.size());
-            for (const CameraKey& key : scene.animation->keys) {
-                out.f32(key.time);
-                out.vec3(key.camera.eye);
-                out.vec3(key.camera.target);
-                out.vec3(key.camera.up);
-                out.f32(key.camera.fovy);
-            }
-            out.f32(scene.animation->fps);
-        } else if (tag == kBackground) {
-            out.vec3(scene.background);
-        } else if (tag == kRender) {
-            out.u32(static_cast<uint32_t>(scene.maxBounces));
-            out.u32(loaded.size ? 1 : 0);
-            out.u32(loaded.size ? static_cast<uint32_t>(loaded.size->x) : 0);
-            out.u32(loaded.size ? static_cast<uint32_t>(loaded.size->y) : 0);
-        } else if (tag == kGrid) {
-            for (int a = 0; a < 3; ++a) out.u32(static_cast<uint32_t>(grid.resolution[a]));
-            out.vec3(grid.min);
-            out.vec3(grid.max);
-            out.vec3(grid.cellSize);
-        } else if (tag == kCellStart) {
-            for (uint32_t v : grid.cellStart) out.u32(v);
-        } else if (tag == kCellList) {
-            for (uint32_t v : grid.cellTriangles) out.u32(v);
-        } else if (tag == kNormals) {
-            out.u64(scene.normals.size());
-            for (const TriangleNormals& n : scene.normals) {
-                out.vec3(n.n0);
-                out.vec3(n.n1);
-                out.vec3(n.n2);
-            }
-        } else if (tag == kTexcoords) {
-            out.u64(scene.texcoords.size());
-            for (const TriangleTexcoords& t : scene.texcoords)
-                for (const glm::vec2 c : {t.t0, t.t1, t.t2}) {
-                    out.f32(c.x);
-                    out.f32(c.y);
-                }
-        } else if (tag == kTextures) {
-            out.u64(scene.textures.size());
-            for (const Texture& t : scene.textures) {
-                out.u32(uint32_t(t.image.width));
-                out.u32(uint32_t(t.image.height));
-                out.u32(t.wrapS);
-                out.u32(t.wrapT);
-                if (t.name.size() > UINT32_MAX) throw InputError(name + ": a texture name is too long");
-                out.u32(static_cast<uint32_t>(t.name.size()));
-                out.raw(t.name.data(), t.name.size());
-                out.padTo(4);
-                for (uint32_t texel : t.image.texels) out.u32(texel);
-            }
-            out.u64(scene.materials.size());
-            for (const Material& m : scene.materials) out.u32(uint32_t(int32_t(m.diffuseTexture)));
-        }
+        encoder.section(tags[k]);
         const size_t entry = table + k * kPackedSectionEntryBytes;
         out.patch64(entry + 8, start);
         out.patch64(entry + 16, out.size() - start);
@@ -737,7 +952,7 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
 void writePackedScene(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
     writeFileAtomically(path, [&](std::FILE* file) {
         if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())
-            throw InputError(path.string() + ": cannot write file (" + std::strerror(errno) + ")");
+            failAt(FileLoc{path.string()}, std::string("cannot write file (") + std::strerror(errno) + ")");
     });
 }
 
@@ -747,93 +962,29 @@ void writePackedScene(const std::filesystem::path& path, const LoadedScene& scen
 }
 
 LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::string& name) {
-    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
-    const size_t size = bytes.size();
-    const size_t magicSize = sizeof kPackedSceneMagic - 1;
-
-    // Magic and version first: a later version may lay out (and checksum) the rest differently.
-    if (size > 0 && std::memcmp(bytes.data(), kPackedSceneMagic, std::min(size, magicSize)) != 0)
-        fail("not a packed gpurt scene (wrong magic '" +
-             printable(std::string_view(reinterpret_cast<const char*>(bytes.data()),
-                                        std::min(size, magicSize))) +
-             "', expected " + std::string(kPackedSceneMagic) + ")");
-    if (size < 12)
-        fail("truncated: " + std::to_string(size) + " bytes, less than the " +
-             std::to_string(kPackedHeaderBytes) + "-byte header");
-    const uint32_t version = load32(bytes.data() + 8);
-    if (version != kPackedSceneVersion)
-        fail("unknown packed format version " + std::to_string(version) +
-             " (this gpurt reads version " + std::to_string(kPackedSceneVersion) + ")");
-    if (size < kPackedHeaderBytes)
-        fail("truncated: " + std::to_string(size) + " bytes, less than the " +
-             std::to_string(kPackedHeaderBytes) + "-byte header");
-    const uint64_t declared = load64(bytes.data() + 16);
-    if (declared > size)
-        fail("truncated: " + std::to_string(size) + " of the " + std::to_string(declared) +
-             " bytes the header gives");
-    if (declared < size)
-        fail(std::to_string(size) + " bytes, but the header gives " + std::to_string(declared) +
-             " (trailing data or a damaged header)");
-    const uint32_t stored = load32(bytes.data() + 12);
-    const uint32_t computed = crc32Of(bytes.subspan(16));
-    if (stored != computed)
-        fail("checksum mismatch (the contents have CRC-32 " + hex32(computed) +
-             ", the header says " + hex32(stored) + "): the file is damaged");
-
-    // The section table.
-    const uint32_t sectionCount = load32(bytes.data() + 24);
-    if (load32(bytes.data() + 28) != 0) fail("reserved header field is not 0");
-    if (sectionCount > kMaxSections ||
-        kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes > size)
-        fail("section table of " + std::to_string(sectionCount) + " entries does not fit the " +
-             std::to_string(size) + "-byte file");
-    std::optional<Section> sections[std::size(kSectionOrder)];
-    auto slotOf = [&](std::string_view tag) -> std::optional<Section>* {
-        for (size_t k = 0; k < std::size(kSectionOrder); ++k)
-            if (tag == kSectionOrder[k]) return &sections[k];
-        return nullptr;
-    };
-    uint64_t end = kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes;
-    for (uint32_t k = 0; k < sectionCount; ++k) {
-        const unsigned char* entry =
-            bytes.data() + kPackedHeaderBytes + size_t(k) * kPackedSectionEntryBytes;
-        Section s;
-        s.tag.assign(reinterpret_cast<const char*>(entry), 4);
-        s.offset = load64(entry + 8);
-        s.size = load64(entry + 16);
-        std::optional<Section>* slot = slotOf(s.tag);
-        if (!slot) fail("unknown section '" + printable(s.tag) + "'");
-        if (load32(entry + 4) != 0) fail("section " + s.tag + ": reserved field is not 0");
-        if (*slot) fail("section " + s.tag + " appears twice");
-        // Sections follow the table in table order, 8-byte aligned, without overlapping.
-        if (s.offset % 8 != 0 || s.offset < end || s.offset > size || s.size > size - s.offset)
-            fail("section " + s.tag + " (offset " + std::to_string(s.offset) + ", " +
-                 std::to_string(s.size) + " bytes) does not fit the " + std::to_string(size) +
-                 "-byte file");
-        end = s.offset + s.size;
-        *slot = s;
-    }
-    for (size_t k = 0; k < std::size(kSectionOrder); ++k)
-        if (!sections[k] && !optionalSection(kSectionOrder[k]))
-            fail(std::string("section ") + kSectionOrder[k] + " is missing");
+    const FileLoc file{name};
+    checkHeader(bytes, file);
+    const SectionTable sections = readSectionTable(bytes, file);
+    auto section = [&](const char* tag) -> const std::optional<Section>& { return sections[sectionIndex(tag)]; };
 
     // The sections, each sized by its counts before anything is allocated.
     const SectionDecoder decoder(bytes, name);
     LoadedScene loaded;
     UniformGrid grid;
-    decoder.triangles(**slotOf(kTriangles), loaded.scene);
-    decoder.materials(**slotOf(kMaterials), loaded.scene);
-    decoder.lights(**slotOf(kLights), loaded.scene);
-    if (*slotOf(kCamera)) decoder.camera(**slotOf(kCamera), loaded.scene);
-    decoder.background(**slotOf(kBackground), loaded.scene);
-    decoder.render(**slotOf(kRender), loaded);
-    decoder.grid(**slotOf(kGrid), grid);
-    decoder.cellStart(**slotOf(kCellStart), grid);
-    decoder.cellList(**slotOf(kCellList), grid);
-    if (*slotOf(kNormals)) decoder.normals(**slotOf(kNormals), loaded.scene);
-    if (*slotOf(kAnimation)) decoder.animation(**slotOf(kAnimation), loaded.scene);
-    if (*slotOf(kTexcoords)) decoder.texcoords(**slotOf(kTexcoords), loaded.scene);
-    if (*slotOf(kTextures)) decoder.textures(**slotOf(kTextures), loaded.scene);
+    decoder.triangles(*section(kTriangles), loaded.scene);
+    decoder.materials(*section(kMaterials), loaded.scene);
+    decoder.lights(*section(kLights), loaded.scene);
+    if (section(kCamera)) decoder.camera(*section(kCamera), loaded.scene);
+    decoder.background(*section(kBackground), loaded.scene);
+    decoder.render(*section(kRender), loaded);
+    decoder.grid(*section(kGrid), grid);
+    decoder.cellStart(*section(kCellStart), grid);
+    decoder.cellList(*section(kCellList), grid);
+    if (section(kNormals)) decoder.normals(*section(kNormals), loaded.scene);
+    if (section(kAnimation)) decoder.animation(*section(kAnimation), loaded.scene);
+    if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
+    if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
+    if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
 
     validateScene(name, loaded, grid);
     // The skip distances are derived from cellStart (computeSkip) rather than stored.

@@ -41,8 +41,8 @@ void writePackedScene(const std::filesystem::path& path, const LoadedScene& scen
 // Decodes and validates a packed file's bytes; the result's grid is set. Throws
 // InputError("NAME: what is wrong") for a wrong magic, an unknown version, a truncated file, a
 // checksum mismatch, a bad section table, sizes that do not fit the file or the GL limits, counts
-// that overflow, non-finite values, out-of-range material or triangle ids and an inconsistent
-// grid.
+// that overflow, non-finite values, out-of-range material or triangle ids, unknown material
+// models and an inconsistent grid.
 LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::string& name);
 
 // Reads `path` whole and decodes it (decodePackedScene with the path as the name).

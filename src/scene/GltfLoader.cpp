@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -89,8 +88,8 @@ class GltfReader {
     }
 
   private:
-    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": " + what); }
-    void warn(const std::string& what) const { std::cerr << name_ << ": warning: " << what << "\n"; }
+    [[noreturn]] void fail(const std::string& what) const { failAt(FileLoc{name_}, what); }
+    void warn(const std::string& what) const { warnAt(FileLoc{name_}, what); }
 
     glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& at) const {
         if (!node.matrix.empty()) {
@@ -240,72 +239,18 @@ class GltfReader {
         return out;
     }
 
+    // One primitive's triangles in world space (from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN),
+    // with its vertex normals, and texture coordinates when its material has a texture.
     void primitive(const tinygltf::Primitive& prim, const std::string& at, const glm::dmat4& world, Scene& scene) {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
             fail(at + ": mode " + std::to_string(mode) + " (points or lines) is not triangles");
-        const auto position = prim.attributes.find("POSITION");
-        if (position == prim.attributes.end()) fail(at + ": no POSITION");
-        int components = 0;
-        const std::vector<double> p = values(position->second, at + " POSITION", components);
-        if (components != 3) fail(at + ": POSITION is not VEC3");
-        const size_t vertices = p.size() / 3;
-        std::vector<glm::vec3> positions(vertices);
-        for (size_t v = 0; v < vertices; ++v) {
-            const glm::dvec4 w = world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0);
-            positions[v] = glm::vec3(w);
-            if (!finite(positions[v])) fail(at + ": vertex " + std::to_string(v) + " is not finite (in float)");
-        }
-        std::vector<glm::vec3> normals;
-        const auto normal = prim.attributes.find("NORMAL");
-        if (normal != prim.attributes.end()) {
-            const std::vector<double> n = values(normal->second, at + " NORMAL", components);
-            if (components != 3 || n.size() != p.size()) fail(at + ": NORMAL is not VEC3 of one per vertex");
-            const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
-            normals.resize(vertices);
-            for (size_t v = 0; v < vertices; ++v) {
-                const glm::dvec3 w = normalMatrix * glm::dvec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
-                const double length = glm::length(w);
-                normals[v] = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
-            }
-        }
+        const std::vector<glm::vec3> positions = primitivePositions(prim, at, world);
+        const size_t vertices = positions.size();
+        const std::vector<glm::vec3> normals = primitiveNormals(prim, at, world, vertices);
         const uint32_t material = materialOf(prim.material, scene);
-        // The texture coordinates its base colour texture uses (TEXCOORD_n of textureInfo.texCoord).
-        std::vector<glm::vec2> texcoords;
-        if (scene.materials[material].diffuseTexture >= 0) {
-            const std::string set = "TEXCOORD_" + std::to_string(texcoordSets_[material]);
-            const auto attribute = prim.attributes.find(set);
-            if (attribute == prim.attributes.end()) {
-                warn(at + ": no " + set + " for its material's texture; it is sampled at (0, 0)");
-            } else {
-                const std::vector<double> t = values(attribute->second, at + " " + set, components);
-                if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
-                texcoords.resize(vertices);
-                for (size_t v = 0; v < vertices; ++v) {
-                    const glm::vec2 c{float(t[2 * v]), float(t[2 * v + 1])};
-                    texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
-                }
-            }
-        }
-        std::vector<uint32_t> index;
-        if (prim.indices >= 0) {
-            if (prim.indices >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(prim.indices) + " does not exist");
-            const tinygltf::Accessor& a = m_.accessors[size_t(prim.indices)];
-            if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                fail(at + ": indices of component type " + std::to_string(a.componentType) + " (not an unsigned integer)");
-            const std::vector<double> i = values(prim.indices, at + " indices", components);
-            if (components != 1) fail(at + ": indices are not SCALAR");
-            index.reserve(i.size());
-            for (double v : i) {
-                if (v >= double(vertices))
-                    fail(at + ": index " + std::to_string(uint64_t(v)) + " out of range (" + std::to_string(vertices) + " vertices)");
-                index.push_back(uint32_t(v));
-            }
-        } else {
-            index.resize(vertices);
-            for (size_t v = 0; v < vertices; ++v) index[v] = uint32_t(v);
-        }
+        const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices, scene);
+        const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
         auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
             scene.materialIds.push_back(material);
@@ -328,6 +273,92 @@ class GltfReader {
         }
         // Triangles of primitives without normals keep none (all zero), so that smoothing fills them.
         if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());
+    }
+
+    // POSITION in world space, each finite in float.
+    std::vector<glm::vec3> primitivePositions(const tinygltf::Primitive& prim, const std::string& at,
+                                              const glm::dmat4& world) const {
+        const auto position = prim.attributes.find("POSITION");
+        if (position == prim.attributes.end()) fail(at + ": no POSITION");
+        int components = 0;
+        const std::vector<double> p = values(position->second, at + " POSITION", components);
+        if (components != 3) fail(at + ": POSITION is not VEC3");
+        const size_t vertices = p.size() / 3;
+        std::vector<glm::vec3> positions(vertices);
+        for (size_t v = 0; v < vertices; ++v) {
+            const glm::dvec4 w = world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0);
+            positions[v] = glm::vec3(w);
+            if (!finite(positions[v])) fail(at + ": vertex " + std::to_string(v) + " is not finite (in float)");
+        }
+        return positions;
+    }
+
+    // NORMAL in world space (through the inverse transpose), unit length or 0; none without.
+    std::vector<glm::vec3> primitiveNormals(const tinygltf::Primitive& prim, const std::string& at,
+                                            const glm::dmat4& world, size_t vertices) const {
+        std::vector<glm::vec3> normals;
+        const auto normal = prim.attributes.find("NORMAL");
+        if (normal == prim.attributes.end()) return normals;
+        int components = 0;
+        const std::vector<double> n = values(normal->second, at + " NORMAL", components);
+        if (components != 3 || n.size() != 3 * vertices) fail(at + ": NORMAL is not VEC3 of one per vertex");
+        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+        normals.resize(vertices);
+        for (size_t v = 0; v < vertices; ++v) {
+            const glm::dvec3 w = normalMatrix * glm::dvec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+            const double length = glm::length(w);
+            normals[v] = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
+        }
+        return normals;
+    }
+
+    // The texture coordinates the base colour texture of `material` uses (TEXCOORD_n of
+    // textureInfo.texCoord), not finite ones as 0; none for an untextured material or (with a
+    // warning) a primitive without that set.
+    std::vector<glm::vec2> primitiveTexcoords(const tinygltf::Primitive& prim, const std::string& at, uint32_t material,
+                                              size_t vertices, const Scene& scene) const {
+        std::vector<glm::vec2> texcoords;
+        if (scene.materials[material].diffuseTexture < 0) return texcoords;
+        const std::string set = "TEXCOORD_" + std::to_string(texcoordSets_[material]);
+        const auto attribute = prim.attributes.find(set);
+        if (attribute == prim.attributes.end()) {
+            warn(at + ": no " + set + " for its material's texture; it is sampled at (0, 0)");
+            return texcoords;
+        }
+        int components = 0;
+        const std::vector<double> t = values(attribute->second, at + " " + set, components);
+        if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
+        texcoords.resize(vertices);
+        for (size_t v = 0; v < vertices; ++v) {
+            const glm::vec2 c{float(t[2 * v]), float(t[2 * v + 1])};
+            texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
+        }
+        return texcoords;
+    }
+
+    // The primitive's indices (unsigned integers below `vertices`), or 0, 1, ... without.
+    std::vector<uint32_t> primitiveIndices(const tinygltf::Primitive& prim, const std::string& at, size_t vertices) const {
+        std::vector<uint32_t> index;
+        if (prim.indices < 0) {
+            index.resize(vertices);
+            for (size_t v = 0; v < vertices; ++v) index[v] = uint32_t(v);
+            return index;
+        }
+        if (prim.indices >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(prim.indices) + " does not exist");
+        const tinygltf::Accessor& a = m_.accessors[size_t(prim.indices)];
+        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail(at + ": indices of component type " + std::to_string(a.componentType) + " (not an unsigned integer)");
+        int components = 0;
+        const std::vector<double> i = values(prim.indices, at + " indices", components);
+        if (components != 1) fail(at + ": indices are not SCALAR");
+        index.reserve(i.size());
+        for (double v : i) {
+            if (v >= double(vertices))
+                fail(at + ": index " + std::to_string(uint64_t(v)) + " out of range (" + std::to_string(vertices) + " vertices)");
+            index.push_back(uint32_t(v));
+        }
+        return index;
     }
 
     static double number(const tinygltf::Value& object, const char* key, double fallback) {
@@ -504,7 +535,8 @@ class GltfReader {
 bool looksLikeGlb(const std::string& head) { return head.compare(0, 4, "glTF") == 0; }
 
 Scene parseGltf(const std::string& bytes, const std::string& name, const std::filesystem::path& folder) {
-    if (bytes.size() > UINT32_MAX) throw InputError(name + ": larger than a glTF file can be (4 GiB)");
+    const FileLoc file{name};
+    if (bytes.size() > UINT32_MAX) failAt(file, "larger than a glTF file can be (4 GiB)");
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     DecodedImages images;
@@ -513,19 +545,19 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     std::string err, warn;
     const bool glb = looksLikeGlb(bytes);
     if (!glb && name.size() >= 4 && name.compare(name.size() - 4, 4, ".glb") == 0)
-        throw InputError(name + ": not a binary glTF file (it does not start with 'glTF')");
+        failAt(file, "not a binary glTF file (it does not start with 'glTF')");
     bool ok = false;
     try {
         ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                unsigned(bytes.size()), folder.string())
                  : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), folder.string());
     } catch (const std::exception& e) {
-        throw InputError(name + ": not a glTF file (" + e.what() + ")");
+        failAt(file, std::string("not a glTF file (") + e.what() + ")");
     }
-    if (!ok) throw InputError(name + ": " + (err.empty() ? std::string("not a glTF file") : firstLine(err)));
+    if (!ok) failAt(file, err.empty() ? std::string("not a glTF file") : firstLine(err));
     std::istringstream warnings(warn);
     for (std::string line; std::getline(warnings, line);)
-        if (!line.empty()) std::cerr << name << ": warning: " << line << "\n";
+        if (!line.empty()) warnAt(file, line);
     return GltfReader(model, name, images).read();
 }
 

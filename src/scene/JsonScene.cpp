@@ -53,8 +53,9 @@ std::string formatNumber(double value) {
 }
 
 
-// "LINE:COLUMN" of a 1-based byte offset into text (nlohmann's parse_error::byte).
-std::string lineAndColumn(std::string_view text, size_t byte) {
+// The line and column in `name` of a 1-based byte offset into text (nlohmann's
+// parse_error::byte).
+FileLoc locationOf(const std::string& name, std::string_view text, size_t byte) {
     const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
     size_t line = 1, lineStart = 0;
     for (size_t i = 0; i < end; ++i) {
@@ -63,7 +64,7 @@ std::string lineAndColumn(std::string_view text, size_t byte) {
             lineStart = i + 1;
         }
     }
-    return std::to_string(line) + ":" + std::to_string(end - lineStart + 1);
+    return FileLoc{name, line, end - lineStart + 1};
 }
 
 // nlohmann's message without its "[json.exception.parse_error.101] parse error at line 1,
@@ -105,7 +106,7 @@ class DuplicateKeyCheck {
                     Pointer at;
                     for (const Frame& frame : frames_)
                         at = frame.isArray ? at / (frame.count - 1) : at / frame.key;
-                    throw InputError(file_ + ": " + printable(at.to_string()) + ": duplicate key");
+                    failAt(FileLoc{file_}, printable(at.to_string()) + ": duplicate key");
                 }
                 break;
             }
@@ -184,7 +185,7 @@ class SceneReader {
   private:
     [[noreturn]] void fail(const Pointer& at, const std::string& what) const {
         const std::string where = at.empty() ? std::string("top level") : printable(at.to_string());
-        throw InputError(file_ + ": " + where + ": " + what);
+        failAt(FileLoc{file_}, where + ": " + what);
     }
 
     static const json* find(const json& object, const char* key) {
@@ -291,15 +292,12 @@ class SceneReader {
         return vector3(value, at);
     }
 
+    // A mesh: its file's triangles, moved by its transform, with the file's materials (and
+    // their textures) or the mesh's own material.
     void readMesh(const json& mesh, const Pointer& at, Scene& scene) {
         requireObject(mesh, at, {"file", "transform", "material"});
         const Pointer fileAt = at / "file";
-        const json& fileValue = require(mesh, at, "file");
-        if (!fileValue.is_string())
-            fail(fileAt, std::string("expected a string, got ") + fileValue.type_name());
-        const std::string fileName = fileValue.get<std::string>();
-        if (fileName.empty()) fail(fileAt, "empty file name");
-        if (fileName.find('\0') != std::string::npos) fail(fileAt, "file name contains a NUL byte");
+        const std::string fileName = meshFileName(require(mesh, at, "file"), fileAt);
 
         // Transform and material first: their errors are cheaper to find than the OBJ's.
         std::optional<glm::dmat4> transform;
@@ -309,17 +307,7 @@ class SceneReader {
         if (const json* value = find(mesh, "material"))
             override = readMaterial(*value, at / "material", fileName);
 
-        std::filesystem::path objPath(fileName);
-        if (objPath.is_relative()) objPath = folder_ / objPath;
-        std::error_code ec;
-        const std::filesystem::file_status status = std::filesystem::status(objPath, ec);
-        if (!std::filesystem::exists(status))
-            fail(fileAt, "no such file " + quote(printable(fileName)));
-        if (std::filesystem::is_directory(status))
-            fail(fileAt, quote(printable(fileName)) + " is a directory");
-        if (!isReadableKind(status))
-            fail(fileAt, quote(printable(fileName)) + " is a device or socket, not a file");
-
+        const std::filesystem::path objPath = meshPath(fileName, fileAt);
         // The same OBJ listed twice (e.g. with two transforms) is read once.
         const std::string key = objPath.lexically_normal().string();
         auto cached = objCache_.find(key);
@@ -327,21 +315,56 @@ class SceneReader {
         const Scene& obj = cached->second;
 
         const uint32_t materialBase = static_cast<uint32_t>(scene.materials.size());
-        if (override) {
+        if (override)
             scene.materials.push_back(*override);
-        } else {
-            // The mesh's textures, once however often it is listed.
-            auto textures = textureBase_.find(key);
-            if (textures == textureBase_.end()) {
-                textures = textureBase_.emplace(key, int(scene.textures.size())).first;
-                scene.textures.insert(scene.textures.end(), obj.textures.begin(), obj.textures.end());
-            }
-            for (Material m : obj.materials) {
-                if (m.diffuseTexture >= 0) m.diffuseTexture += textures->second;
-                scene.materials.push_back(m);
-            }
+        else
+            addMeshMaterials(obj, key, scene);
+        addMeshTriangles(obj, transform, override.has_value(), materialBase, at / "transform", scene);
+    }
+
+    // The mesh's "file": a string that can name a file.
+    std::string meshFileName(const json& value, const Pointer& at) const {
+        if (!value.is_string()) fail(at, std::string("expected a string, got ") + value.type_name());
+        const std::string fileName = value.get<std::string>();
+        if (fileName.empty()) fail(at, "empty file name");
+        if (fileName.find('\0') != std::string::npos) fail(at, "file name contains a NUL byte");
+        return fileName;
+    }
+
+    // The file a mesh names (relative to the scene's folder), which must exist and be readable.
+    std::filesystem::path meshPath(const std::string& fileName, const Pointer& at) const {
+        std::filesystem::path objPath(fileName);
+        if (objPath.is_relative()) objPath = folder_ / objPath;
+        std::error_code ec;
+        const std::filesystem::file_status status = std::filesystem::status(objPath, ec);
+        if (!std::filesystem::exists(status))
+            fail(at, "no such file " + quote(printable(fileName)));
+        if (std::filesystem::is_directory(status))
+            fail(at, quote(printable(fileName)) + " is a directory");
+        if (!isReadableKind(status))
+            fail(at, quote(printable(fileName)) + " is a device or socket, not a file");
+        return objPath;
+    }
+
+    // The materials of mesh file `key`, their textures added once however often it is listed.
+    void addMeshMaterials(const Scene& obj, const std::string& key, Scene& scene) {
+        auto textures = textureBase_.find(key);
+        if (textures == textureBase_.end()) {
+            textures = textureBase_.emplace(key, int(scene.textures.size())).first;
+            scene.textures.insert(scene.textures.end(), obj.textures.begin(), obj.textures.end());
         }
-        const bool texcoords = !override && !obj.texcoords.empty();
+        for (Material m : obj.materials) {
+            if (m.diffuseTexture >= 0) m.diffuseTexture += textures->second;
+            scene.materials.push_back(m);
+        }
+    }
+
+    // The mesh's triangles with their normals and texture coordinates (dropped with an
+    // overriding material): all of material materialBase when `overridden`, else of the file's
+    // materials, added from materialBase on.
+    void addMeshTriangles(const Scene& obj, const std::optional<glm::dmat4>& transform, bool overridden,
+                          uint32_t materialBase, const Pointer& transformAt, Scene& scene) const {
+        const bool texcoords = !overridden && !obj.texcoords.empty();
         if (texcoords || !scene.texcoords.empty()) scene.texcoords.resize(scene.triangles.size());
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
@@ -363,15 +386,14 @@ class SceneReader {
             }
             Triangle triangle = obj.triangles[k];
             if (transform) {
-                triangle.v0 = transformPoint(*transform, triangle.v0, at / "transform", k);
-                triangle.v1 = transformPoint(*transform, triangle.v1, at / "transform", k);
-                triangle.v2 = transformPoint(*transform, triangle.v2, at / "transform", k);
+                triangle.v0 = transformPoint(*transform, triangle.v0, transformAt, k);
+                triangle.v1 = transformPoint(*transform, triangle.v1, transformAt, k);
+                triangle.v2 = transformPoint(*transform, triangle.v2, transformAt, k);
             }
             scene.triangles.push_back(triangle);
             if (texcoords) scene.texcoords.push_back(obj.texcoords[k]);
             else if (!scene.texcoords.empty()) scene.texcoords.push_back(TriangleTexcoords{});
-            scene.materialIds.push_back(override ? materialBase
-                                                 : materialBase + obj.materialIds[k]);
+            scene.materialIds.push_back(overridden ? materialBase : materialBase + obj.materialIds[k]);
         }
     }
 
@@ -562,8 +584,7 @@ JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::pat
     try {
         root = json::parse(text, std::ref(duplicates));
     } catch (const json::parse_error& e) {
-        throw InputError(name + ":" + lineAndColumn(text, e.byte) + ": " +
-                         parseErrorText(e.what()));
+        failAt(locationOf(name, text, e.byte), parseErrorText(e.what()));
     } catch (const json::exception& e) {
         // out_of_range 406, "number overflow parsing '1e999'", carries no position: find the
         // number.
@@ -571,9 +592,8 @@ JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::pat
         const size_t open = what.find('\''), close = what.rfind('\'');
         const size_t at =
             open < close ? text.find(what.substr(open + 1, close - open - 1)) : std::string::npos;
-        throw InputError(name + ":" +
-                         (at == std::string::npos ? "" : lineAndColumn(text, at + 1) + ":") + " " +
-                         parseErrorText(what));
+        failAt(at == std::string::npos ? FileLoc{name} : locationOf(name, text, at + 1),
+               parseErrorText(what));
     }
     return SceneReader(path).read(root);
 }

@@ -16,8 +16,8 @@
 #include <cstring>
 #include <fstream>
 #include <algorithm>
-#include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -73,7 +73,7 @@ class ObjScanner {
     explicit ObjScanner(std::string fileName) : fileName_(std::move(fileName)) {}
 
     [[noreturn]] void fail(size_t line, const std::string& what) const {
-        throw InputError(fileName_ + ":" + std::to_string(line) + ": " + what);
+        failAt(FileLoc{fileName_, line}, what);
     }
 
     // The text of the file, split into lines the way tinyobjloader does (\n, \r\n or \r). Lines
@@ -318,15 +318,21 @@ class MtlReader : public tinyobj::MaterialReader {
         noteGivenKeys(text.str());
         std::istringstream library(text.str());
         tinyobj::LoadMtl(matMap, materials, &library, warn, err);
-        for (size_t m = first; m < materials->size() && invalid.empty(); ++m)
-            invalid = checkMaterial((*materials)[m], path.string());
+        for (size_t m = first; m < materials->size() && !invalid; ++m)
+            invalid = checkMaterial((*materials)[m], FileLoc{path.string()});
         folders.resize(materials->size(), path.parent_path());
         return loaded_[name] = true;
     }
 
+    // What is wrong with a material and the library that gives it.
+    struct Problem {
+        FileLoc library;
+        std::string what;
+    };
+
     // The first material of a library that the renderer cannot use: a colour or exponent that
-    // is negative or not finite (tinyobjloader reads "Kd 1e39" as infinity). Empty when none.
-    std::string invalid;
+    // is negative or not finite (tinyobjloader reads "Kd 1e39" as infinity). None when none.
+    std::optional<Problem> invalid;
 
     std::vector<std::string> missing;
 
@@ -354,7 +360,7 @@ class MtlReader : public tinyobj::MaterialReader {
         }
     }
 
-    static std::string checkMaterial(const tinyobj::material_t& m, const std::string& library) {
+    static std::optional<Problem> checkMaterial(const tinyobj::material_t& m, const FileLoc& library) {
         auto bad = [](float x) { return !std::isfinite(x) || x < 0.0f; };
         std::string what;
         if (bad(m.diffuse[0]) || bad(m.diffuse[1]) || bad(m.diffuse[2]))
@@ -369,9 +375,8 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Tf";
         else if (bad(m.ior) || (isDielectric(m.illum) && m.ior == 0.0f))
             what = "Ni";
-        if (what.empty()) return {};
-        return library + ": material " + quote(m.name) + ": " + what +
-               " must be finite and not negative";
+        if (what.empty()) return std::nullopt;
+        return Problem{library, "material " + quote(m.name) + ": " + what + " must be finite and not negative"};
     }
 
     std::filesystem::path folder_;
@@ -395,30 +400,25 @@ int textureOf(const std::string& file, const std::filesystem::path& folder, cons
     std::error_code ec;
     try {
         if (!isReadableKind(std::filesystem::status(path, ec)))
-            throw InputError(path.string() + ": cannot open image file");
+            failAt(FileLoc{path.string()}, "cannot open image file");
         Texture texture;
         texture.name = path.string();
         texture.image = readImage(path);
         scene.textures.push_back(std::move(texture));
         index = int(scene.textures.size() - 1);
     } catch (const InputError& e) {
-        std::cerr << name << ": warning: material " << quote(material) << ": map_Kd: " << e.what()
-                  << "; the material keeps its colour\n";
+        warnAt(FileLoc{name}, "material " + quote(material) + ": map_Kd: " + e.what() +
+                                  "; the material keeps its colour");
     }
     return index;
 }
 
-}  // namespace
-
-Scene loadObj(const std::filesystem::path& path) { return parseObj(readSceneFile(path), path); }
-
-Scene parseObj(std::string text, const std::filesystem::path& path) {
-    const std::string name = path.string();
-    // A UTF-8 byte order mark would hide the first line's keyword from tinyobjloader.
+// Drops a UTF-8 byte order mark, which would hide the first line's keyword from tinyobjloader,
+// and blanks the comments: from '#' to the end of the line (\n, \r\n or \r), also after data
+// ("f 1 2 3 # quad"), as exporters write them. Blanking keeps line numbers and spares
+// tinyobjloader.
+void blankComments(std::string& text) {
     if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
-
-    // Comments run from '#' to the end of the line (\n, \r\n or \r), also after data ("f 1 2 3 #
-    // quad"), as exporters write them; blanking them keeps line numbers and spares tinyobjloader.
     for (size_t at = text.find('#'); at != std::string::npos; at = text.find('#', at)) {
         const size_t end = text.find_first_of("\r\n", at);
         std::fill(text.begin() + std::ptrdiff_t(at),
@@ -426,94 +426,110 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         if (end == std::string::npos) break;
         at = end;
     }
+}
 
-    ObjScanner scanner(name);
-    const ObjPreScan scan = scanner.scan(text);
-    // A text file that is not OBJ at all is refused; unknown statements in an OBJ are warnings.
+// A text file that is not OBJ at all is refused; unknown statements in an OBJ are warnings.
+void reportUnknownStatements(const ObjPreScan& scan, const std::string& name) {
     if (scan.statements == 0 && !scan.unknown.empty())
-        throw InputError(name + ":" + std::to_string(scan.unknown.front().first) +
-                         ": not a scene file: no OBJ statement in it (this line starts with " +
-                         quote(scan.unknown.front().second) + ")");
+        failAt(FileLoc{name, scan.unknown.front().first},
+               "not a scene file: no OBJ statement in it (this line starts with " +
+                   quote(scan.unknown.front().second) + ")");
     constexpr size_t kMaxWarnings = 5;
     for (size_t k = 0; k < scan.unknown.size() && k < kMaxWarnings; ++k)
-        std::cerr << name << ":" << scan.unknown[k].first << ": warning: unknown statement "
-                  << quote(scan.unknown[k].second) << " ignored\n";
+        warnAt(FileLoc{name, scan.unknown[k].first},
+               "unknown statement " + quote(scan.unknown[k].second) + " ignored");
     if (scan.unknown.size() > kMaxWarnings)
-        std::cerr << name << ": warning: " << scan.unknown.size() - kMaxWarnings << " more unknown statements ignored\n";
+        warnAt(FileLoc{name},
+               std::to_string(scan.unknown.size() - kMaxWarnings) + " more unknown statements ignored");
+}
 
+// What tinyobjloader reads of the (pre-scanned) text.
+struct ObjFile {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> mtlMaterials;
+    std::vector<tinyobj::material_t> materials;
+};
+
+// tinyobjloader's reading of the text, its material libraries read by mtlReader.
+ObjFile readObjFile(const std::string& text, const std::string& name, MtlReader& mtlReader) {
+    ObjFile obj;
     std::string warn, err;
-    MtlReader mtlReader(path.parent_path());
     std::istringstream stream(text);
     // triangulate = false: tinyobjloader splits quads along the shorter diagonal, which is not the
-    // contract's fan; we fan the polygons ourselves below.
+    // contract's fan; addFaces fans the polygons itself.
     const bool ok =
-        tinyobj::LoadObj(&attrib, &shapes, &mtlMaterials, &warn, &err, &stream, &mtlReader,
+        tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, &stream, &mtlReader,
                          /*triangulate=*/false, /*default_vcols_fallback=*/false);
     if (!ok) {
         std::string first = err.substr(0, err.find('\n'));
-        throw InputError(name + ": " + (first.empty() ? "cannot parse OBJ file" : first));
+        failAt(FileLoc{name}, first.empty() ? "cannot parse OBJ file" : first);
     }
-    if (!mtlReader.invalid.empty()) throw InputError(mtlReader.invalid);
+    if (mtlReader.invalid) failAt(mtlReader.invalid->library, mtlReader.invalid->what);
     for (const std::string& missing : mtlReader.missing)
-        std::cerr << name << ": warning: cannot open material library " << missing
-                  << "; using the default material\n";
+        warnAt(FileLoc{name}, "cannot open material library " + missing + "; using the default material");
+    return obj;
+}
 
-    // Invariants the pre-scan relies on (a disagreement would misnumber triangles).
-    if (attrib.vertices.size() / 3 != scan.vertices)
-        throw InputError(name + ": read " + std::to_string(attrib.vertices.size() / 3) +
-                         " vertices but the file has " + std::to_string(scan.vertices) +
-                         " 'v' lines");
+// The invariants the pre-scan relies on (a disagreement would misnumber triangles).
+void checkAgainstPreScan(const ObjFile& obj, const ObjPreScan& scan, const std::string& name) {
+    if (obj.attrib.vertices.size() / 3 != scan.vertices)
+        failAt(FileLoc{name}, "read " + std::to_string(obj.attrib.vertices.size() / 3) +
+                                  " vertices but the file has " + std::to_string(scan.vertices) +
+                                  " 'v' lines");
     size_t faceCount = 0, indexCount = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
+    for (const tinyobj::shape_t& shape : obj.shapes) {
         faceCount += shape.mesh.material_ids.size();
         indexCount += shape.mesh.indices.size();
     }
     size_t expectedIndices = 0;
     for (uint32_t n : scan.faceSizes) expectedIndices += n;
     if (faceCount != scan.faceSizes.size() || indexCount != expectedIndices)
-        throw InputError(name + ": read " + std::to_string(faceCount) + " faces but the file has " +
-                         std::to_string(scan.faceSizes.size()) + " 'f' lines");
+        failAt(FileLoc{name}, "read " + std::to_string(faceCount) + " faces but the file has " +
+                                  std::to_string(scan.faceSizes.size()) + " 'f' lines");
+}
 
-    Scene scene;
-    std::map<std::string, int> textureFiles;
-    for (const tinyobj::material_t& m : mtlMaterials) {
-        Material material;
-        if (!m.diffuse_texname.empty())
-            material.diffuseTexture =
-                textureOf(m.diffuse_texname, mtlReader.folders[scene.materials.size()], name, m.name, textureFiles, scene);
-        material.name = m.name;
-        material.diffuse = toVec3(m.diffuse);
-        material.specular = toVec3(m.specular);
-        material.shininess = static_cast<float>(m.shininess);
-        material.emission = toVec3(m.emission);
-        // MTL illumination models 4, 6 and 7 are glass: refraction with index Ni (1.5, common
-        // glass, when the library gives none) and the filter Tf (1 1 1 when it gives none).
-        if (isDielectric(m.illum)) {
-            material.ior = mtlReader.givenIndex.count(m.name) ? static_cast<float>(m.ior) : 1.5f;
-            material.transmission = mtlReader.givenFilter.count(m.name) ? toVec3(m.transmittance) : glm::vec3(1.0f);
-            if (glm::any(glm::greaterThan(material.transmission, glm::vec3(1.0f)))) {
-                material.transmission = glm::min(material.transmission, glm::vec3(1.0f));
-                std::cerr << name << ": warning: material '" << m.name << "': Tf above 1, clamped to 1\n";
-            }
+// The scene material of an MTL material (its map_Kd added to the scene's textures).
+Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path& folder,
+                       const MtlReader& mtlReader, const std::string& name,
+                       std::map<std::string, int>& textureFiles, Scene& scene) {
+    Material material;
+    if (!m.diffuse_texname.empty())
+        material.diffuseTexture = textureOf(m.diffuse_texname, folder, name, m.name, textureFiles, scene);
+    material.name = m.name;
+    material.diffuse = toVec3(m.diffuse);
+    material.specular = toVec3(m.specular);
+    material.shininess = static_cast<float>(m.shininess);
+    material.emission = toVec3(m.emission);
+    // MTL illumination models 4, 6 and 7 are glass: refraction with index Ni (1.5, common
+    // glass, when the library gives none) and the filter Tf (1 1 1 when it gives none).
+    if (isDielectric(m.illum)) {
+        material.ior = mtlReader.givenIndex.count(m.name) ? static_cast<float>(m.ior) : 1.5f;
+        material.transmission = mtlReader.givenFilter.count(m.name) ? toVec3(m.transmittance) : glm::vec3(1.0f);
+        if (glm::any(glm::greaterThan(material.transmission, glm::vec3(1.0f)))) {
+            material.transmission = glm::min(material.transmission, glm::vec3(1.0f));
+            warnAt(FileLoc{name}, "material " + quote(m.name) + ": Tf above 1, clamped to 1");
         }
-        // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
-        if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
-        // A mirror reflects at most all light (a JSON scene's range): Ks above 1 with a
-        // reflective illum model is clamped for the reflectivity, with a warning.
-        if (glm::any(glm::greaterThan(material.reflectivity, glm::vec3(1.0f)))) {
-            material.reflectivity = glm::min(material.reflectivity, glm::vec3(1.0f));
-            std::cerr << name << ": warning: material '" << m.name
-                      << "': reflectivity (Ks with illum " << m.illum << ") above 1, clamped to 1\n";
-        }
-        scene.materials.push_back(material);
     }
-    // Faces without a (known) material get the default one, appended after the MTL's.
+    // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
+    if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;
+    // A mirror reflects at most all light (a JSON scene's range): Ks above 1 with a
+    // reflective illum model is clamped for the reflectivity, with a warning.
+    if (glm::any(glm::greaterThan(material.reflectivity, glm::vec3(1.0f)))) {
+        material.reflectivity = glm::min(material.reflectivity, glm::vec3(1.0f));
+        warnAt(FileLoc{name}, "material " + quote(m.name) + ": reflectivity (Ks with illum " +
+                                  std::to_string(m.illum) + ") above 1, clamped to 1");
+    }
+    return material;
+}
+
+// The faces as triangles, each polygon a fan around its first vertex (the contract's numbering),
+// with their vertex normals when every vertex of the face has one and their texture coordinates
+// when the scene has textures. Faces without a (known) material get the default one, appended
+// after the MTL's.
+void addFaces(const ObjFile& obj, const ObjPreScan& scan, Scene& scene) {
     uint32_t defaultMaterial = UINT32_MAX;
     auto materialFor = [&](int id) -> uint32_t {
-        if (id >= 0 && static_cast<size_t>(id) < mtlMaterials.size())
+        if (id >= 0 && static_cast<size_t>(id) < obj.materials.size())
             return static_cast<uint32_t>(id);
         if (defaultMaterial == UINT32_MAX) {
             defaultMaterial = static_cast<uint32_t>(scene.materials.size());
@@ -521,10 +537,12 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
         }
         return defaultMaterial;
     };
-
+    const tinyobj::attrib_t& attrib = obj.attrib;
+    size_t expectedIndices = 0;
+    for (uint32_t n : scan.faceSizes) expectedIndices += n;
     scene.triangles.reserve(expectedIndices - 2 * scan.faceSizes.size());
     size_t face = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
+    for (const tinyobj::shape_t& shape : obj.shapes) {
         size_t first = 0;
         for (size_t f = 0; f < shape.mesh.material_ids.size(); ++f, ++face) {
             const uint32_t n = scan.faceSizes[face];
@@ -565,6 +583,27 @@ Scene parseObj(std::string text, const std::filesystem::path& path) {
             first += n;
         }
     }
+}
+
+}  // namespace
+
+Scene loadObj(const std::filesystem::path& path) { return parseObj(readSceneFile(path), path); }
+
+Scene parseObj(std::string text, const std::filesystem::path& path) {
+    const std::string name = path.string();
+    blankComments(text);
+    const ObjPreScan scan = ObjScanner(name).scan(text);
+    reportUnknownStatements(scan, name);
+    MtlReader mtlReader(path.parent_path());
+    const ObjFile obj = readObjFile(text, name, mtlReader);
+    checkAgainstPreScan(obj, scan, name);
+
+    Scene scene;
+    std::map<std::string, int> textureFiles;
+    for (size_t m = 0; m < obj.materials.size(); ++m)
+        scene.materials.push_back(
+            sceneMaterial(obj.materials[m], mtlReader.folders[m], mtlReader, name, textureFiles, scene));
+    addFaces(obj, scan, scene);
     if (scene.materials.empty()) scene.materials.push_back(Material{});
     if (!scene.normals.empty()) scene.normals.resize(scene.triangles.size());
     return scene;

@@ -100,10 +100,8 @@ std::string shown(std::string_view text) {
 }
 
 Header readHeader(const std::string& bytes, const std::string& name) {
-    auto fail = [&](size_t line, const std::string& what) {
-        throw InputError(name + ":" + std::to_string(line) + ": " + what);
-    };
-    if (!looksLikePly(bytes)) throw InputError(name + ": not a PLY file (it does not start with 'ply')");
+    auto fail = [&](size_t line, const std::string& what) { failAt(FileLoc{name, line}, what); };
+    if (!looksLikePly(bytes)) failAt(FileLoc{name}, "not a PLY file (it does not start with 'ply')");
     Header header;
     bool haveFormat = false;
     size_t pos = 0, line = 0;
@@ -177,13 +175,20 @@ Header readHeader(const std::string& bytes, const std::string& name) {
     return header;
 }
 
-// Values of the data, in order, whatever the encoding; `where()` names the place for messages.
+// Values of the data, in order, whatever the encoding; `fail` names the place in messages.
 class DataReader {
   public:
     DataReader(const std::string& bytes, const Header& header, const std::string& name)
         : bytes_(bytes), format_(header.format), pos_(header.dataStart), line_(header.lines + 1), name_(name) {}
 
-    [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + where() + ": " + what); }
+    // "FILE:LINE: what" (ASCII), "FILE: ELEMENT INDEX (byte B): what" (binary).
+    [[noreturn]] void fail(const std::string& what) const {
+        if (format_ == Format::Ascii) failAt(FileLoc{name_, line_}, what);
+        if (element_)
+            failAt(FileLoc{name_}, element_->name + " " + std::to_string(index_) + " (byte " + std::to_string(pos_) +
+                                       "): " + what);
+        failAt(FileLoc{name_}, what);
+    }
 
     // Before reading `count` elements of `e`: the bytes left can hold them (nothing is allocated
     // for counts the file cannot back).
@@ -193,9 +198,9 @@ class DataReader {
         const uint64_t each = format_ == Format::Ascii ? 2 * std::max<uint64_t>(e.properties.size(), 1) : e.minBinaryBytes();
         const uint64_t room = format_ == Format::Ascii ? (left + 1) / each : left / std::max<uint64_t>(each, 1);
         if (each > 0 && e.count > room)
-            throw InputError(name_ + ":" + std::to_string(e.line) + ": " + std::to_string(e.count) + " " + e.name +
-                             " elements of at least " + std::to_string(each) + " bytes, but only " +
-                             std::to_string(left) + " bytes of data follow (the header does not match the data)");
+            failAt(FileLoc{name_, e.line}, std::to_string(e.count) + " " + e.name + " elements of at least " +
+                                               std::to_string(each) + " bytes, but only " + std::to_string(left) +
+                                               " bytes of data follow (the header does not match the data)");
     }
 
     double value(Type type) {
@@ -218,12 +223,6 @@ class DataReader {
     }
 
   private:
-    std::string where() const {
-        if (format_ == Format::Ascii) return ":" + std::to_string(line_);
-        return element_ ? ": " + element_->name + " " + std::to_string(index_) + " (byte " + std::to_string(pos_) + ")"
-                        : std::string();
-    }
-
     void skipSpace() {
         while (pos_ < bytes_.size()) {
             const char c = bytes_[pos_];
@@ -304,96 +303,123 @@ int propertyIndex(const Element& e, std::initializer_list<const char*> names) {
     return -1;
 }
 
-}  // namespace
-
-bool looksLikePly(const std::string& head) {
-    return head.compare(0, 4, "ply\n") == 0 || head.compare(0, 5, "ply\r\n") == 0;
-}
-
-Scene parsePly(const std::string& bytes, const std::string& name) {
-    const Header header = readHeader(bytes, name);
-    auto fail = [&](const std::string& what) { throw InputError(name + ": " + what); };
+// Where the mesh is in the elements: the vertex element with its x, y, z (and nx, ny, nz)
+// properties, and the face element, if any, with its list of vertex indices.
+struct MeshLayout {
     const Element* vertex = nullptr;
     const Element* face = nullptr;
+    int position[3] = {-1, -1, -1};  // property indices in vertex
+    int normal[3] = {-1, -1, -1};    // all -1 without normals
+    bool hasNormals = false;
+    int indices = -1;  // property index in face
+};
+
+MeshLayout meshLayout(const Header& header, const std::string& name) {
+    auto fail = [&](const std::string& what) { failAt(FileLoc{name}, what); };
+    MeshLayout layout;
     for (const Element& e : header.elements) {
-        if (e.name == "vertex") vertex = &e;
-        if (e.name == "face") face = &e;
+        if (e.name == "vertex") layout.vertex = &e;
+        if (e.name == "face") layout.face = &e;
     }
+    const Element* vertex = layout.vertex;
+    const Element* face = layout.face;
     if (!vertex) fail("no vertex element");
-    int position[3], normal[3];
     for (int a = 0; a < 3; ++a) {
         const char* axis[] = {"x", "y", "z"};
         const char* naxis[] = {"nx", "ny", "nz"};
-        position[a] = propertyIndex(*vertex, {axis[a]});
-        normal[a] = propertyIndex(*vertex, {naxis[a]});
-        if (position[a] < 0) fail(std::string("line ") + std::to_string(vertex->line) + ": the vertex element has no property " + axis[a]);
-        if (vertex->properties[size_t(position[a])].list) fail(std::string("the vertex property ") + axis[a] + " is a list");
+        layout.position[a] = propertyIndex(*vertex, {axis[a]});
+        layout.normal[a] = propertyIndex(*vertex, {naxis[a]});
+        if (layout.position[a] < 0) fail(std::string("line ") + std::to_string(vertex->line) + ": the vertex element has no property " + axis[a]);
+        if (vertex->properties[size_t(layout.position[a])].list) fail(std::string("the vertex property ") + axis[a] + " is a list");
     }
-    const bool hasNormals = normal[0] >= 0 || normal[1] >= 0 || normal[2] >= 0;
-    if (hasNormals && (normal[0] < 0 || normal[1] < 0 || normal[2] < 0))
+    const int* normal = layout.normal;
+    layout.hasNormals = normal[0] >= 0 || normal[1] >= 0 || normal[2] >= 0;
+    if (layout.hasNormals && (normal[0] < 0 || normal[1] < 0 || normal[2] < 0))
         fail("the vertex element has some of nx, ny, nz but not all three");
-    const int indices = face ? propertyIndex(*face, {"vertex_indices", "vertex_index"}) : -1;
+    layout.indices = face ? propertyIndex(*face, {"vertex_indices", "vertex_index"}) : -1;
+    const int indices = layout.indices;
     if (face && indices < 0) fail("the face element has no vertex_indices list");
     if (face && (!face->properties[size_t(indices)].list || !isInteger(face->properties[size_t(indices)].type)))
         fail("the face property " + face->properties[size_t(indices)].name + " is not a list of integers");
+    return layout;
+}
 
+// The mesh's values as the data gives them (the face indices not yet checked).
+struct MeshData {
     std::vector<glm::vec3> positions, normals;
     std::vector<uint32_t> faceSizes;
-    std::vector<double> faceIndices;
-    DataReader in(bytes, header, name);
-    for (const Element& e : header.elements) {
-        in.checkRoom(e);
-        const bool isVertex = &e == vertex, isFace = &e == face;
-        if (isVertex) {
-            positions.resize(size_t(e.count));
-            if (hasNormals) normals.resize(size_t(e.count));
+    std::vector<double> faceIndices;  // every face's, one face after another
+};
+
+// Element i of e: the face's indices and the vertex's coordinates are kept, other values read
+// and dropped.
+void readElement(DataReader& in, const Element& e, uint64_t i, const MeshLayout& layout, MeshData& data) {
+    const bool isVertex = &e == layout.vertex, isFace = &e == layout.face;
+    in.setPlace(e, i);
+    for (size_t k = 0; k < e.properties.size(); ++k) {
+        const Property& p = e.properties[k];
+        if (p.list) {
+            const double n = in.value(p.countType);
+            if (n < 0) in.fail("a list of " + std::to_string(int64_t(n)) + " items");
+            if (isFace && int(k) == layout.indices) {
+                if (n < 3) in.fail("a face of " + std::to_string(int64_t(n)) + " vertices; a face needs at least 3");
+                data.faceSizes.push_back(uint32_t(n));
+                for (double j = 0; j < n; ++j) data.faceIndices.push_back(in.value(p.type));
+            } else {
+                for (double j = 0; j < n; ++j) in.value(p.type);
+            }
+            continue;
         }
-        if (e.properties.empty()) continue;  // elements of nothing take no bytes
-        for (uint64_t i = 0; i < e.count; ++i) {
-            in.setPlace(e, i);
-            for (size_t k = 0; k < e.properties.size(); ++k) {
-                const Property& p = e.properties[k];
-                if (p.list) {
-                    const double n = in.value(p.countType);
-                    if (n < 0) in.fail("a list of " + std::to_string(int64_t(n)) + " items");
-                    if (isFace && int(k) == indices) {
-                        if (n < 3) in.fail("a face of " + std::to_string(int64_t(n)) + " vertices; a face needs at least 3");
-                        faceSizes.push_back(uint32_t(n));
-                        for (double j = 0; j < n; ++j) faceIndices.push_back(in.value(p.type));
-                    } else {
-                        for (double j = 0; j < n; ++j) in.value(p.type);
-                    }
-                    continue;
-                }
-                const double v = in.value(p.type);
-                if (!isVertex) continue;
-                for (int a = 0; a < 3; ++a) {
-                    if (int(k) == position[a]) {
-                        if (!std::isfinite(float(v))) in.fail("vertex coordinate is not a finite float");
-                        positions[size_t(i)][a] = float(v);
-                    }
-                    if (int(k) == normal[a]) {
-                        if (!std::isfinite(float(v))) in.fail("normal component is not a finite float");
-                        normals[size_t(i)][a] = float(v);
-                    }
-                }
+        const double v = in.value(p.type);
+        if (!isVertex) continue;
+        for (int a = 0; a < 3; ++a) {
+            if (int(k) == layout.position[a]) {
+                if (!std::isfinite(float(v))) in.fail("vertex coordinate is not a finite float");
+                data.positions[size_t(i)][a] = float(v);
+            }
+            if (int(k) == layout.normal[a]) {
+                if (!std::isfinite(float(v))) in.fail("normal component is not a finite float");
+                data.normals[size_t(i)][a] = float(v);
             }
         }
     }
-    in.finish();
+}
 
+// The data, element by element in header order; each element's count is checked against the
+// bytes left before anything is sized by it.
+MeshData readData(const std::string& bytes, const Header& header, const MeshLayout& layout, const std::string& name) {
+    MeshData data;
+    DataReader in(bytes, header, name);
+    for (const Element& e : header.elements) {
+        in.checkRoom(e);
+        if (&e == layout.vertex) {
+            data.positions.resize(size_t(e.count));
+            if (layout.hasNormals) data.normals.resize(size_t(e.count));
+        }
+        if (e.properties.empty()) continue;  // elements of nothing take no bytes
+        for (uint64_t i = 0; i < e.count; ++i) readElement(in, e, i, layout, data);
+    }
+    in.finish();
+    return data;
+}
+
+// The faces as triangle fans around their first vertex, each index checked against the vertices;
+// one default material.
+Scene meshScene(const MeshData& data, bool hasNormals, const std::string& name) {
     Scene scene;
     scene.materials.push_back(Material{});
+    const std::vector<glm::vec3>& positions = data.positions;
+    const std::vector<glm::vec3>& normals = data.normals;
     size_t at = 0;
-    for (size_t f = 0; f < faceSizes.size(); ++f) {
-        const size_t n = faceSizes[f];
+    for (size_t f = 0; f < data.faceSizes.size(); ++f) {
+        const size_t n = data.faceSizes[f];
         for (size_t j = 0; j < n; ++j) {
-            const double index = faceIndices[at + j];
+            const double index = data.faceIndices[at + j];
             if (index < 0 || index >= double(positions.size()))
-                fail("face " + std::to_string(f) + ": vertex index " + std::to_string(int64_t(index)) +
-                     " is out of range (" + std::to_string(positions.size()) + " vertices)");
+                failAt(FileLoc{name}, "face " + std::to_string(f) + ": vertex index " + std::to_string(int64_t(index)) +
+                                          " is out of range (" + std::to_string(positions.size()) + " vertices)");
         }
-        const auto v = [&](size_t j) { return size_t(faceIndices[at + j]); };
+        const auto v = [&](size_t j) { return size_t(data.faceIndices[at + j]); };
         for (size_t j = 1; j + 1 < n; ++j) {
             scene.triangles.push_back({positions[v(0)], positions[v(j)], positions[v(j + 1)]});
             scene.materialIds.push_back(0);
@@ -402,6 +428,18 @@ Scene parsePly(const std::string& bytes, const std::string& name) {
         at += n;
     }
     return scene;
+}
+
+}  // namespace
+
+bool looksLikePly(const std::string& head) {
+    return head.compare(0, 4, "ply\n") == 0 || head.compare(0, 5, "ply\r\n") == 0;
+}
+
+Scene parsePly(const std::string& bytes, const std::string& name) {
+    const Header header = readHeader(bytes, name);
+    const MeshLayout layout = meshLayout(header, name);
+    return meshScene(readData(bytes, header, layout, name), layout.hasNormals, name);
 }
 
 Scene loadPly(const std::filesystem::path& path) {

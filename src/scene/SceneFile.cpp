@@ -20,22 +20,22 @@ bool isReadableKind(const std::filesystem::file_status& status) {
 }
 
 void checkSceneFile(const std::filesystem::path& path) {
-    const std::string name = path.string();
+    const FileLoc file{path.string()};
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
-    if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not a scene file");
-    if (!isReadableKind(status)) throw InputError(name + ": is a device or socket, not a scene file");
+    if (!std::filesystem::exists(status)) failAt(file, "no such file");
+    if (std::filesystem::is_directory(status)) failAt(file, "is a directory, not a scene file");
+    if (!isReadableKind(status)) failAt(file, "is a device or socket, not a scene file");
 }
 
 std::string readSceneFile(const std::filesystem::path& path) {
     checkSceneFile(path);
-    const std::string name = path.string();
+    const FileLoc file{path.string()};
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot read (" + std::strerror(errno) + ")");
+    if (!in) failAt(file, std::string("cannot read (") + std::strerror(errno) + ")");
     std::ostringstream buffer;
     buffer << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read");
+    if (in.bad()) failAt(file, "cannot read");
     return buffer.str();
 }
 

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -63,14 +64,19 @@ struct Entry {
 };
 
 // The section table entry with this tag (header: 32 bytes; entries of 24 bytes from offset 32:
-// tag, reserved, u64 offset, u64 size).
-Entry section(const Bytes& b, const char* tag) {
+// tag, reserved, u64 offset, u64 size), if there is one.
+std::optional<Entry> findSection(const Bytes& b, const char* tag) {
     const uint32_t count = get32(b, 24);
     for (uint32_t k = 0; k < count; ++k) {
         const size_t at = 32 + 24 * size_t(k);
         if (std::memcmp(b.data() + at, tag, 4) == 0)
-            return {at, get64(b, at + 8), get64(b, at + 16)};
+            return Entry{at, get64(b, at + 8), get64(b, at + 16)};
     }
+    return std::nullopt;
+}
+
+Entry section(const Bytes& b, const char* tag) {
+    if (const std::optional<Entry> entry = findSection(b, tag)) return *entry;
     ADD_FAILURE() << "no section " << tag;
     return {0, 0, 0};
 }
@@ -256,13 +262,16 @@ class PackedSceneTest : public ::testing::Test {
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    // The packed source with `patch` applied and the checksum made right again.
+    // The packed source (or `b`) with `patch` applied and the checksum made right again.
     template <class Patch>
-    Bytes patched(Patch patch) const {
-        Bytes b = bytes_;
+    static Bytes patched(Bytes b, Patch patch) {
         patch(b);
         reseal(b);
         return b;
+    }
+    template <class Patch>
+    Bytes patched(Patch patch) const {
+        return patched(bytes_, patch);
     }
 
     fs::path dir_;
@@ -525,6 +534,50 @@ TEST_F(PackedSceneTest, RefusesTexturesThatLie) {
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, indices - 8, source_.scene.materials.size() + 1); }),
                    "material textures");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, txco.offset, source_.scene.triangles.size() - 1); }), "do not fit");
+}
+
+// Material models (MODL, one u32 per material): written only when some material is not of the
+// classic model (0), so that today's files stay as they were; kept through the round trip; a
+// count that is not the materials' and an unknown model are refused by reader and writer.
+TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "MODL")) << "a scene of classic materials only";
+    LoadedScene debug = source_;
+    debug.scene.materials[2].model = 1;  // GPURT_MODEL_DEBUG_NORMAL
+    const size_t materials = debug.scene.materials.size();
+    const Bytes b = encodePackedScene(debug, grid_, "debug");
+    const Entry modl = section(b, "MODL");
+    EXPECT_EQ(modl.size, 8 + 4 * materials);
+    EXPECT_EQ(get64(b, modl.offset), materials);
+    const LoadedScene packed = decodePackedScene(b, "debug.gpscene");
+    ASSERT_EQ(packed.scene.materials.size(), materials);
+    for (size_t m = 0; m < materials; ++m) {
+        EXPECT_EQ(get32(b, modl.offset + 8 + 4 * m), m == 2 ? 1u : 0u) << m;
+        EXPECT_EQ(packed.scene.materials[m].model, m == 2 ? 1 : 0) << m;
+    }
+    expectSameScene(debug, packed);
+    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+
+    // A count that does not fit the section, or (the section shortened to fit it) is not the
+    // materials'; models this gpurt does not know.
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, modl.offset, materials + 1); }), "section MODL: ");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) {
+                       put64(p, modl.offset, materials - 1);
+                       put64(p, modl.at + 16, modl.size - 4);
+                   }),
+                   "section MODL: " + std::to_string(materials - 1) + " material models for " +
+                       std::to_string(materials) + " materials");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, modl.offset + 8 + 4 * 3, 2); }),
+                   "section MODL: material 3: unknown material model 2");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, modl.offset + 8, 0xffffffffu); }),
+                   "material 0: unknown material model 4294967295");
+    for (const int model : {2, -1}) {
+        LoadedScene unknown = debug;
+        unknown.scene.materials[4].model = model;
+        const std::string message =
+            test::refusalOf([&] { encodePackedScene(unknown, grid_, "unknown"); }, "unknown: ");
+        EXPECT_NE(message.find("material 4: unknown material model " + std::to_string(model)), std::string::npos)
+            << message;
+    }
 }
 
 TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {

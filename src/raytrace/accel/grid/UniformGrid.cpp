@@ -102,28 +102,12 @@ void collectReferences(const Scene& scene, const UniformGrid& grid, size_t first
     }
 }
 
-}  // namespace
+// (cell, triangle) pairs, one list per thread.
+using References = std::vector<std::vector<std::pair<uint32_t, uint32_t>>>;
 
-size_t UniformGrid::cells() const {
-    return size_t(resolution.x) * size_t(resolution.y) * size_t(resolution.z);
-}
-
-float UniformGrid::rayOffset() const {
-    const glm::vec3 extent = max - min;
-    return 1e-4f * std::max(extent.x, std::max(extent.y, extent.z));
-}
-
-float UniformGrid::hitTolerance() const {
-    return 1e-4f * std::min(cellSize.x, std::min(cellSize.y, cellSize.z));
-}
-
-UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
-    if (scene.triangles.size() >= UINT32_MAX)
-        throw InputError("scene: too many triangles for 32-bit ids");
-    UniformGrid grid;
-
-    // The box: the scene's bounds, padded so that no extent is zero (a flat scene) and triangles
-    // on the bounds are strictly inside.
+// The grid's box: the scene's bounds, padded so that no extent is zero (a flat scene) and
+// triangles on the bounds are strictly inside; -1 to 1 on every axis for a scene of nothing.
+void setBox(const Scene& scene, UniformGrid& grid) {
     const Bounds bounds = scene.bounds();
     glm::vec3 lo(-1.0f), hi(1.0f);
     if (!bounds.empty()) {
@@ -151,7 +135,10 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     }
     grid.min = lo;
     grid.max = hi;
+}
 
+// The resolution the options give (checked), or the automatic one for the box's extent.
+glm::ivec3 chooseResolution(const Scene& scene, const GridOptions& options, glm::vec3 extent) {
     if (options.resolution) {
         const glm::ivec3 r = *options.resolution;
         if (r.x < 1 || r.y < 1 || r.z < 1)
@@ -162,22 +149,23 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
             throw InputError("--grid: " + std::to_string(r.x) + "," + std::to_string(r.y) + "," +
                              std::to_string(r.z) + " has more than " +
                              std::to_string(kMaxGridCells) + " cells");
-        grid.resolution = r;
-    } else {
-        if (!(options.lambda > 0.0f) || !std::isfinite(options.lambda))
-            throw InputError("grid: lambda must be a positive number, got " +
-                             std::to_string(options.lambda));
-        grid.resolution = automaticResolution(scene.triangles.size(), hi - lo, options.lambda);
+        return r;
     }
-    grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
+    if (!(options.lambda > 0.0f) || !std::isfinite(options.lambda))
+        throw InputError("grid: lambda must be a positive number, got " +
+                         std::to_string(options.lambda));
+    return automaticResolution(scene.triangles.size(), extent, options.lambda);
+}
 
-    // Collect (cell, triangle) pairs on all cores, each thread a contiguous ascending range of
-    // triangles; concatenating the threads' lists in order keeps every cell's ids ascending.
+// The (cell, triangle) pairs of all triangles, collected on `threadOption` threads (0: all
+// cores), each thread a contiguous ascending range of triangles; concatenating the threads' lists
+// in order keeps every cell's ids ascending.
+References collectAllReferences(const Scene& scene, const UniformGrid& grid, int threadOption) {
     const size_t n = scene.triangles.size();
     size_t threads =
-        options.threads > 0 ? size_t(options.threads) : size_t(std::thread::hardware_concurrency());
+        threadOption > 0 ? size_t(threadOption) : size_t(std::thread::hardware_concurrency());
     threads = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / 256));
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> references(threads);
+    References references(threads);
     std::vector<std::exception_ptr> errors(threads);
     {
         std::vector<std::thread> workers;
@@ -195,8 +183,11 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     }
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
+    return references;
+}
 
-    // Counting sort by cell.
+// cellStart and cellTriangles from the pairs: a counting sort by cell.
+void sortByCell(const References& references, UniformGrid& grid) {
     size_t total = 0;
     for (const auto& list : references) total += list.size();
     if (total >= UINT32_MAX)
@@ -209,6 +200,31 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     std::vector<uint32_t> cursor(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (const auto& list : references)
         for (const auto& [cell, id] : list) grid.cellTriangles[cursor[cell]++] = id;
+}
+
+}  // namespace
+
+size_t UniformGrid::cells() const {
+    return size_t(resolution.x) * size_t(resolution.y) * size_t(resolution.z);
+}
+
+float UniformGrid::rayOffset() const {
+    const glm::vec3 extent = max - min;
+    return 1e-4f * std::max(extent.x, std::max(extent.y, extent.z));
+}
+
+float UniformGrid::hitTolerance() const {
+    return 1e-4f * std::min(cellSize.x, std::min(cellSize.y, cellSize.z));
+}
+
+UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
+    if (scene.triangles.size() >= UINT32_MAX)
+        throw InputError("scene: too many triangles for 32-bit ids");
+    UniformGrid grid;
+    setBox(scene, grid);
+    grid.resolution = chooseResolution(scene, options, grid.max - grid.min);
+    grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
+    sortByCell(collectAllReferences(scene, grid, options.threads), grid);
     if (options.skip) computeSkip(grid);
     return grid;
 }
