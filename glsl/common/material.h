@@ -24,6 +24,7 @@
 // Material models (the record's `model`; Material::model in the scene).
 #define GPURT_MODEL_CLASSIC 0       // Phong lobes, mirror, smooth glass (materials/classic.h)
 #define GPURT_MODEL_DEBUG_NORMAL 1  // the shading normal as a colour (materials/debug_normal.h)
+#define GPURT_MODEL_COUNT 2         // the models this gpurt knows (a packed file's are checked)
 
 // What the integrators know of a material at one hit.
 struct MaterialRecord {

@@ -21,6 +21,7 @@
 
 #include "image/AtomicFile.h"
 #include "image/InputError.h"
+#include "raytrace/RayMath.h"
 #include "raytrace/SceneTextureLayout.h"
 #include "scene/SceneFile.h"
 
@@ -69,9 +70,8 @@ constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
 constexpr size_t kModelBytes = 4;
-// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*): 0 is
-// the classic model, 1 the test-only GPURT_MODEL_DEBUG_NORMAL.
-constexpr uint32_t kLastMaterialModel = 1;
+// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
+constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
 
 constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separately) the id
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
