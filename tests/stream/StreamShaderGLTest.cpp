@@ -1,6 +1,6 @@
 // GLSL sources: embedding, #include with #line mapping, compile errors naming file:line, loading
 // from a folder (--glsl-dir), and glslangValidator on every kernel as assembled.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "stream/GPUKernel.h"
 #include "stream/GPUMask.h"

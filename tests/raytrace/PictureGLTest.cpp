@@ -3,7 +3,7 @@
 // an anti-aliased edge, the transmission of a glass slab), and against each other on the Cornell
 // box (area light, glass, mirror) and the smooth-shaded bunny. Statistical tolerances come from
 // the sample count.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 #include "TestScenes.h"
 
 #include "raytrace/Camera.h"

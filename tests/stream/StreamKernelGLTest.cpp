@@ -1,6 +1,6 @@
 // GPUKernel: occlusion counts, outputs, MRT, ping-pong, in-place, sub-rectangles, primitives,
 // integer streams, conditional rendering, statistics, loop limits, OSMesa.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "stream/GPUKernel.h"
 #include "stream/StreamErrors.h"

@@ -1,5 +1,5 @@
 // GPUFloatArray and GPUPingPongArray: transfers, formats, fill and copy, size checks.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "stream/GPUFloatArray.h"
 #include "stream/StreamErrors.h"

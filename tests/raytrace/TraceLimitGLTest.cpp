@@ -1,7 +1,7 @@
 // The GL tracer's per-ray cell limit (RAY_OVERFLOW): no ray of a real scene reaches it, and rays
 // that do (the limit lowered for the test) are counted in RenderStats::overflowRays and end as
 // misses, on the fused and the split kernels alike.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "Refusal.h"
+#include "../common/Refusal.h"
 
 #include <algorithm>
 #include <array>

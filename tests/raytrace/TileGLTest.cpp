@@ -1,7 +1,7 @@
 // Tiles (--tile I/N): the rows of tile i of n, rendered alone with the whole image's camera and
 // samples, are exactly those rows of the whole render, for every output, on both backends and
 // both integrators, for n that do and do not divide the height.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 #include "TestScenes.h"
 
 #include "image/InputError.h"

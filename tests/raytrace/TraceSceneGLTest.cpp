@@ -1,7 +1,7 @@
 // The shipped demo scenes: the GL chain against the CPU backend, and golden images for scenes A
 // and B (tests/golden/, rendered by `gpurt render scenes/NAME.json`; tolerance below). On a
 // golden mismatch the actual image and a diff image are written next to the build's tests.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"

@@ -1,7 +1,7 @@
 // Kernel chains (Christen 2005, 4.3): sequence, for, while over one kernel, while over several
 // kernels, nested while. Each ends with the state and call counts of a CPU simulation of the same
 // float operations on the same random inputs.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "stream/GPUKernel.h"
 #include "stream/KernelChain.h"

@@ -3,7 +3,7 @@
 // Whitted integrator where the two must agree (direct light from point lights), against each other
 // (the same samples), and its convergence on the Cornell box. Statistical tolerances come from
 // the sample count: the standard error of the mean of the pixels, each the mean of its samples.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 #include "TestScenes.h"
 
 #include "scene/ObjLoader.h"

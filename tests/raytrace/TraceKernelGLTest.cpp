@@ -1,6 +1,6 @@
 // The GL tracer's kernels one by one against the CPU reference (the contract's camera, the
 // raymath.h DDA and Moller-Trumbore, brute force over all triangles), on random inputs.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "raytrace/Camera.h"
 #include "raytrace/GpuPipeline.h"

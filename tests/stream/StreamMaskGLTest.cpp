@@ -1,6 +1,6 @@
 // Masking: each mode leaves masked elements untouched and counts exactly the active ones, for
 // scattered and block-coherent masks, with plain, ping-pong and in-place outputs.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "stream/GPUKernel.h"
 #include "stream/GPUMask.h"

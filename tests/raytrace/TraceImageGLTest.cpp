@@ -1,7 +1,7 @@
 // Whole images: the GL kernel chain against the CPU backend (same grid, same algorithm) on the
 // shared models, with oblique, close-up, inside-the-box and non-square cameras; every masking
 // mode and traversal step count gives the same first hits.
-#include "GLTest.h"
+#include "../common/GLTest.h"
 
 #include "raytrace/Camera.h"
 #include "raytrace/CpuTracer.h"

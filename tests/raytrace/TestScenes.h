@@ -1,5 +1,5 @@
 // Scenes built in code and renders on both backends, for the tests of the pictures and of the
-// path integrator (PictureTest, PathTest).
+// path integrator (PictureGLTest, PathGLTest).
 #pragma once
 
 #include "raytrace/Camera.h"

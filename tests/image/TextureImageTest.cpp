@@ -9,7 +9,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "Refusal.h"
+#include "../common/Refusal.h"
 #include "image/TextureImage.h"
 #include "raytrace/SurfaceTexture.h"
 
