@@ -292,7 +292,7 @@ TEST_F(Cli, PackPrintsStatisticsAndIsTheSameForAnyThreadCount) {
 }
 
 // The OBJ, a JSON scene of it, and both packed: the same PNG and AOVs, byte for byte, per backend.
-// PLY files written by another tool (Assimp, tools/make-test-assets.sh: ASCII, binary little and
+// PLY files written by another tool (Assimp, scripts/make-test-assets.sh: ASCII, binary little and
 // big endian) render as the OBJ they were made from, on both backends: the same triangle hit at
 // every pixel (the same ids: PLY faces keep the OBJ's order), and the same depths, normals and
 // colours within float rounding. Not bit for bit: Assimp's OBJ parser rounds some coordinates to a
@@ -330,7 +330,7 @@ TEST_F(Cli, PlyModelsRenderAsTheirObj) {
 }
 
 // glTF files written by another tool (Cesium's obj2gltf, checked by Khronos' glTF-Validator:
-// tools/make-test-assets.sh; a .gltf with its .bin and a .glb) hit what the OBJ they were made from
+// scripts/make-test-assets.sh; a .gltf with its .bin and a .glb) hit what the OBJ they were made from
 // hits, bit for bit: the same triangle ids, depths and normals at every pixel, on both backends
 // (obj2gltf keeps the faces' order and reads the numbers exactly). Their colours differ: obj2gltf
 // gives the OBJ's missing material a base colour of 0.5, gpurt's default is 0.8.
@@ -645,11 +645,11 @@ TEST_F(Cli, StitchedTilesAreTheWholeRenderByteForByte) {
     }
 }
 
-// The GNU parallel driver (tools/farm/gpurt-parallel.sh) renders a 4-tile image with real GNU
+// The GNU parallel driver (scripts/farm/gpurt-parallel.sh) renders a 4-tile image with real GNU
 // parallel on this machine's cores; stitched, it is the whole render. A run whose tiles fail exits
 // non-zero and writes no image.
 TEST_F(Cli, GnuParallelDriverRendersTheWholeImage) {
-    const std::string driver = foreign("tools/farm/gpurt-parallel.sh --gpurt " + gpurtKeepingPreloads(dir));
+    const std::string driver = foreign("scripts/farm/gpurt-parallel.sh --gpurt " + gpurtKeepingPreloads(dir));
     const std::string scene = " scenes/cornell_blocks.json --size 32x26 --spp 2";
     const std::string command = driver + " --tiles 4 --jobs 2 -o " + path("farm.png") + scene + " 2>" + path("farm.err");
     const int code = std::system(command.c_str());
@@ -703,14 +703,14 @@ class SlurmCluster {
     std::string log_;
 };
 
-// The Slurm driver (tools/farm/gpurt-slurm.sh) against a real one-node Slurm: a 4-tile image (a job
+// The Slurm driver (scripts/farm/gpurt-slurm.sh) against a real one-node Slurm: a 4-tile image (a job
 // array and a stitch job after it) and a 3-frame animation of the packed scene equal the whole
 // renders; a failed tile fails --wait, naming it, and --resume re-runs that tile alone.
 TEST_F(Cli, SlurmDriverRendersTilesAndFramesOnARealCluster) {
     // Short and without spaces: slurm.conf cannot quote paths, munge's socket path is limited.
     const SlurmCluster cluster(fs::temp_directory_path() / ("gpurt-slurm-" + std::to_string(::getpid())));
     ASSERT_TRUE(cluster.started()) << "the one-node Slurm did not start:\n" << cluster.log();
-    const std::string driver = cluster.client("tools/farm/gpurt-slurm.sh --wait --gpurt " + gpurtKeepingPreloads(dir));
+    const std::string driver = cluster.client("scripts/farm/gpurt-slurm.sh --wait --gpurt " + gpurtKeepingPreloads(dir));
     const std::string scene = " scenes/cornell_blocks.json --size 32x26 --spp 2";
     auto run = [&](const std::string& command) {
         const int status = std::system((command + " >" + path("slurm.out") + " 2>" + path("slurm.err")).c_str());

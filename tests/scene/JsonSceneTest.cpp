@@ -473,7 +473,7 @@ TEST_F(JsonSceneTest, LoadSceneRecognisesTheFormatByContent) {
     expectLoadError(dir_, "is a directory");
 }
 
-// The demo scenes the repository ships (written by tools/make_scenes.py).
+// The demo scenes the repository ships (written by scripts/make_scenes.py).
 TEST(ShippedScenesTest, LoadWithTheSeedsTriangleCounts) {
     const fs::path scenes = sourceDir() / "scenes";
     struct Expected {

@@ -1,6 +1,6 @@
-// Validates glTF files with Khronos' glTF-Validator (npm gltf-validator), for tools/make-test-assets.sh:
+// Validates glTF files with Khronos' glTF-Validator (npm gltf-validator), for scripts/make-test-assets.sh:
 // prints each file's counts of errors, warnings and infos; exits 1 when any file has an error.
-//   node tools/gltf/validate.js FILE.gltf|FILE.glb...   (with gltf-validator in NODE_PATH)
+//   node scripts/gltf/validate.js FILE.gltf|FILE.glb...   (with gltf-validator in NODE_PATH)
 const validator = require('gltf-validator');
 const fs = require('fs');
 const path = require('path');

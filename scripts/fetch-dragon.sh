@@ -3,7 +3,7 @@
 # triangles) for the benchmarks, as the PLY the Stanford repository publishes: gpurt reads PLY
 # (src/scene/PlyLoader.h), so nothing is converted. The model is not committed (Stanford's
 # terms, ../shared/models/README.md); it lands in out/models/dragon.ply (prints the path).
-#   tools/fetch-dragon.sh [OUT_DIR]
+#   scripts/fetch-dragon.sh [OUT_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/models}"

@@ -10,8 +10,8 @@ from geometry generated here, so that every shipped asset can be regenerated and
                    Ni 1.5, exact vertex normals) and a mirror block
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
-running it again rewrites the files byte for byte:  /usr/bin/python3 tools/make_scenes.py
-(`tools/make_scenes.py globe FOLDER` writes the textured sphere of the test assets there instead.)
+running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
+(`scripts/make_scenes.py globe FOLDER` writes the textured sphere of the test assets there instead.)
 """
 
 import math
@@ -46,7 +46,7 @@ class ObjWriter:
 
     def __init__(self, comment, mtllib=None):
         self.lines = ["# " + line for line in comment] if isinstance(comment, list) else ["# " + comment]
-        self.lines.append("# written by tools/make_scenes.py; do not edit by hand")
+        self.lines.append("# written by scripts/make_scenes.py; do not edit by hand")
         if mtllib:
             self.lines.append("mtllib " + mtllib)
         self.vertex_count = 0
@@ -113,7 +113,7 @@ def add_box(obj, center, half, yaw_degrees=0.0, inward=False):
 
 def mtl(comment, materials):
     """materials: (name, Kd, Ks, Ns, illum)."""
-    lines = ["# " + comment, "# written by tools/make_scenes.py; do not edit by hand"]
+    lines = ["# " + comment, "# written by scripts/make_scenes.py; do not edit by hand"]
     for name, kd, ks, ns, illum in materials:
         lines += ["", "newmtl " + name, "Kd %s %s %s" % tuple(fmt(v) for v in kd),
                   "Ks %s %s %s" % tuple(fmt(v) for v in ks), "Ns " + fmt(ns), "illum %d" % illum]
@@ -334,11 +334,11 @@ def add_sphere(obj, center, radius, segments, rings):
 
 
 def globe(folder):
-    """A textured UV sphere for the texture tests (tools/make-test-assets.sh): radius 1 at the
+    """A textured UV sphere for the texture tests (scripts/make-test-assets.sh): radius 1 at the
     origin, 48 segments by 24 rings, vt (u, v) = (longitude / 2 pi, 1 - colatitude / pi) with the
     seam's column doubled, vn exact; its material maps checker.jpg."""
     segments, rings = 48, 24
-    obj = ObjWriter("a UV sphere with texture coordinates (tools/make_scenes.py globe)", "globe.mtl")
+    obj = ObjWriter("a UV sphere with texture coordinates (scripts/make_scenes.py globe)", "globe.mtl")
     obj.use("globe")
     index = {}
     texcoords = 0
@@ -365,7 +365,7 @@ def globe(folder):
     with open(os.path.join(folder, "globe.obj"), "w", encoding="ascii", newline="\n") as out:
         out.write(text)
     with open(os.path.join(folder, "globe.mtl"), "w", encoding="ascii", newline="\n") as out:
-        out.write("# written by tools/make_scenes.py globe\nnewmtl globe\nKd 1 1 1\nmap_Kd checker.jpg\n")
+        out.write("# written by scripts/make_scenes.py globe\nnewmtl globe\nKd 1 1 1\nmap_Kd checker.jpg\n")
     return obj.triangles
 
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Rewrites a binary little-endian PLY file as binary big-endian (the same header otherwise, every
-value's bytes reversed), for the big-endian test asset (tools/make-test-assets.sh). Handles
+value's bytes reversed), for the big-endian test asset (scripts/make-test-assets.sh). Handles
 scalar and list properties of every PLY type; refuses anything else.
-    tools/ply-byteswap.py IN.ply OUT.ply"""
+    scripts/ply-byteswap.py IN.ply OUT.ply"""
 import struct
 import sys
 

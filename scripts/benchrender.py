@@ -1,4 +1,4 @@
-"""What the render benchmarks (tools/bench-pictures.py, tools/bench-paths.py, tools/bench-render.py) share: their command
+"""What the render benchmarks (scripts/bench-pictures.py, scripts/bench-paths.py, scripts/bench-render.py) share: their command
 line (--runs, --size) and the check that build/gpurt is there. Standard library only."""
 
 import argparse

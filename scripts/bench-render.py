@@ -4,7 +4,7 @@ the gl and cpu backends, alternating, --runs times each; wall clock from the she
 (process start to exit). Then one run of each with --stats=json for the phase breakdown and the
 time in kernel passes (gl). Prints a markdown table. Standard library only.
 
-  tools/bench-render.py [--runs 3] [--size 1024x1024] [MODEL...]
+  scripts/bench-render.py [--runs 3] [--size 1024x1024] [MODEL...]
   (default models: ../shared/models/bunny.obj and out/models/dragon.ply when fetched)
 """
 

@@ -5,7 +5,7 @@ count of GLSL-PathTracer's anchor) and the bunny under its sky, on the gl and cp
 back and alternating; then, from the gl runs, each kernel's share of the pass time and the live
 paths after each round.
 
-  tools/bench-paths.py [--runs N] [--size WxH]
+  scripts/bench-paths.py [--runs N] [--size WxH]
 
 samples/s is pixel samples (width x height x spp) over gpurt's --stats=json total_ms (the best of
 the runs); spp/s is that over the pixels. Needs build/gpurt (./run.sh builds it) and

@@ -6,7 +6,7 @@
 # (frames: OUT.frames/, OUT without its %d). --resume submits only the tiles or frames whose files
 # are missing. Every node must see the same paths (a shared folder); tasks run in this folder.
 #
-#   tools/farm/gpurt-slurm.sh (--tiles N | --frames A:B) -o OUT [--wait] [--resume] [--gpurt PATH]
+#   scripts/farm/gpurt-slurm.sh (--tiles N | --frames A:B) -o OUT [--wait] [--resume] [--gpurt PATH]
 #                             [--sbatch OPT]... SCENE [gpurt render options...]
 #
 # Prints the job ids. --wait waits for the jobs to end, and exits non-zero naming the failed tiles

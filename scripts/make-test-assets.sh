@@ -7,7 +7,7 @@
 #   ply/teapot_ascii.ply      assimp export -fply   (ASCII)
 #   ply/teapot_binary.ply     assimp export -fplyb  (binary little endian)
 #   ply/cornell_box_be.ply    the same as binary big endian: Assimp writes only little endian, so
-#                             tools/ply-byteswap.py swaps its data (header and values are Assimp's)
+#                             scripts/ply-byteswap.py swaps its data (header and values are Assimp's)
 #   gltf/teapot.gltf + .bin  obj2gltf --separate (JSON with an external buffer)
 #   gltf/cornell_box.glb      obj2gltf (binary glTF)
 #   textures/quadrants.png    ImageMagick: 4 x 4 texels, quadrants red (top left), green, blue, white
@@ -16,7 +16,7 @@
 #                             square coloured; lossless and as JPEG (quality 92)
 #   textures/quad.obj + .mtl  a unit square facing +z with vt (0, 0) at its bottom left, map_Kd
 #                             quadrants.png (written here: the geometry is four lines)
-#   textures/globe.obj + .mtl a UV sphere (tools/make_scenes.py globe), map_Kd checker.jpg
+#   textures/globe.obj + .mtl a UV sphere (scripts/make_scenes.py globe), map_Kd checker.jpg
 #   textures/quad.glb, globe.glb  obj2gltf of those (the textures embedded), validated
 #   textures/quad_separate.gltf (+ .bin, quadrants.png beside it)  obj2gltf --separate
 # The models are public domain (teapot) and Apache-2.0 (Embree's Cornell box); the Stanford scans
@@ -40,12 +40,12 @@ trap 'rm -rf "$work"' EXIT
 assimp export "$models/teapot.obj" "$work/teapot_ascii.ply" -fply >/dev/null
 assimp export "$models/teapot.obj" "$work/teapot_binary.ply" -fplyb >/dev/null
 assimp export "$models/cornell_box.obj" "$work/cornell_box_le.ply" -fplyb >/dev/null
-python3 tools/ply-byteswap.py "$work/cornell_box_le.ply" "$work/cornell_box_be.ply"
+python3 scripts/ply-byteswap.py "$work/cornell_box_le.ply" "$work/cornell_box_be.ply"
 cp "$work/teapot_ascii.ply" "$work/teapot_binary.ply" "$work/cornell_box_be.ply" "$out/ply/"
 (cd "$work" && npm install --silent --no-save obj2gltf@3.2.0 gltf-validator@2.0.0-dev.3.10 >/dev/null)
 "$work/node_modules/.bin/obj2gltf" -i "$models/teapot.obj" -o "$work/teapot.gltf" --separate >/dev/null
 "$work/node_modules/.bin/obj2gltf" -i "$models/cornell_box.obj" -o "$work/cornell_box.glb" >/dev/null
-NODE_PATH="$work/node_modules" node tools/gltf/validate.js "$work/teapot.gltf" "$work/cornell_box.glb"
+NODE_PATH="$work/node_modules" node scripts/gltf/validate.js "$work/teapot.gltf" "$work/cornell_box.glb"
 cp "$work/teapot.gltf" "$work/teapot.bin" "$work/cornell_box.glb" "$out/gltf/"
 
 # Textures (ImageMagick 6) and textured models.
@@ -76,12 +76,12 @@ vn 0 0 1
 usemtl quadrants
 f 1/1/1 2/2/1 3/3/1 4/4/1
 OBJ
-python3 tools/make_scenes.py globe "$tex"
+python3 scripts/make_scenes.py globe "$tex"
 "$work/node_modules/.bin/obj2gltf" -i "$tex/quad.obj" -o "$tex/quad.glb" >/dev/null
 "$work/node_modules/.bin/obj2gltf" -i "$tex/globe.obj" -o "$tex/globe.glb" >/dev/null
 mkdir -p "$tex/separate"
 "$work/node_modules/.bin/obj2gltf" -i "$tex/quad.obj" -o "$tex/separate/quad_separate.gltf" --separate >/dev/null
-NODE_PATH="$work/node_modules" node tools/gltf/validate.js "$tex/quad.glb" "$tex/globe.glb" "$tex/separate/quad_separate.gltf"
+NODE_PATH="$work/node_modules" node scripts/gltf/validate.js "$tex/quad.glb" "$tex/globe.glb" "$tex/separate/quad_separate.gltf"
 cp "$tex"/quadrants.png "$tex"/checker.png "$tex"/checker.jpg "$tex"/quad.obj "$tex"/quad.mtl "$tex"/globe.obj \
   "$tex"/globe.mtl "$tex"/quad.glb "$tex"/globe.glb "$out/textures/"
 cp "$tex"/separate/* "$out/textures/"

@@ -3,7 +3,7 @@
 against the same scene with the glass made diffuse, on the gl and cpu backends, back to back and
 alternating (runs of each, the minimum of gpurt's --stats=json total_ms and of the wall time).
 
-  tools/bench-pictures.py [--runs N] [--size WxH]
+  scripts/bench-pictures.py [--runs N] [--size WxH]
 
 Needs build/gpurt (./run.sh builds it) and ../shared/models. Standard library only.
 """

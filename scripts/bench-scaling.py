@@ -2,10 +2,10 @@
 """The scaling study of docs/PERFORMANCE.md: `gpurt bench` (gl, cpu, embree in one run each) on
 scenes from 36 to 871k triangles at 1024x1024, and on the bunny from 256x256 to 2048x2048.
 
-    tools/bench-scaling.py [--gpurt build/gpurt] [--out docs/perf] [--runs 5] [--rays primary]
+    scripts/bench-scaling.py [--gpurt build/gpurt] [--out docs/perf] [--runs 5] [--rays primary]
 
 Writes OUT/scaling-RAYS.json (every bench object), OUT/scaling-RAYS.png (two log-log plots) and
-prints the Markdown tables. The dragon comes from tools/fetch-dragon.sh (not committed); the plot
+prints the Markdown tables. The dragon comes from scripts/fetch-dragon.sh (not committed); the plot
 needs matplotlib (Debian: python3-matplotlib), checked before anything runs.
 """
 import argparse
@@ -74,7 +74,7 @@ def main():
         print(f"{sys.argv[0]}: the plot needs matplotlib for {sys.executable} (Debian: apt-get "
               f"install python3-matplotlib, then run /usr/bin/python3 {sys.argv[0]})", file=sys.stderr)
         sys.exit(2)  # the environment, not the input
-    dragon = subprocess.run([os.path.join(ROOT, 'tools', 'fetch-dragon.sh')], cwd=ROOT, check=True,
+    dragon = subprocess.run([os.path.join(ROOT, 'scripts', 'fetch-dragon.sh')], cwd=ROOT, check=True,
                             capture_output=True, text=True).stdout.strip()
     scenes = ['scenes/boxes.json', '../shared/models/teapot.obj', 'scenes/room.json', '../shared/models/bunny_lo.obj',
               'scenes/highlow.json', '../shared/models/bunny.obj', dragon]

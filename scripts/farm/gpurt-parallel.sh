@@ -5,7 +5,7 @@
 # go to OUT.tiles/ beside OUT with a GNU parallel job log, so that running the same command again
 # with --resume re-runs only the tiles that failed or never ran.
 #
-#   tools/farm/gpurt-parallel.sh --tiles N -o OUT.png [--jobs J] [--sshlogin LOGIN]... [--resume]
+#   scripts/farm/gpurt-parallel.sh --tiles N -o OUT.png [--jobs J] [--sshlogin LOGIN]... [--resume]
 #                                [--gpurt PATH] SCENE [gpurt render options...]
 #
 # Exits non-zero, naming the failed tiles' log, when any tile fails; OUT appears only once every
