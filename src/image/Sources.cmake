@@ -1,9 +1,11 @@
 # The sources of gpurt_image, listed once: src/image/CMakeLists.txt builds the library from them
 # and tests/fuzz instruments them for libFuzzer (none needs GL).
 set(GPURT_IMAGE_SOURCES
-  ${CMAKE_CURRENT_LIST_DIR}/AtomicFile.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/Colour.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/ExrIO.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/ImageIO.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/TextureImage.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/Tiles.cpp)
+  AtomicFile.cpp
+  Colour.cpp
+  ExrIO.cpp
+  ImageIO.cpp
+  TextureImage.cpp
+  Tiles.cpp)
+# Full paths, so that tests/fuzz/CMakeLists.txt can use them from its own folder.
+list(TRANSFORM GPURT_IMAGE_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)
