@@ -3,7 +3,7 @@
 # prints its path.
 set -euo pipefail
 cd "$(dirname "$0")"
-./tools/install-deps.sh
+./scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)" --target gpurt >/dev/null
 mkdir -p out

@@ -9,7 +9,7 @@
 # GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10; four targets).
 set -euo pipefail
 cd "$(dirname "$0")"
-./tools/install-deps.sh
+./scripts/install-deps.sh
 
 mode=plain
 case "${1:-}" in

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A throwaway one-node Slurm cluster on this machine, for testing tools/farm/gpurt-slurm.sh for real.
+# A throwaway one-node Slurm cluster on this machine, for testing scripts/farm/gpurt-slurm.sh for real.
 # Everything (munge key and socket, slurm.conf, state, spool, logs, pid files) lives in DIR, so it
 # leaves /etc/slurm, /etc/munge and /run/munge alone, can run beside a system Slurm, and works on
 # a fresh machine and again and again. Needs root (slurmd runs jobs as their user) and the Debian

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "Refusal.h"
+#include "../common/Refusal.h"
 #include <unistd.h>
 #include <zlib.h>
 

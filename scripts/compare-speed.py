@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Two gpurt binaries timed back to back, alternating, on the same workloads (a refactoring must
+not cost speed; docs/PERFORMANCE.md records the result):
+
+  scripts/compare-speed.py OLD_GPURT NEW_GPURT [--rounds 3]
+
+- `gpurt bench` (tracing alone): the bunny at 1024x1024, primary and shadow rays, gl and cpu:
+  Mrays/s (gpurt bench's own median of its runs);
+- whole renders with --stats=json: Whitted (the bunny at 1024x1024; the glass Cornell box at
+  512x512, --spp 4) and the path integrator's cases of scripts/bench-paths.py (Cornell 8 bounces,
+  blocks 2 and 8 bounces, the bunny), gl and cpu: samples/s.
+Each figure is the best of the rounds (the least disturbed run); the ratio is new / old. Needs
+../shared/models. Standard library only."""
+
+import argparse
+import json
+import os
+import subprocess
+import tempfile
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+BUNNY = os.path.join(ROOT, "..", "shared", "models", "bunny.obj")
+OUT = os.path.join(tempfile.gettempdir(), "compare-speed.png")
+
+BENCH = [("bench bunny primary", ["--rays", "primary"]), ("bench bunny shadow", ["--rays", "shadow"])]
+RENDERS = [
+    ("whitted bunny 1024^2", BUNNY, ["--size", "1024x1024"]),
+    ("whitted Cornell glass 512^2 spp 4", "scenes/cornell.json", ["--size", "512x512", "--spp", "4"]),
+    ("path Cornell 8 bounces spp 4", "scenes/cornell.json", ["--size", "512x512", "--integrator", "path", "--spp", "4", "--bounces", "8"]),
+    ("path blocks 2 bounces spp 8", "scenes/cornell_blocks.json", ["--size", "512x512", "--integrator", "path", "--spp", "8", "--bounces", "2"]),
+    ("path blocks 8 bounces spp 4", "scenes/cornell_blocks.json", ["--size", "512x512", "--integrator", "path", "--spp", "4", "--bounces", "8"]),
+    ("path bunny 8 bounces spp 4", BUNNY, ["--size", "512x512", "--integrator", "path", "--spp", "4", "--bounces", "8"]),
+]
+
+
+def bench(binary, backend, extra):
+    out = subprocess.run([binary, "bench", BUNNY, "--size", "1024x1024", "--backend", backend, "--json", "--runs", "5"] + extra,
+                         check=True, capture_output=True, text=True, cwd=ROOT).stdout
+    return json.loads(out)["mrays_per_s"]
+
+
+def render(binary, backend, scene, extra):
+    out = subprocess.run([binary, "render", os.path.join(ROOT, scene), "-o", OUT, "--backend", backend, "--stats=json"] + extra,
+                         check=True, capture_output=True, text=True, cwd=ROOT).stdout
+    return json.loads(out)["samples_per_s"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("old")
+    parser.add_argument("new")
+    parser.add_argument("--rounds", type=int, default=3)
+    args = parser.parse_args()
+    binaries = [os.path.abspath(args.old), os.path.abspath(args.new)]
+    rows = []
+    for backend in ("gl", "cpu"):
+        for label, extra in BENCH:
+            rows.append((f"{label}, {backend}", "Mrays/s", lambda b, backend=backend, extra=extra: bench(b, backend, extra)))
+        for label, scene, extra in RENDERS:
+            rows.append((f"{label}, {backend}", "samples/s",
+                         lambda b, backend=backend, scene=scene, extra=extra: render(b, backend, scene, extra)))
+    print("| workload | unit | old | new | new / old |")
+    print("|---|---|---|---|---|")
+    for label, unit, measure in rows:
+        best = [0.0, 0.0]
+        for r in range(args.rounds):
+            order = (0, 1) if r % 2 == 0 else (1, 0)  # alternating which goes first
+            for k in order:
+                best[k] = max(best[k], measure(binaries[k]))
+        print(f"| {label} | {unit} | {best[0]:.4g} | {best[1]:.4g} | {best[1] / best[0]:.3f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,30 @@
+# The sources of gpurt_raytrace, listed once: src/raytrace/CMakeLists.txt builds the library from
+# both lists and tests/fuzz instruments the GL-free one for libFuzzer. A source that includes
+# nothing of src/stream goes in the first.
+set(GPURT_RAYTRACE_CPU_SOURCES
+  BenchRays.cpp
+  Camera.cpp
+  CpuTracer.cpp
+  SurfaceTexture.cpp
+  EmitterTable.cpp
+  MaterialRecord.cpp
+  PackedScene.cpp
+  SceneLoader.cpp
+  SceneScale.cpp
+  SceneTextureLayout.cpp
+  accel/grid/GridCpu.cpp
+  accel/grid/UniformGrid.cpp
+  integrators/path/PathCpu.cpp
+  integrators/whitted/WhittedCpu.cpp)
+set(GPURT_RAYTRACE_GL_SOURCES
+  GpuPipeline.cpp
+  GpuTracer.cpp
+  Renderer.cpp
+  SceneTextures.cpp
+  accel/grid/GridGl.cpp
+  integrators/SharedPasses.cpp
+  integrators/path/PathGl.cpp
+  integrators/whitted/WhittedGl.cpp)
+# Full paths, so that tests/fuzz/CMakeLists.txt can use them from its own folder.
+list(TRANSFORM GPURT_RAYTRACE_CPU_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)
+list(TRANSFORM GPURT_RAYTRACE_GL_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)

@@ -1,0 +1,276 @@
+// glTF scenes (GltfLoader.h), written here with their buffers as data URIs: the node hierarchy's
+// transforms (TRS and matrices) against positions worked out by hand, the contract's triangle
+// numbering, every index type, strides, strips and fans, sparse and normalized accessors,
+// materials, the camera and point lights; and every way a file can fail to be a usable glTF.
+#include "scene/GltfLoader.h"
+
+#include <gtest/gtest.h>
+
+#include "../common/Refusal.h"
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "image/InputError.h"
+
+namespace gpurt {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string base64(const std::string& bytes) {
+    static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        if (i + 2 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 2]));
+        out += kDigits[(v >> 18) & 63];
+        out += kDigits[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+    }
+    return out;
+}
+
+// A glTF document under construction: one buffer, its views and accessors.
+struct Gltf {
+    std::string bin;
+    std::vector<std::string> views, accessors;
+
+    template <typename T>
+    int view(const std::vector<T>& values, int stride = 0) {
+        while (bin.size() % 4) bin += '\0';
+        const size_t offset = bin.size();
+        bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+        views.push_back("{\"buffer\": 0, \"byteOffset\": " + std::to_string(offset) + ", \"byteLength\": " +
+                        std::to_string(values.size() * sizeof(T)) + (stride ? ", \"byteStride\": " + std::to_string(stride) : "") + "}");
+        return int(views.size() - 1);
+    }
+    int accessor(int view, int componentType, size_t count, const char* type, const std::string& extra = "") {
+        accessors.push_back("{\"bufferView\": " + std::to_string(view) + ", \"componentType\": " + std::to_string(componentType) +
+                            ", \"count\": " + std::to_string(count) + ", \"type\": \"" + type + "\"" + extra + "}");
+        return int(accessors.size() - 1);
+    }
+    int positions(const std::vector<float>& xyz) { return accessor(view(xyz), 5126, xyz.size() / 3, "VEC3"); }
+    template <typename T>
+    int indices(const std::vector<T>& i, int componentType) { return accessor(view(i), componentType, i.size(), "SCALAR"); }
+
+    // The document: `rest` holds the other top-level members ("nodes", "meshes", ...).
+    std::string json(const std::string& rest) const {
+        auto list = [](const std::vector<std::string>& items) {
+            std::string out;
+            for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+            return "[" + out + "]";
+        };
+        return "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"byteLength\": " + std::to_string(bin.size()) +
+               ", \"uri\": \"data:application/octet-stream;base64," + base64(bin) + "\"}], \"bufferViews\": " + list(views) +
+               ", \"accessors\": " + list(accessors) + ", " + rest + "}";
+    }
+};
+
+Scene parse(const std::string& text) { return parseGltf(text, "scene.gltf", fs::temp_directory_path()); }
+
+void expectNear(glm::vec3 a, glm::vec3 b, const std::string& what) {
+    EXPECT_NEAR(a.x, b.x, 1e-5f) << what;
+    EXPECT_NEAR(a.y, b.y, 1e-5f) << what;
+    EXPECT_NEAR(a.z, b.z, 1e-5f) << what;
+}
+
+// Node 0 (translate 1,2,3; rotate 90 degrees about y; scale 2) holds a triangle with byte
+// indices and has two children: node 1 (a column-major matrix translating by 0,0,-5) with a quad
+// of short indices, then node 2 (no transform of its own) with a fan. Node 3, the scene's second
+// root, holds an unindexed strip whose positions are interleaved with padding (byte stride 16).
+TEST(GltfLoader, NodesDepthFirstWithTheirWorldTransforms) {
+    Gltf g;
+    const int tri = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int triIndex = g.indices(std::vector<uint8_t>{2, 0, 1}, 5121);
+    const int quad = g.positions({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    const int quadIndex = g.indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123);
+    const int fan = g.positions({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    const int fanIndex = g.indices(std::vector<uint32_t>{0, 1, 2, 3}, 5125);
+    const int strip = g.accessor(g.view(std::vector<float>{0, 0, 9, -1, 1, 0, 9, -1, 0, 1, 9, -1, 1, 1, 9, -1}, 16), 5126, 4, "VEC3");
+    const double s = std::sqrt(0.5);
+    const std::string rest =
+        "\"scene\": 0, \"scenes\": [{\"nodes\": [0, 3]}], \"nodes\": ["
+        "{\"translation\": [1, 2, 3], \"rotation\": [0, " + std::to_string(s) + ", 0, " + std::to_string(s) +
+        "], \"scale\": [2, 2, 2], \"mesh\": 0, \"children\": [1, 2]},"
+        "{\"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -5, 1], \"mesh\": 1},"
+        "{\"mesh\": 2}, {\"mesh\": 3}],"
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(tri) + "}, \"indices\": " +
+        std::to_string(triIndex) + "}]}, {\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(quad) +
+        "}, \"indices\": " + std::to_string(quadIndex) + "}]}, {\"primitives\": [{\"attributes\": {\"POSITION\": " +
+        std::to_string(fan) + "}, \"indices\": " + std::to_string(fanIndex) + ", \"mode\": 6}]}, {\"primitives\": [{\"attributes\": "
+        "{\"POSITION\": " + std::to_string(strip) + "}, \"mode\": 5}]}]";
+    const Scene scene = parse(g.json(rest));
+    // Node 0's world map: p -> (1, 2, 3) + 2 Ry(90)(p), with Ry(90)(x, y, z) = (z, y, -x).
+    auto node0 = [](glm::vec3 p) { return glm::vec3(1, 2, 3) + 2.0f * glm::vec3(p.z, p.y, -p.x); };
+    auto node1 = [&](glm::vec3 p) { return node0(p + glm::vec3(0, 0, -5)); };
+    const std::vector<Triangle> expected = {
+        {node0({0, 1, 0}), node0({0, 0, 0}), node0({1, 0, 0})},                       // node 0, indices 2 0 1
+        {node1({0, 0, 0}), node1({1, 0, 0}), node1({1, 1, 0})},                       // node 1, quad
+        {node1({0, 0, 0}), node1({1, 1, 0}), node1({0, 1, 0})},
+        {node0({1, 0, 0}), node0({1, 1, 0}), node0({0, 0, 0})},                       // node 2, fan:
+        {node0({1, 1, 0}), node0({0, 1, 0}), node0({0, 0, 0})},                       // (v_i+1, v_i+2, v_0)
+        {glm::vec3(0, 0, 9), glm::vec3(1, 0, 9), glm::vec3(0, 1, 9)},                 // node 3, strip:
+        {glm::vec3(1, 0, 9), glm::vec3(1, 1, 9), glm::vec3(0, 1, 9)}};                // (v_i, v_i+1+i%2, v_i+2-i%2)                                           // reversed: 2nd of a strip
+    ASSERT_EQ(scene.triangles.size(), expected.size());
+    for (size_t t = 0; t < expected.size(); ++t) {
+        expectNear(scene.triangles[t].v0, expected[t].v0, "triangle " + std::to_string(t) + " v0");
+        expectNear(scene.triangles[t].v1, expected[t].v1, "triangle " + std::to_string(t) + " v1");
+        expectNear(scene.triangles[t].v2, expected[t].v2, "triangle " + std::to_string(t) + " v2");
+    }
+    EXPECT_EQ(scene.materialIds, std::vector<uint32_t>(expected.size(), 0));
+}
+
+// A sparse accessor without a buffer view (zeros, then two substituted elements), normalized
+// unsigned shorts (KHR_mesh_quantization) and normals turned by the inverse transpose.
+TEST(GltfLoader, SparseNormalizedAccessorsAndNormals) {
+    Gltf g;
+    const int sparseIndices = g.view(std::vector<uint16_t>{1, 2});
+    const int sparseValues = g.view(std::vector<float>{4, 0, 0, 0, 5, 0});
+    g.accessors.push_back("{\"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 2, "
+                          "\"indices\": {\"bufferView\": " + std::to_string(sparseIndices) + ", \"componentType\": 5123}, "
+                          "\"values\": {\"bufferView\": " + std::to_string(sparseValues) + "}}}");
+    const int sparse = int(g.accessors.size() - 1);
+    const int quantized = g.accessor(g.view(std::vector<uint16_t>{0, 0, 0, 65535, 0, 0, 0, 65535, 0, 0}), 5123, 3, "VEC3",
+                                     ", \"normalized\": true");
+    const int normals = g.positions({0, 0, 1, 0, 0, 1, 0, 0, 1});
+    const std::string rest =
+        "\"extensionsUsed\": [\"KHR_mesh_quantization\"], \"extensionsRequired\": [\"KHR_mesh_quantization\"], "
+        "\"scenes\": [{\"nodes\": [0, 1]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 1, \"scale\": [1, 1, 4]}], \"meshes\": ["
+        "{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(sparse) + "}}]},"
+        "{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(quantized) + ", \"NORMAL\": " +
+        std::to_string(normals) + "}}]}]";
+    const Scene scene = parse(g.json(rest));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_EQ(scene.triangles[0].v0, glm::vec3(0, 0, 0));
+    EXPECT_EQ(scene.triangles[0].v1, glm::vec3(4, 0, 0));
+    EXPECT_EQ(scene.triangles[0].v2, glm::vec3(0, 5, 0));
+    EXPECT_EQ(scene.triangles[1].v1, glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.triangles[1].v2, glm::vec3(0, 1, 0));
+    ASSERT_EQ(scene.normals.size(), 2u);
+    EXPECT_EQ(scene.normals[0].n0, glm::vec3(0.0f));  // none from the file: smoothing fills them
+    expectNear(scene.normals[1].n0, {0, 0, 1}, "normal");  // scaled along z, renormalised
+}
+
+TEST(GltfLoader, MaterialsCameraAndPointLights) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    std::string meshes;
+    for (int m = 0; m < 4; ++m)
+        meshes += std::string(m ? ", " : "") + "{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) + "}" +
+                  (m < 3 ? ", \"material\": " + std::to_string(m) : std::string()) + "}]}";
+    const std::string rest =
+        "\"extensionsUsed\": [\"KHR_lights_punctual\", \"KHR_materials_transmission\", \"KHR_materials_ior\", "
+        "\"KHR_materials_emissive_strength\"], "
+        "\"extensions\": {\"KHR_lights_punctual\": {\"lights\": [{\"type\": \"point\", \"color\": [1, 0.5, 0.25], "
+        "\"intensity\": 40}]}}, "
+        "\"cameras\": [{\"type\": \"orthographic\", \"orthographic\": {\"xmag\": 1, \"ymag\": 1, \"znear\": 0.1, \"zfar\": 10}}, "
+        "{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.5, \"znear\": 0.1}}], "
+        "\"materials\": ["
+        "{\"name\": \"chrome\", \"pbrMetallicRoughness\": {\"baseColorFactor\": [0.2, 0.4, 0.6, 1], \"metallicFactor\": 1, "
+        "\"roughnessFactor\": 0}},"
+        "{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.9, 1, 0.8, 1], \"metallicFactor\": 0}, \"extensions\": {"
+        "\"KHR_materials_transmission\": {\"transmissionFactor\": 1}, \"KHR_materials_ior\": {\"ior\": 1.33}}},"
+        "{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.5, 0.5, 0.5, 1], \"metallicFactor\": 0}, \"emissiveFactor\": [1, 0.5, 0], "
+        "\"extensions\": {\"KHR_materials_emissive_strength\": {\"emissiveStrength\": 8}}}], "
+        "\"scenes\": [{\"nodes\": [0, 1, 2, 3, 4, 5, 6]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 1}, {\"mesh\": 2}, {\"mesh\": 3}, "
+        "{\"camera\": 0}, {\"camera\": 1, \"translation\": [0, 1, 10]}, "
+        "{\"translation\": [3, 4, 5], \"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}}], "
+        "\"meshes\": [" + meshes + "]";
+    const Scene scene = parse(g.json(rest));
+    ASSERT_EQ(scene.materials.size(), 4u);  // gpurt's default (mesh 3 has none), then the three
+    EXPECT_EQ(scene.materialIds, (std::vector<uint32_t>{1, 2, 3, 0}));
+    const Material& chrome = scene.materials[1];
+    EXPECT_EQ(chrome.name, "chrome");
+    EXPECT_EQ(chrome.reflectivity, glm::vec3(0.2f, 0.4f, 0.6f));  // a smooth metal: a tinted mirror
+    EXPECT_EQ(chrome.diffuse, glm::vec3(0.0f));
+    const Material& glass = scene.materials[2];
+    EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+    EXPECT_EQ(glass.transmission, glm::vec3(0.9f, 1.0f, 0.8f));
+    EXPECT_EQ(scene.materials[3].emission, glm::vec3(8.0f, 4.0f, 0.0f));
+    EXPECT_EQ(scene.materials[3].diffuse, glm::vec3(0.5f));
+    ASSERT_TRUE(scene.camera.has_value());  // the first perspective one
+    EXPECT_EQ(scene.camera->eye, glm::vec3(0, 1, 10));
+    EXPECT_EQ(scene.camera->target, glm::vec3(0, 1, 9));
+    EXPECT_EQ(scene.camera->up, glm::vec3(0, 1, 0));
+    EXPECT_FLOAT_EQ(scene.camera->fovy, float(0.5 * 180.0 / 3.14159265358979323846));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.lights[0].position, glm::vec3(3, 4, 5));
+    EXPECT_EQ(scene.lights[0].color, glm::vec3(1, 0.5f, 0.25f));
+    EXPECT_EQ(scene.lights[0].intensity, 40.0f);
+}
+
+// The message of the InputError parsing `text` throws (Refusal.h).
+std::string refusal(const std::string& text, const fs::path& folder = fs::temp_directory_path()) {
+    return test::refusalOf([&] { parseGltf(text, "bad.gltf", folder); }, "bad.gltf: ");
+}
+
+TEST(GltfLoader, RefusesWhatIsNotAUsableGltf) {
+    auto triangle = [](const std::string& mode, const std::string& indices) {
+        Gltf g;
+        const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        const int i = g.indices(std::vector<uint16_t>{0, 1, 2}, 5123);
+        (void)i;
+        return g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{"
+                      "\"attributes\": {\"POSITION\": " + std::to_string(p) + "}" + mode + indices + "}]}]");
+    };
+    EXPECT_NO_THROW(parse(triangle("", ", \"indices\": 1")));
+    EXPECT_REFUSED("{\"meshes\": []}", "bad.gltf: ");  // JSON, no asset
+    EXPECT_REFUSED("glTF\x02\0\0\0\x10\0\0\0", "bad.gltf: ");  // a GLB header that lies
+    EXPECT_REFUSED("not json at all", "bad.gltf: ");
+    EXPECT_REFUSED(triangle(", \"mode\": 1", ""), "mode 1 (points or lines) is not triangles");
+    EXPECT_REFUSED(triangle("", ", \"indices\": 7"), "indices accessor");
+    // Indices out of range, a view past its buffer, elements past their view.
+    {
+        Gltf g;
+        const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        const int i = g.indices(std::vector<uint16_t>{0, 1, 3}, 5123);
+        EXPECT_REFUSED(g.json("\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                              std::to_string(p) + "}, \"indices\": " + std::to_string(i) + "}]}]"),
+                       "index 3 out of range (3 vertices)");
+        Gltf h = g;
+        h.accessors[0] = "{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}";
+        EXPECT_REFUSED(h.json("\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}}]}]"),
+                       "4 elements do not fit buffer view 0");
+        Gltf k = g;
+        k.views[0] = "{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 4000}";
+        EXPECT_REFUSED(k.json("\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}}]}]"),
+                       "bad.gltf: ");
+    }
+    {  // A position that is no number, a node that is its own ancestor.
+        Gltf g;
+        const float nan = std::nanf("");
+        const int p = g.positions({0, 0, 0, 1, nan, 0, 0, 1, 0});
+        EXPECT_REFUSED(g.json("\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                              std::to_string(p) + "}}]}]"),
+                       "vertex 1 is not finite");
+        EXPECT_REFUSED(g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"children\": [1]}, {\"children\": [0]}], "
+                              "\"meshes\": []"),
+                       "bad.gltf: ");
+    }
+    // External buffers: missing, or shorter than they say.
+    const fs::path folder = fs::temp_directory_path() / ("gpurt-gltf-" + std::to_string(::getpid()));
+    fs::create_directories(folder);
+    const std::string external = "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"byteLength\": 36, \"uri\": \"tri.bin\"}], "
+                                 "\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}], \"accessors\": [{\"bufferView\": 0, "
+                                 "\"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\"}], \"nodes\": [{\"mesh\": 0}], "
+                                 "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}}]}]}";
+    const std::string missing = refusal(external, folder);
+    EXPECT_NE(missing.find("tri.bin"), std::string::npos) << missing;
+    std::ofstream(folder / "tri.bin", std::ios::binary) << std::string(20, '\0');
+    const std::string shortBuffer = refusal(external, folder);
+    EXPECT_NE(shortBuffer.find("bad.gltf: "), std::string::npos) << shortBuffer;
+    std::ofstream(folder / "tri.bin", std::ios::binary) << std::string(36, '\0');
+    EXPECT_NO_THROW(parseGltf(external, "good.gltf", folder));
+    fs::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace gpurt

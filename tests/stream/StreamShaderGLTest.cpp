@@ -1,0 +1,171 @@
+// GLSL sources: embedding, #include with #line mapping, compile errors naming file:line, loading
+// from a folder (--glsl-dir), and glslangValidator on every kernel as assembled.
+#include "../common/GLTest.h"
+
+#include "stream/GPUKernel.h"
+#include "stream/GPUMask.h"
+#include "stream/GPUProgram.h"
+#include "stream/StreamErrors.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace gpurt::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path makeTempDir(const std::string& tag) {
+    fs::path dir = fs::temp_directory_path() / ("gpurt-" + tag + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
+TEST(ShaderLibraryTest, MapLogNamesFilesForMesaNvidiaAndGlslangFormats) {
+    AssembledShader shader;
+    shader.names = {"glsl/a.frag", "glsl/common/b.glsl"};
+    EXPECT_EQ(shader.mapLog("0:12(3): error: x"), "glsl/a.frag:12(3): error: x");
+    EXPECT_EQ(shader.mapLog("1(7) : error C0000: y"), "glsl/common/b.glsl:7 : error C0000: y");
+    EXPECT_EQ(shader.mapLog("ERROR: 1:4: 'z' : undeclared"), "ERROR: glsl/common/b.glsl:4: 'z' : undeclared");
+    EXPECT_EQ(shader.mapLog("warning 0.5 stays"), "warning 0.5 stays");
+}
+
+TEST(ShaderLibraryTest, IncludesOnceWithLineDirectives) {
+    const fs::path dir = makeTempDir("include");
+    writeFile(dir / "common/x.glsl", "// x\nfloat x() { return 1.0; }\n");
+    writeFile(dir / "common/y.glsl", "#include \"x.glsl\"\nfloat y() { return x(); }\n");
+    writeFile(dir / "k.frag", "#include \"common/x.glsl\"\n#include \"common/y.glsl\"\nvoid main() {}\n");
+    ShaderLibrary library;
+    library.setDirectory(dir);
+    const AssembledShader s = library.assemble("k.frag", "#define V 1");
+    EXPECT_EQ(s.source.rfind("#version 450 core\n", 0), 0u);
+    size_t count = 0;
+    for (size_t at = s.source.find("float x()"); at != std::string::npos; at = s.source.find("float x()", at + 1)) ++count;
+    EXPECT_EQ(count, 1u) << s.source;
+    EXPECT_NE(s.source.find("#define V 1"), std::string::npos);
+    ASSERT_EQ(s.names.size(), 4u);  // preamble, k.frag, x.glsl, y.glsl
+    EXPECT_EQ(s.names[1], "glsl/k.frag");
+    EXPECT_EQ(s.names[2], "glsl/common/x.glsl");
+    fs::remove_all(dir);
+}
+
+TEST(ShaderLibraryTest, MissingIncludeNamesTheIncludingFileAndLine) {
+    const fs::path dir = makeTempDir("missing");
+    writeFile(dir / "k.frag", "// kernel\n\n#include \"nowhere.glsl\"\nvoid main() {}\n");
+    ShaderLibrary library;
+    library.setDirectory(dir);
+    try {
+        library.assemble("k.frag");
+        FAIL();
+    } catch (const KernelBuildError& e) {
+        EXPECT_NE(std::string(e.what()).find("glsl/k.frag:3"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
+
+class ShaderCompile : public GLTest {};
+
+TEST_F(ShaderCompile, ErrorInKernelNamesFileAndLine) {
+    const fs::path dir = makeTempDir("broken");
+    fs::copy(fs::path(GPURT_SOURCE_DIR) / "glsl", dir, fs::copy_options::recursive);
+    writeFile(dir / "test/broken.frag",
+              "// a kernel with an error on line 5\n#include \"../common/stream.glsl\"\n"
+              "layout(location = 0) out float result;\nvoid main() {\n    result = undefinedThing;\n}\n");
+    ShaderLibrary::global().setDirectory(dir);
+    GPUKernel kernel("broken", "test/broken.frag");
+    try {
+        kernel.build();
+        FAIL() << "the broken kernel compiled";
+    } catch (const KernelBuildError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("glsl/test/broken.frag:5"), std::string::npos) << message;
+        EXPECT_NE(message.find("broken"), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+}
+
+TEST_F(ShaderCompile, ErrorInIncludedFileNamesThatFile) {
+    const fs::path dir = makeTempDir("broken-include");
+    fs::copy(fs::path(GPURT_SOURCE_DIR) / "glsl", dir, fs::copy_options::recursive);
+    writeFile(dir / "test/lib.glsl", "// helper\n\nfloat helper() { return nonsense(); }\n");
+    writeFile(dir / "test/uses_lib.frag",
+              "#include \"lib.glsl\"\nlayout(location = 0) out float result;\nvoid main() { result = helper(); }\n");
+    ShaderLibrary::global().setDirectory(dir);
+    try {
+        GPUProgram program("usesLib", "test/uses_lib.frag");
+        FAIL();
+    } catch (const KernelBuildError& e) {
+        EXPECT_NE(std::string(e.what()).find("glsl/test/lib.glsl:3"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
+
+TEST_F(ShaderCompile, GlslDirLoadsKernelsFromDisk) {
+    const fs::path dir = makeTempDir("glsldir");
+    fs::copy(fs::path(GPURT_SOURCE_DIR) / "glsl", dir, fs::copy_options::recursive);
+    // The disk copy's kernel differs from the embedded one: the result shows which ran.
+    writeFile(dir / "test/affine.frag",
+              "#include \"../common/stream.glsl\"\nuniform sampler2D values;\nuniform float scale;\n"
+              "uniform float offset;\nlayout(location = 0) out float result;\n"
+              "void main() { result = readStream(values).x * scale + offset + 100.0; }\n");
+    ShaderLibrary::global().setDirectory(dir);
+    GPUFloatArray in(4, 4, 1), out(4, 4, 1);
+    in.fill(1.0f);
+    GPUKernel kernel("affine", "test/affine.frag");
+    kernel.addInput(in, "values").addOutput(out).setUniform("scale", 2.0f).setUniform("offset", 0.0f);
+    kernel.execute();
+    for (float v : out.download()) ASSERT_EQ(v, 102.0f);
+    fs::remove_all(dir);
+}
+
+// Every kernel under glsl/ as assembled (with the tracer's define variants, and the early-exit
+// masked variant) passes glslangValidator. (The files alone are include fragments without #version.)
+TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
+    ShaderLibrary::global().setDirectory({});  // the embedded sources
+    const fs::path dir = makeTempDir("validate");
+    int validated = 0;
+    const ShaderLibrary& library = ShaderLibrary::global();
+    for (const EmbeddedFile& file : embeddedGlslFiles()) {
+        const std::string path = file.path;
+        const bool fragment = path.size() > 5 && path.substr(path.size() - 5) == ".frag";
+        const bool vertex = path.size() > 5 && path.substr(path.size() - 5) == ".vert";
+        if (!fragment && !vertex) continue;
+        std::vector<AssembledShader> variants{library.assemble(path)};
+        // The define variants the tracer builds (GpuPipeline, GridGl).
+        if (path == "accel/grid/trace.frag")
+            for (const char* defines : {"#define FROM_START\n#define TRACE_STEPS (1 << 30)\n", "#define ANY_HIT\n",
+                                        "#define FROM_START\n#define ANY_HIT\n", "#define TRACE_STEPS 16\n",
+                                        "#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
+                variants.push_back(library.assemble(path, defines));
+        if (path == "accel/grid/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
+        if (path == "integrators/whitted/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
+        if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag")
+            variants.push_back(library.assemble(path, "#define EMITTER\n"));
+        if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
+            variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
+        for (size_t v = 0; v < variants.size(); ++v) {
+            const fs::path out = dir / (std::to_string(validated) + (fragment ? ".frag" : ".vert"));
+            writeFile(out, variants[v].source);
+            const std::string command = std::string(GPURT_GLSLANG_VALIDATOR) + " " + out.string() + " > " +
+                                        (dir / "log.txt").string() + " 2>&1";
+            const int rc = std::system(command.c_str());
+            std::ifstream logFile(dir / "log.txt");
+            std::string log((std::istreambuf_iterator<char>(logFile)), std::istreambuf_iterator<char>());
+            EXPECT_EQ(rc, 0) << path << " (variant " << v << "):\n" << variants[v].mapLog(log);
+            ++validated;
+        }
+    }
+    EXPECT_GE(validated, 10);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace gpurt::test
