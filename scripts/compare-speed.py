@@ -9,12 +9,13 @@ not cost speed; docs/PERFORMANCE.md records the result):
 - whole renders with --stats=json: Whitted (the bunny at 1024x1024; the glass Cornell box at
   512x512, --spp 4) and the path integrator's cases of scripts/bench-paths.py (Cornell 8 bounces,
   blocks 2 and 8 bounces, the bunny), gl and cpu: samples/s.
-Each figure is the best of the rounds (the least disturbed run); the ratio is new / old. Needs
-../shared/models. Standard library only."""
+Each figure is the median of the rounds, with their range; the ratio is of the medians, new / old.
+Needs ../shared/models. Standard library only."""
 
 import argparse
 import json
 import os
+import statistics
 import subprocess
 import tempfile
 
@@ -49,7 +50,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("old")
     parser.add_argument("new")
-    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--rounds", type=int, default=5)
     args = parser.parse_args()
     binaries = [os.path.abspath(args.old), os.path.abspath(args.new)]
     rows = []
@@ -59,15 +60,17 @@ def main():
         for label, scene, extra in RENDERS:
             rows.append((f"{label}, {backend}", "samples/s",
                          lambda b, backend=backend, scene=scene, extra=extra: render(b, backend, scene, extra)))
-    print("| workload | unit | old | new | new / old |")
+    print("| workload | unit | old: median [range] | new: median [range] | new / old |")
     print("|---|---|---|---|---|")
     for label, unit, measure in rows:
-        best = [0.0, 0.0]
+        runs = [[], []]
         for r in range(args.rounds):
             order = (0, 1) if r % 2 == 0 else (1, 0)  # alternating which goes first
             for k in order:
-                best[k] = max(best[k], measure(binaries[k]))
-        print(f"| {label} | {unit} | {best[0]:.4g} | {best[1]:.4g} | {best[1] / best[0]:.3f} |", flush=True)
+                runs[k].append(measure(binaries[k]))
+        median = [statistics.median(x) for x in runs]
+        cells = [f"{m:.4g} [{min(x):.3g}-{max(x):.3g}]" for m, x in zip(median, runs)]
+        print(f"| {label} | {unit} | {cells[0]} | {cells[1]} | {median[1] / median[0]:.3f} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 // Adds one point light's diffuse and specular term to the local colour of each surface point
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
-// PATH: the path integrator's light through the BSDF (common/path.h) instead of Whitted's terms, for point lights (its emitter point is lit in pathbounce.frag).
+// PATH: the path integrator's light through the BSDF (common/path.h) instead of Whitted's terms, for point lights (its emitter point is lit in path/bounce.frag).
 #include "scene/shading.glsl"
 #ifdef PATH
 #include "common/path.h"

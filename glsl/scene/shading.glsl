@@ -83,5 +83,5 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 
 // The pixel of the path in this element (path integrator): the element itself in round 0 (the
 // camera rays, in image order), else the one its path state (pdf, x, y, 0) carries, as the live
-// paths are packed after each round (pathbounce.frag).
+// paths are packed after each round (integrators/path/bounce.frag).
 ivec2 pathPixel(vec4 state, int depth) { return depth == 0 ? ivec2(imagePixel()) : ivec2(state.yz); }

@@ -1,4 +1,4 @@
-// Fused traverser and intersector: the per-ray loop of the CPU backend (CpuTracer::trace) as one
+// Fused traverser and intersector: the per-ray loop of the CPU backend (GridCpu::traceRay) as one
 // kernel. Each pass takes every ACTIVE ray through up to TRACE_STEPS grid cells, intersecting the
 // triangles of each non-empty cell as it reaches it (the Purcell/Christen intersector test, with
 // the same cell-exit rule), so a ray needs no WAIT state and no second kernel. The split

@@ -7,7 +7,7 @@
 // colour in its pixel's element of pixelColor. The paths that go on stay in their elements, or
 // with PACK are packed to the front of the next round's streams (an atomic counter gives each
 // its slot: Purcell's stream compaction), so that the next rounds' passes cover only them; the
-// packing costs, so GpuTracer::tracePath packs only once many paths end.
+// packing costs, so PathGl::sample packs only once many paths end.
 #include "scene/shading.glsl"
 #include "common/sampling.h"
 #include "common/path.h"

@@ -1,6 +1,6 @@
 // The end of the path integrator's last round: every path still alive leaves its colour in its
 // pixel's element of pixelColor, as the bounce pass does for the paths that end before
-// (pathbounce.frag), so that each pixel has its sample's colour there once.
+// (path/bounce.frag), so that each pixel has its sample's colour there once.
 #include "scene/shading.glsl"
 
 uniform sampler2D colorState;

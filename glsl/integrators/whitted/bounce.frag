@@ -6,10 +6,10 @@
 // the stack (its depth and weight with it); with the stack empty the pixel's tree is done
 // (common/raytree.h, the same steps as the CPU backend's). One ray
 // per pixel per round, so the passes stay image-sized and the rounds end when the trace counts no
-// ray (GpuTracer::traceSample). The stack is the one store outside the pixel's own element: slot s
+// ray (WhittedGl::sample). The stack is the one store outside the pixel's own element: slot s
 // of pixel (x, y) is element (x, y + s H) of the stack images, written only by that pixel.
 // The bounce also widens a box (rayBounds) to every element that has a ray next round: the next
-// round's passes run over that box only (GpuTracer::traceSample), so the late rounds of glass
+// round's passes run over that box only (WhittedGl::spawnRays), so the late rounds of glass
 // cost the pixels that see it, not the image.
 // LAST_ROUND: the variant for a round after which no ray can follow (no mirror or glass in the
 // scene, or no bounce allowed): only the colour, one output instead of five.
