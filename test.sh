@@ -9,6 +9,8 @@
 # GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10; four targets).
 set -euo pipefail
 cd "$(dirname "$0")"
+# scripts/install-deps.sh installs every package the build and the tests need, among them xvfb and
+# xdotool (the viewer's window tests), slurm and munge (the Slurm farm driver's test), parallel.
 ./scripts/install-deps.sh
 
 mode=plain
