@@ -59,14 +59,6 @@ void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     raygen.setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
 }
 
-namespace {
-std::vector<glm::vec3> toVec3(const std::vector<float>& flat) {
-    std::vector<glm::vec3> out(flat.size() / 4);
-    for (size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(flat[i * 4], flat[i * 4 + 1], flat[i * 4 + 2]);
-    return out;
-}
-}  // namespace
-
 void GpuPipeline::readHitAovs(RenderOutput& out) {
     const size_t pixels = size_t(width) * size_t(height);
     const auto hits = hit.download();
@@ -86,7 +78,7 @@ void GpuPipeline::readHitAovs(RenderOutput& out) {
 }
 
 void GpuPipeline::readNormalAov(RenderOutput& out) {
-    out.normal = toVec3(surfaceNormal.download());
+    out.normal = downloadVectors<glm::vec3>(surfaceNormal);
     for (size_t i = 0; i < out.normal.size(); ++i)
         if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
 }

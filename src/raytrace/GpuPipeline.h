@@ -27,6 +27,17 @@ struct StreamNeeds {
     bool operator==(const StreamNeeds&) const = default;
 };
 
+// An RGBA stream's elements as vectors of its first T::length() channels (vec3: the colour
+// streams; vec4: the hits).
+template <typename T>
+std::vector<T> downloadVectors(const GPUFloatArray& stream) {
+    const std::vector<float> flat = stream.download();
+    std::vector<T> out(flat.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < T::length(); ++c) out[i][c] = flat[i * 4 + size_t(c)];
+    return out;
+}
+
 struct GpuPipeline {
     using Needs = StreamNeeds;
     int width, height;

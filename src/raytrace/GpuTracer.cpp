@@ -23,7 +23,12 @@ GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptio
 
 GpuTracer::GpuTracer(const Scene& scene, std::unique_ptr<GlAccelerator> accel, float rayOffset, GpuTracerOptions options)
     : scene_(scene), options_(options), textures_(scene, rayOffset), accel_(std::move(accel)) {
-    for (uint32_t m : scene.materialIds) {
+    // Whether rays can spawn, and split in two: a question for each material the triangles use
+    // (once each, not once a triangle: the dragon has 871k).
+    std::vector<bool> used(scene.materials.size(), false);
+    for (uint32_t m : scene.materialIds) used[m] = true;
+    for (size_t m = 0; m < used.size(); ++m) {
+        if (!used[m]) continue;
         const raymath::MaterialRecord r = materialRecord(scene.materials[m]);
         splits_ = splits_ || raymath::materialSplits(r);
         spawns_ = spawns_ || raymath::materialSpawns(r);
@@ -89,16 +94,6 @@ void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     path_->setSample(s, n, seed);
 }
 
-namespace {
-template <typename T>
-std::vector<T> toVectors(const std::vector<float>& flat, int stride) {
-    std::vector<T> out(flat.size() / size_t(stride));
-    for (size_t i = 0; i < out.size(); ++i)
-        for (int c = 0; c < T::length(); ++c) out[i][c] = flat[i * size_t(stride) + size_t(c)];
-    return out;
-}
-}  // namespace
-
 // The sample loop (--spp), each sample one of the integrator's (integrators/): its rounds of
 // passes from raygen's rays through the sample's point of each pixel; the accumulate pass adds
 // the sample's colour to the pixels' sums. The AOVs come from the pixel-centre rays: the first
@@ -122,7 +117,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     if (samples == 1) {  // the sample is the image: no sum to accumulate into
         setSample(0, 1, settings.seed);
         chosen.sample(lights, bounces, &out, out.stats);
-        out.color = toVectors<glm::vec3>(chosen.colour().download(), 4);
+        out.color = downloadVectors<glm::vec3>(chosen.colour());
     } else {
         p.sampleSum.fill(0.0f);
         for (uint32_t s = 0; s < samples; ++s) {
@@ -130,7 +125,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             chosen.sample(lights, bounces, nullptr, out.stats);
             chosen.accumulate();
         }
-        out.color = toVectors<glm::vec3>(p.sampleSum.download(), 4);
+        out.color = downloadVectors<glm::vec3>(p.sampleSum);
         for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     }
     out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows()) * samples;
@@ -214,7 +209,7 @@ void GpuTracer::flushStats() {
 
 std::vector<glm::vec4> GpuTracer::hits() {
     if (!pipeline_) throw UsageError("GpuTracer::hits before a trace");
-    return toVectors<glm::vec4>(pipeline_->hit.download(), 4);
+    return downloadVectors<glm::vec4>(pipeline_->hit);
 }
 
 }  // namespace gpurt
