@@ -8,6 +8,7 @@
 #include "raytrace/BenchRays.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
+#include "raytrace/Renderer.h"
 #include "raytrace/Parallel.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
@@ -91,7 +92,7 @@ int glThreads() {
 
 struct BenchInput {
     const Scene& scene;
-    const UniformGrid& grid;
+    const Acceleration& accel;
     const CameraBasis& camera;
     bool shadow;
     const RayStream& rays;
@@ -104,7 +105,7 @@ BenchResult benchGl(const BenchOptions& o, const BenchInput& in) {
     r.renderer = glRenderer();
     r.threads = glThreads();
     const GpuTracerOptions options = o.tracer.options();
-    GpuTracer tracer(in.scene, in.grid, options);
+    GpuTracer tracer(in.scene, makeGlAccelerator(in.scene, in.accel, options), in.accel.rayOffset(), options);
     std::function<uint64_t()> traceOnce = [&] { return tracer.tracePrimary(in.camera); };
     if (in.shadow) {
         tracer.setRays(in.rays);
@@ -122,7 +123,8 @@ BenchResult benchGl(const BenchOptions& o, const BenchInput& in) {
     KernelStats::global().setTiming(false);
     for (const auto& [name, p] : KernelStats::global().passes())
         if (p.calls > 0) r.passes[name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
-    r.renderer += std::string(", ") + traceKernelName(options.kernel) + " kernel";
+    r.renderer += std::string(", ") + accelName(in.accel.kind);
+    if (in.accel.kind == AccelKind::Grid) r.renderer += std::string(", ") + traceKernelName(options.kernel) + " kernel";
     return r;
 }
 
@@ -130,8 +132,8 @@ BenchResult benchCpu(const BenchOptions& o, const BenchInput& in) {
     BenchResult r;
     r.backend = "cpu";
     r.threads = resolveThreads(o.threads);
-    r.renderer = "gpurt C++ grid tracer";
-    const CpuTracer tracer(in.scene, in.grid);
+    r.renderer = std::string("gpurt C++ ") + accelName(in.accel.kind) + " tracer";
+    const CpuTracer tracer(in.scene, makeCpuAccelerator(in.scene, in.accel), in.accel.rayOffset());
     measure(r, o.runs, [&] { return tracer.traceStream(in.rays, in.shadow, r.threads, r.hits); });
     return r;
 }
@@ -195,13 +197,16 @@ nlohmann::json resultJson(const BenchResult& r, const BenchResult* embree) {
 // list of them for several.
 void printBenchJson(const BenchOptions& o, const BenchInput& in, double gridMs, const std::vector<BenchResult>& results,
                     const BenchResult* embree) {
-    const UniformGrid& grid = in.grid;
     nlohmann::json j;
     if (results.size() == 1) j = resultJson(results.front(), embree);
     j["scene"] = o.scene;
     j["triangles"] = in.scene.triangles.size();
-    j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
-    j["grid_ms"] = gridMs;
+    const glm::ivec3 grid = in.accel.gridResolution;
+    j["grid"] = {grid.x, grid.y, grid.z};
+    j["grid_ms"] = gridMs;  // the acceleration structure's build (both, for auto)
+    j["accel"] = accelName(in.accel.kind);
+    j["accel_source"] = in.accel.source;
+    if (in.accel.estimate) j["accel_estimate"] = {{"grid", in.accel.estimate->grid}, {"bvh", in.accel.estimate->bvh}};
     j["width"] = in.camera.width;
     j["height"] = in.camera.height;
     j["ray_kind"] = o.rays;
@@ -214,14 +219,21 @@ void printBenchJson(const BenchOptions& o, const BenchInput& in, double gridMs, 
 }
 
 // The results as a table, then each backend's passes.
-void printBenchTable(const BenchOptions& o, const BenchInput& in, bool built, double gridMs,
+void printBenchTable(const BenchOptions& o, const BenchInput& in, double gridMs,
                      const std::vector<BenchResult>& results, const BenchResult* embree) {
-    const UniformGrid& grid = in.grid;
     const CameraBasis& camera = in.camera;
     const uint64_t rayCount = in.rays.rays();
-    std::printf("scene    %s: %zu triangles, grid %dx%dx%d (%s in %.0f ms)\n", o.scene.c_str(),
-                in.scene.triangles.size(), grid.resolution.x, grid.resolution.y, grid.resolution.z,
-                built ? "built" : "packed, read", gridMs);
+    const Acceleration& a = in.accel;
+    char structure[96];
+    if (a.kind == AccelKind::Grid)
+        std::snprintf(structure, sizeof structure, "grid %dx%dx%d", a.grid->resolution.x, a.grid->resolution.y,
+                      a.grid->resolution.z);
+    else
+        std::snprintf(structure, sizeof structure, "bvh of %zu nodes, depth %d", a.bvh->nodes.size(), a.bvh->depth);
+    std::printf("scene    %s: %zu triangles, %s (%s in %.0f ms)\n", o.scene.c_str(), in.scene.triangles.size(),
+                structure, a.source.c_str(), gridMs);
+    if (a.estimate)
+        std::printf("auto     estimated cost per ray: grid %.1f, bvh %.1f\n", a.estimate->grid, a.estimate->bvh);
     std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
                 (unsigned long long)rayCount, camera.width, camera.height, o.runs);
     std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",
@@ -258,8 +270,7 @@ int runBench(const BenchOptions& o) {
     const bool shadow = o.rays == "shadow";
 
     auto start = std::chrono::steady_clock::now();
-    const std::optional<UniformGrid> built = o.grid.build(loaded);
-    const UniformGrid& grid = built ? *built : *loaded.grid;
+    const Acceleration accel = o.grid.accelerate(loaded, camera);
     const double gridMs = elapsedMs(start);
 
     RayStream rays = primaryRays(camera);
@@ -267,10 +278,12 @@ int runBench(const BenchOptions& o) {
         // Shadow rays from the primary hits (found by the C++ tracer, untimed) to the scene's
         // first light, or the headlight at the eye.
         std::vector<glm::vec4> hits;
-        CpuTracer(scene, grid).traceStream(rays, false, o.threads, hits);
-        rays = shadowRays(scene, grid, rays, hits, lightsOrHeadlight(scene, camera.eye).front().position);
+        CpuTracer(scene, makeCpuAccelerator(scene, accel), accel.rayOffset()).traceStream(rays, false, o.threads, hits);
+        // A scene lit only by emitters has no point light: toward the eye then.
+        const std::vector<PointLight> lights = lightsOrHeadlight(scene, camera.eye);
+        rays = shadowRays(scene, accel.rayOffset(), rays, hits, lights.empty() ? camera.eye : lights.front().position);
     }
-    const BenchInput input{scene, grid, camera, shadow, rays};
+    const BenchInput input{scene, accel, camera, shadow, rays};
 
     std::vector<BenchResult> results;
     for (const std::string& b : backends) {
@@ -289,7 +302,7 @@ int runBench(const BenchOptions& o) {
             if (&r != &reference) r.agreement = agreement(r.hits, reference.hits, rays, shadow);
 
     if (o.json) printBenchJson(o, input, gridMs, results, embree);
-    else printBenchTable(o, input, built.has_value(), gridMs, results, embree);
+    else printBenchTable(o, input, gridMs, results, embree);
     return 0;
 }
 

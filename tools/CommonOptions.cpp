@@ -126,6 +126,11 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
 }
 
 void GridCliOptions::add(CLI::App& cmd) {
+    cmd.add_option("--accel", accel,
+                   "Acceleration structure: grid (uniform grid), bvh (bounding volume hierarchy) or auto "
+                   "(default: builds both and keeps the one an estimate of the trace cost says is cheaper; a packed "
+                   "scene's own structure stands)")
+        ->check(CLI::IsMember({"grid", "bvh", "auto"}));
     lambdaOption = cmd.add_option("--lambda", lambda,
                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
                                   "(a packed scene's own grid is used unless this is given)")
@@ -145,6 +150,21 @@ std::optional<UniformGrid> GridCliOptions::build(const LoadedScene& loaded) cons
     UniformGrid grid = *loaded.grid;
     grid.skip.clear();
     return grid;
+}
+
+Acceleration GridCliOptions::accelerate(const LoadedScene& loaded, const CameraBasis& camera) const {
+    AccelChoice choice = AccelChoice::Auto;
+    parseAccelChoice(accel, choice);
+    std::optional<UniformGrid> grid = loaded.grid;
+    if (lambdaOption && lambdaOption->count() > 0) {
+        grid.reset();  // built as asked: --lambda asks for a grid
+        if (choice == AccelChoice::Auto) choice = AccelChoice::Grid;
+    }
+    else if (grid && !skip) grid->skip.clear();
+    GridOptions options;
+    options.lambda = lambda;
+    options.skip = skip;
+    return chooseAcceleration(loaded.scene, choice, std::move(grid), loaded.bvh, options, camera);
 }
 
 void TracerCliOptions::add(CLI::App& cmd) {

@@ -9,6 +9,7 @@
 #include "raytrace/Renderer.h"
 #include "scene/Scene.h"
 #include "raytrace/SceneLoader.h"
+#include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/GLContext.h"
 #include "stream/ShaderLibrary.h"
@@ -114,8 +115,10 @@ struct PictureCliOptions {
 // underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
 LoadedScene loadSceneToRender(const std::string& path, float crease, int& scaleExponent);
 
-// The grid options of render and bench: --lambda and --skip.
+// The acceleration structure options of render, view and bench: --accel, and the grid's
+// --lambda and --skip.
 struct GridCliOptions {
+    std::string accel = "auto";
     float lambda = GridOptions{}.lambda;
     bool skip = true;
     CLI::Option* lambdaOption = nullptr;
@@ -125,6 +128,10 @@ struct GridCliOptions {
     // triangles like any other scene's, so every route gives the same image for the same options),
     // else a new one. std::nullopt: use loaded.grid as it is.
     std::optional<UniformGrid> build(const LoadedScene& loaded) const;
+    // The structure to trace for --accel (accel/Acceleration.h chooseAcceleration): a packed
+    // scene's own where it is of the kind asked (its grid only without --lambda), else built;
+    // `camera` is the view auto's estimate traces.
+    Acceleration accelerate(const LoadedScene& loaded, const CameraBasis& camera) const;
 };
 
 // The GL trace loop's options of render and bench: --kernel, --traverse-steps, --mask and

@@ -8,6 +8,8 @@
 #include "raytrace/PackedScene.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/SceneTextureLayout.h"
+#include "raytrace/Camera.h"
+#include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/SceneFile.h"
 
@@ -28,6 +30,7 @@ struct PackOptions {
     std::string scene;
     std::string output;
     std::string grid = "auto";
+    std::string accel = "auto";
     float lambda = GridOptions{}.lambda;
     bool lambdaGiven = false;
     std::string dump;
@@ -143,6 +146,8 @@ GridOptions checkedOptions(const PackOptions& o) {
     gridOptions.threads = o.threads;
     if (gridOptions.resolution && o.lambdaGiven)
         throw InputError("--lambda: only for --grid auto (the grid is given as " + o.grid + ")");
+    if (o.accel == "bvh" && (gridOptions.resolution || o.lambdaGiven))
+        throw InputError(std::string(gridOptions.resolution ? "--grid" : "--lambda") + ": only with --accel grid or auto");
     // The output's folder must exist before --dump writes anything.
     const std::filesystem::path outputFolder = std::filesystem::absolute(o.output).parent_path();
     if (!std::filesystem::is_directory(outputFolder))
@@ -219,23 +224,36 @@ int runPack(const PackOptions& o) {
     const GridOptions gridOptions = checkedOptions(o);
     const auto start = std::chrono::steady_clock::now();
     LoadedScene loaded = loadScene(o.scene);
-    loaded.grid.reset();  // a packed input is repacked with a grid built as asked
+    loaded.grid.reset();  // a packed input is repacked with a structure built as asked
+    loaded.bvh.reset();
     const auto gridStart = std::chrono::steady_clock::now();
-    const UniformGrid grid = buildGrid(loaded.scene, gridOptions);
+    // auto: an explicit --grid NX,NY,NZ asks for the grid; else the estimate chooses, for the
+    // scene's camera (the default camera without one).
+    AccelChoice choice = AccelChoice::Auto;
+    parseAccelChoice(o.accel, choice);
+    if (choice == AccelChoice::Auto && gridOptions.resolution) choice = AccelChoice::Grid;
+    const CameraSpec view = loaded.scene.camera ? *loaded.scene.camera : defaultCamera(loaded.scene.bounds(), 64, 64);
+    const Acceleration accel =
+        chooseAcceleration(loaded.scene, choice, std::nullopt, std::nullopt, gridOptions, makeCamera(view, 64, 64));
     const double gridMs = millisecondsSince(gridStart);
-    const std::vector<unsigned char> bytes = encodePackedScene(loaded, grid, o.scene);
+    const std::vector<unsigned char> bytes = accel.grid ? encodePackedScene(loaded, *accel.grid, o.scene)
+                                                        : encodePackedScene(loaded, *accel.bvh, o.scene);
 
-    const std::vector<TextureTexels> textures = sceneTextureTexels(loaded.scene, grid);
-    const Occupancy occupancy = occupancyOf(grid);
+    const std::vector<TextureTexels> textures = accel.grid ? sceneTextureTexels(loaded.scene, *accel.grid)
+                                                           : sceneTextureTexels(loaded.scene, *accel.bvh);
     if (!o.dump.empty()) {
         for (const TextureTexels& t : textures) dumpTexture(o.dump, t);
-        dumpOccupancy(o.dump, grid, occupancy.longest);
+        if (accel.grid) dumpOccupancy(o.dump, *accel.grid, occupancyOf(*accel.grid).longest);
     }
     writePackedScene(o.output, bytes);
     const double totalMs = millisecondsSince(start);
 
     printScene(o.scene, loaded.scene);
-    printGrid(o, gridOptions, grid, loaded.scene.triangles.size(), occupancy);
+    if (accel.grid) printGrid(o, gridOptions, *accel.grid, loaded.scene.triangles.size(), occupancyOf(*accel.grid));
+    else std::printf("bvh          %zu nodes, depth %d, SAH cost %.2f\n", accel.bvh->nodes.size(), accel.bvh->depth, accel.bvh->sahCost());
+    if (accel.estimate)
+        std::printf("accel        %s (auto: estimated cost per ray grid %.1f, bvh %.1f)\n", accelName(accel.kind),
+                    accel.estimate->grid, accel.estimate->bvh);
     size_t textureBytes = 0;
     for (const TextureTexels& t : textures) {
         std::printf("texture      %-10s %-8s %5dx%-6d %12zu bytes\n", t.name.c_str(),
@@ -244,7 +262,7 @@ int runPack(const PackOptions& o) {
     }
     std::printf("textures     %zu bytes\n", textureBytes);
     std::printf("file         %s, %zu bytes\n", o.output.c_str(), bytes.size());
-    std::printf("build time   grid %.1f ms, total %.1f ms\n", gridMs, totalMs);
+    std::printf("build time   %s %.1f ms, total %.1f ms\n", accel.estimate ? "grid and bvh" : accelName(accel.kind), gridMs, totalMs);
     if (!o.dump.empty()) std::printf("dump         %s\n", o.dump.c_str());
     return 0;
 }
@@ -254,9 +272,13 @@ int runPack(const PackOptions& o) {
 void addPackCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<PackOptions>();
     auto* cmd = app.add_subcommand(
-        "pack", "Build the grid once and write the scene with it as a packed .gpscene file");
+        "pack", "Build the acceleration structure once and write the scene with it as a packed .gpscene file");
     cmd->add_option("scene", o->scene, "Scene file (.obj, .json or packed)")->required();
     cmd->add_option("-o,--output", o->output, "Output packed scene (.gpscene)")->required();
+    cmd->add_option("--accel", o->accel,
+                    "Acceleration structure stored: grid, bvh or auto (default: the cheaper by the estimate "
+                    "gpurt render --accel auto makes, for the scene's camera; grid when --grid gives a resolution)")
+        ->check(CLI::IsMember({"grid", "bvh", "auto"}));
     cmd->add_option("--grid", o->grid, "Grid resolution: auto (default) or NX,NY,NZ");
     auto* lambda = cmd->add_option("--lambda", o->lambda,
                                    "With --grid auto: cells along the longest axis ~ lambda * "

@@ -59,7 +59,7 @@ void parseTile(const std::string& text, int height, int& index, int& count) {
 // A fingerprint of everything that decides a render's pixels: the scene as loaded, the camera and
 // image size, the grid, the samples and the picture options, the backend. Tiles of one image
 // share it (stitch refuses others).
-std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, const UniformGrid& grid,
+std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, const Acceleration& accel,
                               const RenderSettings& settings, const PictureCliOptions& picture,
                               const std::string& backend) {
     uint32_t crc = 0;
@@ -79,7 +79,8 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
                        camera.right.x, camera.right.y, camera.right.z, camera.upOrtho.x, camera.upOrtho.y,
                        camera.upOrtho.z, camera.tanHalf, camera.aspect};
     add(c, sizeof(c));
-    const int ints[] = {camera.width, camera.height, grid.resolution.x, grid.resolution.y, grid.resolution.z,
+    const glm::ivec3 grid = accel.kind == AccelKind::Grid ? accel.grid->resolution : glm::ivec3(0);
+    const int ints[] = {camera.width, camera.height, grid.x, grid.y, grid.z, int(accel.kind),
                         settings.maxBounces, int(settings.integrator), int(settings.samples), int(settings.seed)};
     add(ints, sizeof(ints));
     const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend;
@@ -103,10 +104,9 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// `gridSource`: "built" or "packed" (the packed scene's own grid).
 // `frame`: the frame of an animation (--frames prints one line or block per frame).
-void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& grid,
-                const char* gridSource, const RenderOutput& out, double totalMs, const Phases& ph,
+void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& accel,
+                const RenderOutput& out, double totalMs, const Phases& ph,
                 std::optional<int> frame) {
     const std::pair<const char*, double> phases[] = {
         {"load", ph.load},       {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
@@ -122,8 +122,13 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
         j["width"] = out.width;
         j["height"] = out.height;
         j["triangles"] = scene.triangles.size();
-        j["grid"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
-        j["grid_source"] = gridSource;
+        const glm::ivec3 grid = accel.gridResolution;
+        j["grid"] = {grid.x, grid.y, grid.z};
+        j["grid_source"] = accel.source;
+        j["accel"] = accelName(accel.kind);  // the structure traced; grid is the grid's (or would-be) size
+        j["accel_source"] = accel.source;     // built, packed, or auto (built and chosen)
+        if (accel.estimate) j["accel_estimate"] = {{"grid", accel.estimate->grid}, {"bvh", accel.estimate->bvh}};
+        if (accel.bvh) j["bvh"] = {{"nodes", accel.bvh->nodes.size()}, {"depth", accel.bvh->depth}};
         j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
         j["passes"] = nlohmann::json::object();
         for (const auto& [name, p] : KernelStats::global().passes())
@@ -144,8 +149,14 @@ void printStats(const RenderOptions& o, const Scene& scene, const UniformGrid& g
     if (frame) std::printf("frame      %d\n", *frame);
     std::printf("image      %dx%d\n", out.width, out.height);
     std::printf("triangles  %zu\n", scene.triangles.size());
-    std::printf("grid       %dx%dx%d (%s)\n", grid.resolution.x, grid.resolution.y,
-                grid.resolution.z, gridSource);
+    if (accel.kind == AccelKind::Grid)
+        std::printf("accel      grid %dx%dx%d (%s)\n", accel.grid->resolution.x, accel.grid->resolution.y,
+                    accel.grid->resolution.z, accel.source.c_str());
+    else
+        std::printf("accel      bvh, %zu nodes, depth %d (%s)\n", accel.bvh->nodes.size(), accel.bvh->depth,
+                    accel.source.c_str());
+    if (accel.estimate)
+        std::printf("estimate   per ray: grid %.1f, bvh %.1f (triangle tests)\n", accel.estimate->grid, accel.estimate->bvh);
     std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
     std::printf("samples    %llu, %.3g per second\n", (unsigned long long)s.samples, samplesPerS);
@@ -331,8 +342,7 @@ int runRender(const RenderOptions& o) {
     const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
 
     const auto start = std::chrono::steady_clock::now();
-    const std::optional<UniformGrid> built = o.grid.build(loaded);
-    const UniformGrid& grid = built ? *built : *loaded.grid;
+    const Acceleration accel = o.grid.accelerate(loaded, cameras.front());
     phases.grid = msSince(start);
     // The GL context, the kernels and the scene textures serve every frame.
     std::optional<GLContext> context;
@@ -344,7 +354,7 @@ int runRender(const RenderOptions& o) {
     }
     phaseStart = std::chrono::steady_clock::now();
     const std::unique_ptr<Renderer> renderer =
-        makeRenderer(RendererConfig{backend, picture.integrator, "grid", o.tracer.options()}, scene, grid);
+        makeRenderer(RendererConfig{backend, picture.integrator, o.tracer.options()}, scene, accel);
     if (backend == Backend::Gl) phases.upload = msSince(phaseStart);
     for (int frame = frames.first; frame <= frames.last; ++frame) {
         const CameraBasis& camera = cameras[size_t(frame - frames.first)];
@@ -363,16 +373,16 @@ int runRender(const RenderOptions& o) {
         const double totalMs = msSince(frame == frames.first ? start : frameStart);
         unscaleDepth(out.depth, scaleExponent);
         if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
-            std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of %d cells "
+            std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of the %s "
                          "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
-                         grid.maxCellSteps());
+                         accelName(accel.kind));
 
         const auto writeStart = std::chrono::steady_clock::now();
-        if (tiled) tile.fingerprint = renderFingerprint(scene, camera, grid, settings, o.picture, o.backend);
+        if (tiled) tile.fingerprint = renderFingerprint(scene, camera, accel, settings, o.picture, o.backend);
         writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr);
         phases.write = msSince(writeStart);
         if (o.statsGiven)
-            printStats(o, scene, grid, built ? "built" : "packed", out, totalMs, phases,
+            printStats(o, scene, accel, out, totalMs, phases,
                        frames.animated ? std::optional(frame) : std::nullopt);
         phases = Phases{};
     }

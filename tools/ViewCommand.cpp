@@ -135,7 +135,7 @@ std::string formatVec3(glm::vec3 v) { return formatFloat(v.x) + "," + formatFloa
 // The viewer's window, its progressive renderer and the display pass, frame after frame.
 class Viewer {
   public:
-    Viewer(const ViewOptions& o, const Scene& scene, const UniformGrid& grid, const PictureCliOptions::Values& picture,
+    Viewer(const ViewOptions& o, const Scene& scene, const Acceleration& accel, const PictureCliOptions::Values& picture,
            CameraControl control, RenderSettings settings, uint32_t samples, int frames)
         : o_(o), control_(std::move(control)), settings_(settings), samples_(samples), frames_(frames),
           bounds_(scene.bounds()), toneMapMode_(toneMapCode(picture.colour.toneMap)),
@@ -146,7 +146,7 @@ class Viewer {
             throw EnvironmentError(std::string("view: ") + e.what() + "; gpurt render writes the picture to a file instead");
         }
         if (!o.glslDir.empty()) ShaderLibrary::global().setDirectory(o.glslDir);
-        renderer_ = makeRenderer(RendererConfig{Backend::Gl, settings.integrator, "grid", o.tracer.options()}, scene, grid);
+        renderer_ = makeRenderer(RendererConfig{Backend::Gl, settings.integrator, o.tracer.options()}, scene, accel);
         progressive_ = renderer_->progressive();
         width_ = window_->width();
         height_ = window_->height();
@@ -346,10 +346,9 @@ int runView(const ViewOptions& o) {
     const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
     const int frames = o.bench ? kBenchFrames + 1 : o.frames;
     const uint32_t samples = sppGiven ? picture.samples : frames > 0 ? uint32_t(frames) : 256u;
-    const std::optional<UniformGrid> built = o.grid.build(loaded);
-    const UniformGrid& grid = built ? *built : *loaded.grid;
+    const Acceleration accel = o.grid.accelerate(loaded, makeCamera(control.spec, size.x, size.y));
 
-    Viewer viewer(o, scene, grid, picture, control, settings, samples, frames);
+    Viewer viewer(o, scene, accel, picture, control, settings, samples, frames);
     viewer.run();
     // The camera in use, as options of gpurt render (in the scene file's units).
     const CameraSpec& c = viewer.camera();

@@ -13,6 +13,11 @@
 // order, three texels each as in the triangle texture but with w = the triangle id:
 // (v0.xyz, id), (e1, 0), (e2, 0); this many references a row (3 x 4096 texels).
 #define GPURT_REFS_PER_ROW 4096
+// BVH nodes (accel/bvh): RGBA32UI buffer texture, two texels a node (common/bvh.h), this many
+// nodes a row in `gpurt pack --dump`; its leaf-ordered triangle list is laid out as the cell lists.
+#define GPURT_BVH_NODES_PER_ROW 1024
+// The largest step of a BVH node's quantised box coordinate (16 bits, common/bvh.h).
+#define GPURT_BVH_STEPS 65535u
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024

@@ -18,10 +18,10 @@ RayStream primaryRays(const CameraBasis& camera) {
     return rays;
 }
 
-RayStream shadowRays(const Scene& scene, const UniformGrid& grid, const RayStream& primary,
+RayStream shadowRays(const Scene& scene, float rayOffset, const RayStream& primary,
                      const std::vector<glm::vec4>& hits, glm::vec3 light) {
     RayStream rays;
-    const float offset = grid.rayOffset();
+    const float offset = rayOffset;
     for (size_t i = 0; i < hits.size(); ++i) {
         if (hits[i].w < 0.0f) continue;
         const Triangle& tri = scene.triangles[size_t(hits[i].w)];

@@ -20,7 +20,7 @@ RayStream primaryRays(const CameraBasis& camera);
 // For each primary hit (hits[i].w >= 0, in pixel order), the renderer's shadow ray towards
 // `light`: from the hit point offset along the normal that faces the primary ray, limited to the
 // light's distance. Laid out `width` rays a row; unused elements of the last row carry no ray.
-RayStream shadowRays(const Scene& scene, const UniformGrid& grid, const RayStream& primary,
+RayStream shadowRays(const Scene& scene, float rayOffset, const RayStream& primary,
                      const std::vector<glm::vec4>& hits, glm::vec3 light);
 
 }  // namespace gpurt

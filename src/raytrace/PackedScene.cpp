@@ -5,8 +5,10 @@
 // last the contents (validateScene, which the writer runs too so that it never writes a file
 // the reader would refuse).
 #include "raytrace/PackedScene.h"
+#include "raytrace/accel/SceneBox.h"
 
 #include <algorithm>
+#include <tuple>
 #include <array>
 #include <bit>
 #include <cerrno>
@@ -43,16 +45,32 @@ constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
 constexpr char kModels[] = "MODL";
+constexpr char kBvhNodes[] = "BVHN";
+constexpr char kBvhList[] = "BVHL";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates, the textures and the material models are required.
-constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,    kCamera,   kBackground, kRender,
-                                         kGrid,      kCellStart, kCellList, kNormals, kAnimation,  kTexcoords,
-                                         kTextures,  kModels};
+// texture coordinates, the textures, the material models and the acceleration structure's are
+// required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
+                                         kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
+                                         kTextures,  kModels,    kBvhNodes, kBvhList};
+constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
+constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels;
+           tag == kModels || gridSection(tag) || bvhSection(tag);
 }
-bool hasSection(const LoadedScene& loaded, std::string_view tag) {
+// Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
+constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
+
+// The structure a file is written with: one of the two.
+struct PackedAccel {
+    const UniformGrid* grid = nullptr;
+    const Bvh* bvh = nullptr;
+};
+
+bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string_view tag) {
+    if (gridSection(tag)) return accel.grid != nullptr;
+    if (bvhSection(tag)) return accel.bvh != nullptr;
     if (tag == kCamera) return bool(loaded.scene.camera);
     if (tag == kNormals) return !loaded.scene.normals.empty();
     if (tag == kAnimation) return bool(loaded.scene.animation);
@@ -385,7 +403,7 @@ void checkGridLists(const FileLoc& file, const Scene& scene, const UniformGrid& 
 
 // Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
 // the writer (name = the source scene) and the reader (name = the packed file).
-void validateScene(const std::string& name, const LoadedScene& loaded, const UniformGrid& grid) {
+void validateScene(const std::string& name, const LoadedScene& loaded, const PackedAccel& accel) {
     const FileLoc file{name};
     const Scene& scene = loaded.scene;
     checkTriangles(file, scene);
@@ -394,7 +412,11 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Uni
     checkLights(file, scene);
     checkCameras(file, scene);
     checkRenderSettings(file, loaded);
-    checkGridLists(file, scene, grid, checkGridShape(file, scene, grid));
+    if (accel.grid) checkGridLists(file, scene, *accel.grid, checkGridShape(file, scene, *accel.grid));
+    if (accel.bvh) {
+        const std::string problem = checkBvh(*accel.bvh, scene.triangles.size(), &scene);
+        if (!problem.empty()) failAt(file, "bvh: " + problem);
+    }
 }
 
 struct Section {
@@ -670,6 +692,33 @@ class SectionDecoder {
         for (uint32_t& v : grid.cellStart) v = in.u32();
     }
 
+    void bvhNodes(const Section& s, Bvh& bvh, size_t triangles) const {
+        ByteReader in = reader(s);
+        // A tree over n triangles has fewer than n inner nodes (one root over nothing when n is 0).
+        const uint64_t n = count(in, s, kBvhNodeBytes, true, std::max<uint64_t>(1, triangles), "BVH nodes");
+        if (n == 0) fail("section " + s.tag + ": no root node");
+        bvh.nodes.resize(size_t(n));
+        for (Bvh::Node& node : bvh.nodes)
+            for (Bvh::Child& c : node.child) {
+                c.min = in.vec3();
+                c.max = in.vec3();
+                c.ref = static_cast<int32_t>(in.u32());
+                c.count = in.u32();
+                if (c.count > uint32_t(kBvhMaxLeafSize))
+                    fail("section " + s.tag + ": a leaf of " + std::to_string(c.count) + " triangles (at most " +
+                         std::to_string(kBvhMaxLeafSize) + ")");
+            }
+    }
+
+    void bvhList(const Section& s, Bvh& bvh, size_t triangles) const {
+        if (s.size != uint64_t(triangles) * 4)
+            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
+                 std::to_string(uint64_t(triangles) * 4) + " for the " + std::to_string(triangles) + " triangles");
+        ByteReader in = reader(s);
+        bvh.triangles.resize(triangles);
+        for (uint32_t& v : bvh.triangles) v = in.u32();
+    }
+
     void cellList(const Section& s, UniformGrid& grid) const {
         if (s.size % 4 != 0)
             fail("section " + s.tag + ": " + std::to_string(s.size) +
@@ -687,8 +736,8 @@ class SectionDecoder {
 // Writes the sections of one scene and its grid, in the layout docs/PACKED_FORMAT.md gives.
 class SectionEncoder {
   public:
-    SectionEncoder(ByteWriter& out, const LoadedScene& loaded, const UniformGrid& grid, const std::string& name)
-        : out_(out), loaded_(loaded), scene_(loaded.scene), grid_(grid), name_(name) {}
+    SectionEncoder(ByteWriter& out, const LoadedScene& loaded, const PackedAccel& accel, const std::string& name)
+        : out_(out), loaded_(loaded), scene_(loaded.scene), accel_(accel), name_(name) {}
 
     void section(std::string_view tag) {
         if (tag == kTriangles) triangles();
@@ -699,8 +748,10 @@ class SectionEncoder {
         else if (tag == kBackground) out_.vec3(scene_.background);
         else if (tag == kRender) render();
         else if (tag == kGrid) grid();
-        else if (tag == kCellStart) u32s(grid_.cellStart);
-        else if (tag == kCellList) u32s(grid_.cellTriangles);
+        else if (tag == kCellStart) u32s(accel_.grid->cellStart);
+        else if (tag == kCellList) u32s(accel_.grid->cellTriangles);
+        else if (tag == kBvhNodes) bvhNodes();
+        else if (tag == kBvhList) u32s(accel_.bvh->triangles);
         else if (tag == kNormals) normals();
         else if (tag == kTexcoords) texcoords();
         else if (tag == kTextures) textures();
@@ -777,7 +828,19 @@ class SectionEncoder {
         out_.u32(size ? static_cast<uint32_t>(size->y) : 0);
     }
 
+    void bvhNodes() {
+        out_.u64(accel_.bvh->nodes.size());
+        for (const Bvh::Node& node : accel_.bvh->nodes)
+            for (const Bvh::Child& c : node.child) {
+                out_.vec3(c.min);
+                out_.vec3(c.max);
+                out_.u32(static_cast<uint32_t>(c.ref));
+                out_.u32(c.count);
+            }
+    }
+
     void grid() {
+        const UniformGrid& grid_ = *accel_.grid;
         for (int a = 0; a < 3; ++a) out_.u32(static_cast<uint32_t>(grid_.resolution[a]));
         out_.vec3(grid_.min);
         out_.vec3(grid_.max);
@@ -824,7 +887,7 @@ class SectionEncoder {
     ByteWriter& out_;
     const LoadedScene& loaded_;
     const Scene& scene_;
-    const UniformGrid& grid_;
+    PackedAccel accel_;
     std::string name_;
 };
 
@@ -905,14 +968,23 @@ SectionTable readSectionTable(std::span<const unsigned char> bytes, const FileLo
     for (size_t k = 0; k < std::size(kSectionOrder); ++k)
         if (!sections[k] && !optionalSection(kSectionOrder[k]))
             failAt(file, std::string("section ") + kSectionOrder[k] + " is missing");
+    // One acceleration structure, whole: the grid's three sections or the BVH's two.
+    int grid = 0, bvh = 0;
+    for (size_t k = 0; k < std::size(kSectionOrder); ++k) {
+        grid += sections[k] && gridSection(kSectionOrder[k]);
+        bvh += sections[k] && bvhSection(kSectionOrder[k]);
+    }
+    if (!((grid == 3 && bvh == 0) || (grid == 0 && bvh == 2)))
+        failAt(file, "the acceleration structure's sections are not the grid's three (GRID, CELL, LIST) or the "
+                     "BVH's two (BVHN, BVHL)");
     return sections;
 }
 
 }  // namespace
 
-std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const UniformGrid& grid,
-                                             const std::string& name) {
-    validateScene(name, loaded, grid);
+namespace {
+std::vector<unsigned char> encode(const LoadedScene& loaded, const PackedAccel& accel, const std::string& name) {
+    validateScene(name, loaded, accel);
 
     ByteWriter out;
     out.raw(kPackedSceneMagic, sizeof kPackedSceneMagic - 1);
@@ -921,7 +993,7 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
     out.u64(0);  // file size, patched last
     std::vector<const char*> tags;
     for (const char* tag : kSectionOrder)
-        if (hasSection(loaded, tag)) tags.push_back(tag);
+        if (hasSection(loaded, accel, tag)) tags.push_back(tag);
     out.u32(static_cast<uint32_t>(tags.size()));
     out.u32(0);
     const size_t table = out.size();
@@ -932,7 +1004,7 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
         out.u64(0);  // size, patched below
     }
 
-    SectionEncoder encoder(out, loaded, grid, name);
+    SectionEncoder encoder(out, loaded, accel, name);
     for (size_t k = 0; k < tags.size(); ++k) {
         out.padTo(8);
         const size_t start = out.size();
@@ -948,6 +1020,16 @@ std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Un
     out.patch32(12, crc32Of(std::span(bytes).subspan(16)));
     return std::move(bytes);
 }
+}  // namespace
+
+std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const UniformGrid& grid,
+                                             const std::string& name) {
+    return encode(loaded, PackedAccel{&grid, nullptr}, name);
+}
+
+std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Bvh& bvh, const std::string& name) {
+    return encode(loaded, PackedAccel{nullptr, &bvh}, name);
+}
 
 void writePackedScene(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
     writeFileAtomically(path, [&](std::FILE* file) {
@@ -961,6 +1043,11 @@ void writePackedScene(const std::filesystem::path& path, const LoadedScene& scen
     writePackedScene(path, encodePackedScene(scene, grid, name));
 }
 
+void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene, const Bvh& bvh,
+                      const std::string& name) {
+    writePackedScene(path, encodePackedScene(scene, bvh, name));
+}
+
 LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::string& name) {
     const FileLoc file{name};
     checkHeader(bytes, file);
@@ -970,26 +1057,37 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     // The sections, each sized by its counts before anything is allocated.
     const SectionDecoder decoder(bytes, name);
     LoadedScene loaded;
-    UniformGrid grid;
     decoder.triangles(*section(kTriangles), loaded.scene);
     decoder.materials(*section(kMaterials), loaded.scene);
     decoder.lights(*section(kLights), loaded.scene);
     if (section(kCamera)) decoder.camera(*section(kCamera), loaded.scene);
     decoder.background(*section(kBackground), loaded.scene);
     decoder.render(*section(kRender), loaded);
-    decoder.grid(*section(kGrid), grid);
-    decoder.cellStart(*section(kCellStart), grid);
-    decoder.cellList(*section(kCellList), grid);
     if (section(kNormals)) decoder.normals(*section(kNormals), loaded.scene);
     if (section(kAnimation)) decoder.animation(*section(kAnimation), loaded.scene);
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
 
-    validateScene(name, loaded, grid);
-    // The skip distances are derived from cellStart (computeSkip) rather than stored.
-    computeSkip(grid);
-    loaded.grid = std::move(grid);
+    if (section(kGrid)) {
+        UniformGrid grid;
+        decoder.grid(*section(kGrid), grid);
+        decoder.cellStart(*section(kCellStart), grid);
+        decoder.cellList(*section(kCellList), grid);
+        validateScene(name, loaded, PackedAccel{&grid, nullptr});
+        // The skip distances are derived from cellStart (computeSkip) rather than stored.
+        computeSkip(grid);
+        loaded.grid = std::move(grid);
+    } else {
+        Bvh bvh;
+        decoder.bvhNodes(*section(kBvhNodes), bvh, loaded.scene.triangles.size());
+        decoder.bvhList(*section(kBvhList), bvh, loaded.scene.triangles.size());
+        validateScene(name, loaded, PackedAccel{nullptr, &bvh});
+        // The box is the scene's (sceneBox), the depth what checkBvh found: derived, not stored.
+        std::tie(bvh.min, bvh.max) = sceneBox(loaded.scene);
+        bvh.depth = bvhDepth(bvh);
+        loaded.bvh = std::move(bvh);
+    }
     return loaded;
 }
 

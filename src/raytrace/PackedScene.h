@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "raytrace/SceneLoader.h"
+#include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
@@ -30,6 +31,10 @@ inline constexpr size_t kPackedSectionEntryBytes = 24;
 std::vector<unsigned char> encodePackedScene(const LoadedScene& scene, const UniformGrid& grid,
                                              const std::string& name);
 
+// The same with the scene's BVH (accel/bvh) in place of a grid: a file holds one structure, the one
+// `gpurt pack --accel` chose.
+std::vector<unsigned char> encodePackedScene(const LoadedScene& scene, const Bvh& bvh, const std::string& name);
+
 // Writes encoded bytes atomically to `path` (a temporary file in the same folder, renamed), so
 // the file appears whole or not at all. Throws InputError("PATH: cannot ...").
 void writePackedScene(const std::filesystem::path& path, std::span<const unsigned char> bytes);
@@ -38,7 +43,10 @@ void writePackedScene(const std::filesystem::path& path, std::span<const unsigne
 void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene,
                       const UniformGrid& grid, const std::string& name);
 
-// Decodes and validates a packed file's bytes; the result's grid is set. Throws
+void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene, const Bvh& bvh,
+                      const std::string& name);
+
+// Decodes and validates a packed file's bytes; the result's grid or bvh is set (the one it holds). Throws
 // InputError("NAME: what is wrong") for a wrong magic, an unknown version, a truncated file, a
 // checksum mismatch, a bad section table, sizes that do not fit the file or the GL limits, counts
 // that overflow, non-finite values, out-of-range material or triangle ids, unknown material

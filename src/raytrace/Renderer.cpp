@@ -1,8 +1,8 @@
 #include "raytrace/Renderer.h"
 
-#include "image/InputError.h"
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
+#include "raytrace/accel/bvh/BvhGl.h"
 #include "raytrace/accel/grid/GridCpu.h"
 #include "raytrace/accel/grid/GridGl.h"
 #include "stream/KernelStats.h"
@@ -88,10 +88,19 @@ double renderBytes(Backend backend, Integrator integrator, double pixels) {
     return perPixel * pixels + 256e6;
 }
 
-// The accelerator by name, for the backend: the uniform grid is the one today (a second one is
-// built here from the scene, and its packed section read by PackedScene).
+std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const Acceleration& accel) {
+    if (config.backend == Backend::Cpu)
+        return std::make_unique<CpuRenderer>(config, scene, makeCpuAccelerator(scene, accel), accel.rayOffset());
+    return std::make_unique<GlRenderer>(config, scene, makeGlAccelerator(scene, accel, config.gl), accel.rayOffset());
+}
+
+std::unique_ptr<GlAccelerator> makeGlAccelerator(const Scene& scene, const Acceleration& accel,
+                                                 const GpuTracerOptions& options) {
+    if (accel.kind == AccelKind::Bvh) return std::make_unique<BvhGl>(scene, *accel.bvh, options);
+    return std::make_unique<GridGl>(scene, *accel.grid, options);
+}
+
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid) {
-    if (config.accelerator != "grid") throw InputError("--accel: unknown accelerator '" + config.accelerator + "' (grid)");
     if (config.backend == Backend::Cpu)
         return std::make_unique<CpuRenderer>(config, scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset());
     return std::make_unique<GlRenderer>(config, scene, std::make_unique<GridGl>(scene, grid, config.gl), grid.rayOffset());

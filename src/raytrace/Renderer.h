@@ -1,5 +1,5 @@
 // One renderer interface for the commands (gpurt render, view, the tests): built by makeRenderer
-// from (backend, integrator, accelerator). The commands never see kernels, streams or tracers:
+// from (backend, integrator) over an acceleration structure (accel/Acceleration.h). The commands never see kernels, streams or tracers:
 // a renderer renders images, renders progressively where it can (the viewer), says where its
 // time went and how much memory a render needs.
 #pragma once
@@ -11,12 +11,14 @@
 #include "raytrace/Camera.h"
 #include "raytrace/GlOptions.h"
 #include "raytrace/RenderTypes.h"
+#include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
 
 class GPUKernel;
+class GlAccelerator;
 
 enum class Backend {
     Gl,   // the stream kernels on the GL context (GpuTracer)
@@ -26,7 +28,6 @@ enum class Backend {
 struct RendererConfig {
     Backend backend = Backend::Gl;
     Integrator integrator = Integrator::Whitted;
-    std::string accelerator = "grid";  // the one accelerator today (accel/grid)
     GpuTracerOptions gl;               // the gl backend's masks and trace kernels
 };
 
@@ -68,9 +69,14 @@ class Renderer {
 // fixed part): what the commands check against the free memory before they start.
 double renderBytes(Backend backend, Integrator integrator, double pixels);
 
-// The renderer for `config` over `scene` and its grid, which must outlive it. The gl backend
-// needs a current GL context and uploads the scene textures now. Throws InputError for an
-// unknown accelerator.
+// The renderer for `config` over `scene` and its acceleration structure (the grid or the BVH),
+// which must outlive it. The gl backend needs a current GL context and uploads the scene textures
+// now.
+std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const Acceleration& accel);
+// The gl backend's accelerator over `accel`'s structure (gpurt bench drives GpuTracer with it).
+std::unique_ptr<GlAccelerator> makeGlAccelerator(const Scene& scene, const Acceleration& accel,
+                                                 const GpuTracerOptions& options);
+// The same over the uniform grid.
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid);
 
 }  // namespace gpurt

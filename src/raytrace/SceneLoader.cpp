@@ -72,16 +72,16 @@ LoadedScene loadScene(const std::filesystem::path& path) {
             return readPackedScene(path);
         case SceneFormat::Json: {
             JsonSceneFile file = loadJsonSceneFile(path);
-            return LoadedScene{std::move(file.scene), file.size, std::nullopt};
+            return LoadedScene{std::move(file.scene), file.size, std::nullopt, std::nullopt};
         }
         case SceneFormat::Ply:
-            return LoadedScene{loadPly(path), std::nullopt, std::nullopt};
+            return LoadedScene{loadPly(path), std::nullopt, std::nullopt, std::nullopt};
         case SceneFormat::Gltf:
-            return LoadedScene{loadGltf(path), std::nullopt, std::nullopt};
+            return LoadedScene{loadGltf(path), std::nullopt, std::nullopt, std::nullopt};
         case SceneFormat::Obj:
             break;
     }
-    return LoadedScene{loadObj(path), std::nullopt, std::nullopt};
+    return LoadedScene{loadObj(path), std::nullopt, std::nullopt, std::nullopt};
 }
 
 }  // namespace gpurt

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/Scene.h"
+#include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
@@ -21,6 +22,8 @@ struct LoadedScene {
     // A packed scene's prebuilt grid (readPackedScene); none for OBJ and JSON scenes, whose grid
     // the renderer builds.
     std::optional<UniformGrid> grid;
+    // Or its prebuilt BVH (a packed scene holds the one structure its packing chose).
+    std::optional<Bvh> bvh;
 };
 
 // Reads a scene file: the packed magic at byte 0 -> packed scene (readPackedScene, with its

@@ -10,6 +10,7 @@
 
 #include "raytrace/EmitterTable.h"
 #include "scene/Scene.h"
+#include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
@@ -43,6 +44,12 @@ TextureTexels voxelIndexTexels(const UniformGrid& grid);
 // RGBA32F, the cells' lists in order with each triangle in place of its id, three texels an
 // entry: (v0, triangle id), (v1 - v0, 0), (v2 - v0, 0); GPURT_REFS_PER_ROW entries a row.
 TextureTexels cellTriangleTexels(const Scene& scene, const UniformGrid& grid);
+// RGBA32UI, the BVH's nodes, two texels each, one per child: its box in 16-bit steps of
+// Bvh::quantisation, rounded outwards, and its reference (glsl/common/bvh.h bvhChildBox);
+// GPURT_BVH_NODES_PER_ROW nodes a row.
+TextureTexels bvhNodeTexels(const Bvh& bvh);
+// RGBA32F, the BVH's leaf-ordered triangle list, laid out as the cell lists.
+TextureTexels bvhTriangleTexels(const Scene& scene, const Bvh& bvh);
 // RGBA32F, three texels a triangle: (v0, material id), (v1 - v0, 0), (v2 - v0, 0).
 TextureTexels triangleTexels(const Scene& scene);
 // RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0), (emission, 0) per
@@ -66,7 +73,10 @@ TextureTexels srgbTableTexels();
 // when it is empty.
 TextureTexels emitterTexels(const EmitterTable& emitters);
 
-// All of them, in the order SceneTextures binds them.
+// All of them, in the order SceneTextures binds them: the accelerator's, then the integrators'.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
+std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const Bvh& bvh);
+// The integrators' (SceneTextures): the triangles to the sRGB table.
+std::vector<TextureTexels> integratorTextureTexels(const Scene& scene);
 
 }  // namespace gpurt

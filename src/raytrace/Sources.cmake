@@ -12,6 +12,10 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   SceneLoader.cpp
   SceneScale.cpp
   SceneTextureLayout.cpp
+  accel/Acceleration.cpp
+  accel/SceneBox.cpp
+  accel/bvh/Bvh.cpp
+  accel/bvh/BvhCpu.cpp
   accel/grid/GridCpu.cpp
   accel/grid/UniformGrid.cpp
   integrators/path/PathCpu.cpp
@@ -21,6 +25,7 @@ set(GPURT_RAYTRACE_GL_SOURCES
   GpuTracer.cpp
   Renderer.cpp
   SceneTextures.cpp
+  accel/bvh/BvhGl.cpp
   accel/grid/GridGl.cpp
   integrators/SharedPasses.cpp
   integrators/path/PathGl.cpp

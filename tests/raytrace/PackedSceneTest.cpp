@@ -4,6 +4,7 @@
 // with one line naming the file, never a crash. Damaged files are made by reading and patching
 // the documented layout here (with zlib's CRC-32 to reseal them), independently of the writer.
 #include "raytrace/PackedScene.h"
+#include "raytrace/accel/bvh/Bvh.h"
 
 #include <gtest/gtest.h>
 
@@ -84,7 +85,7 @@ Entry section(const Bytes& b, const char* tag) {
 // --- Scenes ------------------------------------------------------------------------------------
 
 LoadedScene objScene(const char* model) {
-    return LoadedScene{loadObj(std::string("../shared/models/") + model), std::nullopt,
+    return LoadedScene{loadObj(std::string("../shared/models/") + model), std::nullopt, std::nullopt,
                        std::nullopt};
 }
 
@@ -499,7 +500,7 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
         Bytes b = encodePackedScene(still, grid_, "still");
         put32(b, 24, get32(b, 24) - 1);
         reseal(b);
-        EXPECT_REFUSED(b, "is missing");
+        EXPECT_REFUSED(b, "LIST");
     }
     EXPECT_REFUSED(patched([&](Bytes& b) { std::memcpy(b.data() + tris.at, "TRIX", 4); }),
                    "unknown section 'TRIX'");
@@ -643,6 +644,74 @@ TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
                        put32(b, list.offset + 4 * (begin + 1), grid_.cellTriangles[begin]);
                    }),
                    "not strictly ascending");
+}
+
+TEST_F(PackedSceneTest, CarriesABvhInsteadOfTheGrid) {
+    const Bvh bvh = buildBvh(source_.scene);
+    const Bytes b = encodePackedScene(source_, bvh, "source");
+    const LoadedScene packed = decodePackedScene(b, "source.gpscene");
+    EXPECT_FALSE(packed.grid);
+    ASSERT_TRUE(packed.bvh);
+    EXPECT_EQ(packed.bvh->triangles, bvh.triangles);
+    ASSERT_EQ(packed.bvh->nodes.size(), bvh.nodes.size());
+    for (size_t n = 0; n < bvh.nodes.size(); ++n)
+        for (int c = 0; c < 2; ++c) {
+            EXPECT_EQ(packed.bvh->nodes[n].child[c].min, bvh.nodes[n].child[c].min);
+            EXPECT_EQ(packed.bvh->nodes[n].child[c].max, bvh.nodes[n].child[c].max);
+            EXPECT_EQ(packed.bvh->nodes[n].child[c].ref, bvh.nodes[n].child[c].ref);
+            EXPECT_EQ(packed.bvh->nodes[n].child[c].count, bvh.nodes[n].child[c].count);
+        }
+    EXPECT_EQ(packed.bvh->min, bvh.min);
+    EXPECT_EQ(packed.bvh->max, bvh.max);
+    EXPECT_EQ(packed.bvh->depth, bvh.depth);
+    EXPECT_EQ(encodePackedScene(packed, *packed.bvh, "again"), b);
+    // The grid's sections are absent, the BVH's present; a grid file has none of the BVH's.
+    EXPECT_EQ(section(b, "BVHN").size % 64, 8u);
+    for (const char* tag : {"GRID", "CELL", "LIST"}) EXPECT_FALSE(findSection(b, tag)) << tag;
+    for (const char* tag : {"BVHN", "BVHL"}) EXPECT_FALSE(findSection(bytes_, tag)) << tag;
+}
+
+TEST_F(PackedSceneTest, RefusesADamagedBvh) {
+    const Bvh bvh = buildBvh(source_.scene);
+    const Bytes b = encodePackedScene(source_, bvh, "source");
+    const Entry nodes = section(b, "BVHN"), list = section(b, "BVHL");
+    const size_t n = source_.scene.triangles.size();
+    // Child k of node j: (min, max, ref, count) at 8 + 64 j + 32 k.
+    auto child = [&](size_t node, int c) { return nodes.offset + 8 + 64 * node + 32 * size_t(c); };
+    size_t inner = 0, innerChild = 0, leaf = 0, leafChild = 0;
+    for (size_t j = 0; j < bvh.nodes.size(); ++j)
+        for (int c = 0; c < 2; ++c) {
+            if (bvh.nodes[j].child[c].count == 0 && bvh.nodes[j].child[c].ref > 0 && inner == 0)
+                inner = j, innerChild = size_t(c);
+            if (bvh.nodes[j].child[c].count > 0) leaf = j, leafChild = size_t(c);
+        }
+    ASSERT_GT(bvh.nodes.size(), 1u);
+    // Bad child indices: past the end, backwards (a cycle), the root.
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, child(inner, int(innerChild)) + 24, uint32_t(bvh.nodes.size())); }),
+                   "not a later node");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) {
+                       put32(x, child(bvh.nodes.size() - 1, 0) + 24, 1);
+                       put32(x, child(bvh.nodes.size() - 1, 0) + 28, 0);
+                   }),
+                   "bvh:");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, child(inner, int(innerChild)) + 24, 0); }), "not a later node");
+    // Counts past the end, over the most a leaf holds; a list of another length.
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, child(leaf, int(leafChild)) + 24, uint32_t(n - 1)); }), "bvh:");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, child(leaf, int(leafChild)) + 28, 200); }), "at most");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, list.offset, uint32_t(n)); }), "out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, list.offset, get32(x, list.offset + 4)); }), "bvh:");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put64(x, nodes.offset, uint64_t(1) << 40); }), "BVH nodes");
+    // Boxes: finite, holding their triangles.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) { put32(x, child(0, 0), std::bit_cast<uint32_t>(nan)); }), "not finite");
+    EXPECT_REFUSED(patched(b, [&](Bytes& x) {
+                       for (int a = 0; a < 3; ++a)
+                           put32(x, child(leaf, int(leafChild)) + 12 + 4 * size_t(a), get32(x, child(leaf, int(leafChild)) + 4 * size_t(a)));
+                   }),
+                   "bvh:");
+    // A grid and a BVH, or half of one, are refused.
+    const size_t gridEntry = section(bytes_, "GRID").at;
+    EXPECT_REFUSED(patched([&](Bytes& x) { std::memcpy(&x[gridEntry], "BVHN", 4); }), "acceleration structure");
 }
 
 TEST_F(PackedSceneTest, RefusesBadValues) {

@@ -23,6 +23,7 @@ struct TraceHit {
     int prim;
     float u, v;  // barycentrics of the hit (weights of v1 and v2)
     int steps;   // cells (or nodes) visited
+    int tests;   // triangle tests made
     int state;   // RAY_DEAD (hit or left the structure), RAY_INACTIVE (missed its box), RAY_OVERFLOW
 };
 

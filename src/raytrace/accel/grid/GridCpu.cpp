@@ -23,7 +23,7 @@ GridCpu::GridCpu(const Scene& scene, const UniformGrid& grid)
 // glsl/accel/grid/trace.frag is this function as one kernel.
 template <bool AnyHit>
 TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
-    TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, RAY_INACTIVE};
+    TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, 0, RAY_INACTIVE};
 
     // Ray generation: clip against the grid's box.
     const float tEnter = boxEntry(o, d, tLimit, grid_.min, grid_.max);
@@ -50,6 +50,7 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
             hit.state = RAY_WAIT;
             for (uint32_t k = begin; k < end; ++k) {
                 const uint32_t id = grid_.cellTriangles[k];
+                hit.tests += 1;
                 const PreparedTriangle& tri = triangles_[id];
                 float t, u, v;
                 if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;

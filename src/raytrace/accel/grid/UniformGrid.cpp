@@ -5,8 +5,10 @@
 // triangle on or near a cell boundary is entered into both cells: an extra reference costs one
 // intersection test, a missing one is a hole in the image.
 #include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/SceneBox.h"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -105,38 +107,6 @@ void collectReferences(const Scene& scene, const UniformGrid& grid, size_t first
 // (cell, triangle) pairs, one list per thread.
 using References = std::vector<std::vector<std::pair<uint32_t, uint32_t>>>;
 
-// The grid's box: the scene's bounds, padded so that no extent is zero (a flat scene) and
-// triangles on the bounds are strictly inside; -1 to 1 on every axis for a scene of nothing.
-void setBox(const Scene& scene, UniformGrid& grid) {
-    const Bounds bounds = scene.bounds();
-    glm::vec3 lo(-1.0f), hi(1.0f);
-    if (!bounds.empty()) {
-        for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(bounds.min[a]) || !std::isfinite(bounds.max[a]))
-                throw InputError("scene: vertex coordinates are not finite");
-        const glm::vec3 extent = bounds.max - bounds.min;
-        const float largest = std::max(extent.x, std::max(extent.y, extent.z));
-        float pad = 1e-4f * largest;
-        if (!(pad > 0.0f)) {
-            // A point: pad by a fixed amount, large enough to survive the coordinates' rounding.
-            const glm::vec3 magnitude = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
-            pad =
-                std::max(1e-3f, 1e-4f * std::max(magnitude.x, std::max(magnitude.y, magnitude.z)));
-        }
-        lo = bounds.min - glm::vec3(pad);
-        hi = bounds.max + glm::vec3(pad);
-        for (int a = 0; a < 3; ++a) {
-            // A flat axis far from the origin can swallow the pad in rounding.
-            if (!(hi[a] > lo[a])) {
-                lo[a] = std::nextafter(lo[a], -INFINITY);
-                hi[a] = std::nextafter(hi[a], INFINITY);
-            }
-        }
-    }
-    grid.min = lo;
-    grid.max = hi;
-}
-
 // The resolution the options give (checked), or the automatic one for the box's extent.
 glm::ivec3 chooseResolution(const Scene& scene, const GridOptions& options, glm::vec3 extent) {
     if (options.resolution) {
@@ -208,10 +178,7 @@ size_t UniformGrid::cells() const {
     return size_t(resolution.x) * size_t(resolution.y) * size_t(resolution.z);
 }
 
-float UniformGrid::rayOffset() const {
-    const glm::vec3 extent = max - min;
-    return 1e-4f * std::max(extent.x, std::max(extent.y, extent.z));
-}
+float UniformGrid::rayOffset() const { return sceneRayOffset(min, max); }
 
 float UniformGrid::hitTolerance() const {
     return 1e-4f * std::min(cellSize.x, std::min(cellSize.y, cellSize.z));
@@ -221,12 +188,17 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     if (scene.triangles.size() >= UINT32_MAX)
         throw InputError("scene: too many triangles for 32-bit ids");
     UniformGrid grid;
-    setBox(scene, grid);
+    std::tie(grid.min, grid.max) = sceneBox(scene);
     grid.resolution = chooseResolution(scene, options, grid.max - grid.min);
     grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
     sortByCell(collectAllReferences(scene, grid, options.threads), grid);
     if (options.skip) computeSkip(grid);
     return grid;
+}
+
+glm::ivec3 gridResolution(const Scene& scene, const GridOptions& options) {
+    const auto [lo, hi] = sceneBox(scene);
+    return chooseResolution(scene, options, hi - lo);
 }
 
 void computeSkip(UniformGrid& grid) {

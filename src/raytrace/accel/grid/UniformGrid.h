@@ -61,4 +61,7 @@ inline constexpr size_t kMaxGridCells = size_t(1) << 26;
 // scene with non-finite vertices.
 UniformGrid buildGrid(const Scene& scene, const GridOptions& options);
 
+// The resolution buildGrid would give the scene, without building it.
+glm::ivec3 gridResolution(const Scene& scene, const GridOptions& options);
+
 }  // namespace gpurt

@@ -1,0 +1,58 @@
+#include "raytrace/accel/bvh/BvhCpu.h"
+
+#include <cstring>
+#include <limits>
+
+#include "raytrace/RayMath.h"
+#include "raytrace/SceneTextureLayout.h"
+
+namespace gpurt {
+
+namespace {
+
+using namespace glm;
+using namespace raymath;
+
+struct BvhTexels {
+    const uvec4* nodes;
+    const vec4* triangles;
+    vec3 boxMin, boxStep;
+};
+
+#define GPURT_BVH_PARAMS const BvhTexels &bvh,
+#define GPURT_BVH_NODE(i) bvh.nodes[i]
+#define GPURT_BVH_TRI(i) bvh.triangles[i]
+#define GPURT_BVH_BOX_MIN bvh.boxMin
+#define GPURT_BVH_BOX_STEP bvh.boxStep
+#include "../../../../glsl/common/bvh.h"
+
+std::vector<vec4> asVectors(const TextureTexels& texels) {
+    std::vector<vec4> v(texels.floats.size() / 4);
+    std::memcpy(v.data(), texels.floats.data(), v.size() * sizeof(vec4));
+    return v;
+}
+
+std::vector<uvec4> asUintVectors(const TextureTexels& texels) {
+    std::vector<uvec4> v(texels.uints.size() / 4);
+    std::memcpy(v.data(), texels.uints.data(), v.size() * sizeof(uvec4));
+    return v;
+}
+
+}  // namespace
+
+BvhCpu::BvhCpu(const Scene& scene, const Bvh& bvh)
+    : nodes_(asUintVectors(bvhNodeTexels(bvh))),
+      triangles_(asVectors(bvhTriangleTexels(scene, bvh))),
+      maxSteps_(bvh.maxNodeSteps()) {
+    bvh.quantisation(boxMin_, boxStep_);
+}
+
+TraceHit BvhCpu::trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit) const {
+    const BvhTexels texels{nodes_.data(), triangles_.data(), boxMin_, boxStep_};
+    TraceHit hit{};
+    hit.prim = bvhTrace(texels, o, d, tLimit, anyHit, maxSteps_, hit.t, hit.u, hit.v, hit.steps, hit.tests, hit.state);
+    if (hit.prim < 0) hit.t = std::numeric_limits<float>::infinity();
+    return hit;
+}
+
+}  // namespace gpurt

@@ -1,0 +1,31 @@
+// The BVH as the cpu backend's accelerator: the traversal of glsl/common/bvh.h over the same
+// texels the kernel reads (SceneTextureLayout's bvhNodeTexels and bvhTriangleTexels).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/accel/CpuAccelerator.h"
+#include "raytrace/accel/bvh/Bvh.h"
+#include "scene/Scene.h"
+
+namespace gpurt {
+
+class BvhCpu final : public CpuAccelerator {
+  public:
+    BvhCpu(const Scene& scene, const Bvh& bvh);
+
+    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return trace(o, d, tLimit, false); }
+    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return trace(o, d, tLimit, true); }
+
+  private:
+    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit) const;
+
+    std::vector<glm::uvec4> nodes_;
+    std::vector<glm::vec4> triangles_;
+    glm::vec3 boxMin_, boxStep_;  // Bvh::quantisation
+    int maxSteps_;
+};
+
+}  // namespace gpurt
