@@ -440,6 +440,47 @@ TEST_F(Cli, RenderLambdaRebuildsAPackedScenesGrid) {
     EXPECT_NE(rebuilt["grid"], packed["grid"]);
 }
 
+// --accel: either structure gives the same picture and AOVs (the same hits); --stats says which was
+// traced and why; pack stores the chosen one and render uses it; bad values are refused.
+TEST_F(Cli, EitherAcceleratorGivesTheSameFilesAndStatsSayWhich) {
+    const std::string base = "render scenes/room.json --size 40x32 --stats=json";
+    for (const char* backend : {"gl", "cpu"}) {
+        const auto grid = gpurt(base + " --backend " + backend + " --accel grid -o " + path("g.png") +
+                                " --aov prim=" + path("g.pfm"));
+        const auto bvh = gpurt(base + " --backend " + backend + " --accel bvh -o " + path("b.png") +
+                               " --aov prim=" + path("b.pfm"));
+        ASSERT_EQ(grid.code, 0) << grid.err;
+        ASSERT_EQ(bvh.code, 0) << bvh.err;
+        EXPECT_EQ(nlohmann::json::parse(grid.out)["accel"], "grid");
+        EXPECT_EQ(nlohmann::json::parse(bvh.out)["accel"], "bvh");
+        EXPECT_EQ(nlohmann::json::parse(bvh.out)["accel_source"], "built");
+        EXPECT_EQ(slurp(dir / "g.png"), slurp(dir / "b.png")) << backend;
+        EXPECT_EQ(slurp(dir / "g.pfm"), slurp(dir / "b.pfm")) << backend;
+    }
+    const auto chosen = nlohmann::json::parse(gpurt(base + " -o " + path("a.png")).out);
+    ASSERT_TRUE(chosen.contains("accel_estimate"));
+    const bool bvhCheaper = chosen["accel_estimate"]["bvh"].get<double>() < chosen["accel_estimate"]["grid"].get<double>();
+    EXPECT_EQ(chosen["accel"], bvhCheaper ? "bvh" : "grid");
+    EXPECT_EQ(chosen["accel_source"], "auto");
+    // Packed with a BVH: render uses it ("packed") and gives the source's files.
+    ASSERT_EQ(gpurt("pack scenes/room.json --accel bvh -o " + path("r.gpscene")).code, 0);
+    const auto packed = gpurt("render " + path("r.gpscene") + " --size 40x32 --stats=json --accel grid -o " + path("p0.png"));
+    EXPECT_EQ(nlohmann::json::parse(packed.out)["accel_source"], "built");  // a grid asked for: built
+    const auto own = gpurt("render " + path("r.gpscene") + " --size 40x32 --stats=json -o " + path("p.png"));
+    ASSERT_EQ(own.code, 0) << own.err;
+    EXPECT_EQ(nlohmann::json::parse(own.out)["accel"], "bvh");
+    EXPECT_EQ(nlohmann::json::parse(own.out)["accel_source"], "packed");
+    EXPECT_EQ(slurp(dir / "p.png"), slurp(dir / "a.png"));
+    // Refusals name the option.
+    const auto bad = gpurt(base + " --accel kd -o " + path("x.png"));
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("--accel"), std::string::npos) << bad.err;
+    const auto mixed = gpurt("pack scenes/room.json --accel bvh --grid 4,4,4 -o " + path("x.gpscene"));
+    EXPECT_EQ(mixed.code, 1);
+    EXPECT_NE(mixed.err.find("--grid"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(fs::exists(dir / "x.gpscene"));
+}
+
 TEST_F(Cli, DamagedPackedFilesAreRefusedWithExit1) {
     ASSERT_EQ(gpurt("pack " + kTeapot + " -o " + path("good.gpscene")).code, 0);
     const std::string good = slurp(dir / "good.gpscene");
