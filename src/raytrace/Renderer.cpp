@@ -7,7 +7,9 @@
 #include "raytrace/accel/grid/GridGl.h"
 #include "stream/KernelStats.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <set>
 
 namespace gpurt {
@@ -75,6 +77,36 @@ class GlRenderer final : public Renderer, public ProgressiveRenderer {
 };
 
 }  // namespace
+
+TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings,
+                             double seconds, uint32_t maxSamples) {
+    const auto start = std::chrono::steady_clock::now();
+    auto secondsSince = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    RenderSettings first = settings;
+    first.samples = 1;
+    first.progress = nullptr;  // its share of the whole is known only once it is timed
+    TimedRender result{renderer.render(camera, first), 1};
+    const double firstSeconds = secondsSince(start);
+    const double perSample = std::max(1e-6, firstSeconds - renderer.phases().compile * 1e-3);
+    const double fits = std::floor((seconds - firstSeconds) / perSample);
+    const uint32_t samples = fits < 2.0 ? 1u : uint32_t(std::min(fits, double(std::max(1u, maxSamples))));
+    if (samples < 2) {
+        if (settings.progress) settings.progress(1.0);
+        return result;
+    }
+    RenderSettings timed = settings;
+    timed.samples = samples;
+    if (settings.progress) {
+        const double share = firstSeconds / (firstSeconds + double(samples) * perSample);
+        settings.progress(share);
+        timed.progress = [share, report = settings.progress](double f) { report(f >= 1.0 ? 1.0 : share + (1.0 - share) * f); };
+    }
+    result.output = renderer.render(camera, timed);
+    result.samples = samples;
+    return result;
+}
 
 // Peak resident memory measured at 1024x1024 and 2048x2048 with every AOV (llvmpipe, Mesa 22.3):
 // about 232 bytes a pixel for GL (eleven RGBA32F streams, masks, read-backs), 48 for the CPU

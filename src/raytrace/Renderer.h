@@ -64,6 +64,21 @@ class Renderer {
     virtual ProgressiveRenderer* progressive() { return nullptr; }
 };
 
+// A render within a time budget (--time-limit): as many whole samples a pixel as fit, and exactly
+// the image render() gives for that many (the sample pattern depends on the count: sampling.h).
+struct TimedRender {
+    RenderOutput output;
+    uint32_t samples = 1;
+};
+
+// Renders the pixel-centre image (--spp 1) and times it; then, if a render of K >= 2 samples
+// at that rate (its kernel builds left out) fits in what is left of `seconds`, renders the most
+// such K (at most maxSamples) from the start instead. The first render's time is spent either
+// way; a render slower than its estimate can pass the limit (samples are whole). settings.samples
+// is ignored; settings.progress sees one rising fraction over both renders.
+TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings,
+                             double seconds, uint32_t maxSamples);
+
 // The bytes a render of `pixels` pixels needs (its streams or buffers, masks, read-backs, and a
 // fixed part): what the commands check against the free memory before they start.
 double renderBytes(Backend backend, Integrator integrator, double pixels);
