@@ -2,6 +2,8 @@
 // packed file (docs/PACKED_FORMAT.md), prints what was packed, and with --dump writes the scene
 // textures as PFM images and the grid's occupancy as PNG projections. CPU only: no GL context.
 #include "Commands.h"
+#include "CommonOptions.h"
+#include "Progress.h"
 
 #include "image/ImageIO.h"
 #include "image/InputError.h"
@@ -32,6 +34,8 @@ struct PackOptions {
     bool lambdaGiven = false;
     std::string dump;
     int threads = 0;
+    std::string upAxis;  // --up-axis
+    ProgressCliOptions progress;
 };
 
 // The largest side of an occupancy picture.
@@ -218,11 +222,16 @@ int runPack(const PackOptions& o) {
     // Options first: nothing is read or written for a bad one.
     const GridOptions gridOptions = checkedOptions(o);
     const auto start = std::chrono::steady_clock::now();
+    // Three steps: reading the scene, building the grid, encoding and writing.
+    ProgressDisplay progress(o.progress.mode());
     LoadedScene loaded = loadScene(o.scene);
     loaded.grid.reset();  // a packed input is repacked with a grid built as asked
+    turnSceneUp(loaded, o.upAxis);  // the packed scene is stored turned: its up axis is y
+    progress.update(1.0 / 3.0);
     const auto gridStart = std::chrono::steady_clock::now();
     const UniformGrid grid = buildGrid(loaded.scene, gridOptions);
     const double gridMs = millisecondsSince(gridStart);
+    progress.update(2.0 / 3.0);
     const std::vector<unsigned char> bytes = encodePackedScene(loaded, grid, o.scene);
 
     const std::vector<TextureTexels> textures = sceneTextureTexels(loaded.scene, grid);
@@ -233,6 +242,7 @@ int runPack(const PackOptions& o) {
     }
     writePackedScene(o.output, bytes);
     const double totalMs = millisecondsSince(start);
+    progress.finish();
 
     printScene(o.scene, loaded.scene);
     printGrid(o, gridOptions, grid, loaded.scene.triangles.size(), occupancy);
@@ -255,7 +265,7 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<PackOptions>();
     auto* cmd = app.add_subcommand(
         "pack", "Build the grid once and write the scene with it as a packed .gpscene file");
-    cmd->add_option("scene", o->scene, "Scene file (.obj, .json or packed)")->required();
+    cmd->add_option("scene", o->scene, "Scene file (.obj, .json, .gltf/.glb, .ply or packed .gpscene)")->required();
     cmd->add_option("-o,--output", o->output, "Output packed scene (.gpscene)")->required();
     cmd->add_option("--grid", o->grid, "Grid resolution: auto (default) or NX,NY,NZ");
     auto* lambda = cmd->add_option("--lambda", o->lambda,
@@ -267,6 +277,8 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--threads", o->threads,
                     "Grid build threads (0: all cores; same file either way)")
         ->check(CLI::Range(0, 1024));
+    addUpAxisOption(*cmd, o->upAxis);
+    o->progress.add(*cmd);
     cmd->callback([&run, o, lambda] {
         o->lambdaGiven = lambda->count() > 0;
         run = [o] { return runPack(*o); };
