@@ -71,11 +71,13 @@ struct TimedRender {
     uint32_t samples = 1;
 };
 
-// Renders the pixel-centre image (--spp 1) and times it; then, if a render of K >= 2 samples
-// at that rate (its kernel builds left out) fits in what is left of `seconds`, renders the most
-// such K (at most maxSamples) from the start instead. The first render's time is spent either
-// way; a render slower than its estimate can pass the limit (samples are whole). settings.samples
-// is ignored; settings.progress sees one rising fraction over both renders.
+// Renders the pixel-centre image (--spp 1) and times it; then, while a render of more samples
+// than the last fits in what is left of `seconds` at the last render's rate a sample, renders
+// the most that fit (at most maxSamples) from the start. The rate of the first render, slowed by
+// the kernels' first use (llvmpipe compiles at the first pass), is refined by the later ones.
+// The renders before the last are spent; a render slower than its estimate can pass the limit
+// (samples are whole). settings.samples is ignored; settings.progress sees the time spent of
+// the limit, then 1.
 TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings,
                              double seconds, uint32_t maxSamples);
 
