@@ -328,15 +328,33 @@ double parseTimeLimit(const RenderOptions& o) {
     return double(seconds);
 }
 
+// One frame's image (or the only image) and its samples a pixel: settings.samples, or with
+// --time-limit (timeLimit > 0) the most that fit, printed, with --spp when given as their most.
+// `progress` sees the frame's part of all the frames.
+RenderOutput renderFrame(const RenderOptions& o, Renderer& renderer, const CameraBasis& camera, RenderSettings settings,
+                         const Frames& frames, int frame, double timeLimit, ProgressDisplay& progress, uint32_t& spp) {
+    const int index = frame - frames.first, frameCount = frames.last - frames.first + 1;
+    if (progress.mode() != ProgressDisplay::Mode::Off)
+        settings.progress = [&progress, index, frameCount](double f) {
+            progress.update((double(index) + f) / double(frameCount));
+        };
+    spp = settings.samples;
+    if (!(timeLimit > 0)) return renderer.render(camera, settings);
+    const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
+    TimedRender timed = renderWithinTime(renderer, camera, settings, timeLimit, sppGiven ? settings.samples : 1u << 24);
+    spp = timed.samples;
+    const std::string which = frames.animated ? "frame " + std::to_string(frame) + ": " : "";
+    std::fprintf(stderr, "gpurt: %s%u samples a pixel in the time limit of %s s (--spp %u renders this image)\n",
+                 which.c_str(), spp, o.timeLimit.c_str(), spp);
+    return std::move(timed.output);
+}
+
 int runRender(const RenderOptions& o) {
     // Everything that can be refused is checked before anything is rendered or written.
     const Frames frames = renderFrames(o);
     const PictureCliOptions::Values picture = o.picture.values();
     const Backend backend = o.backend == "cpu" ? Backend::Cpu : Backend::Gl;
     const double timeLimit = parseTimeLimit(o);
-    // With --time-limit, --spp (when given) is the most samples it may fit.
-    const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
-    const uint32_t maxSamples = sppGiven ? picture.samples : 1u << 24;
     const int frameCount = frames.last - frames.first + 1;
     ProgressDisplay progress(o.progress.mode(), timeLimit > 0 ? 0.0 : double(frameCount) * picture.samples, "spp");
 
@@ -372,27 +390,11 @@ int runRender(const RenderOptions& o) {
         makeRenderer(RendererConfig{backend, picture.integrator, "grid", o.tracer.options()}, scene, grid);
     if (backend == Backend::Gl) phases.upload = msSince(phaseStart);
     for (int frame = frames.first; frame <= frames.last; ++frame) {
-        const int index = frame - frames.first;
-        const CameraBasis& camera = cameras[size_t(index)];
+        const CameraBasis& camera = cameras[size_t(frame - frames.first)];
         const auto frameStart = std::chrono::steady_clock::now();
         phaseStart = std::chrono::steady_clock::now();
-        RenderSettings frameSettings = settings;
-        if (progress.mode() != ProgressDisplay::Mode::Off)
-            frameSettings.progress = [&progress, index, frameCount](double f) {
-                progress.update((double(index) + f) / double(frameCount));
-            };
-        uint32_t spp = settings.samples;
-        RenderOutput out;
-        if (timeLimit > 0) {
-            TimedRender timed = renderWithinTime(*renderer, camera, frameSettings, timeLimit, maxSamples);
-            out = std::move(timed.output);
-            spp = timed.samples;
-            std::fprintf(stderr, "gpurt: %s%u samples a pixel in the time limit of %s s (--spp %u renders this image)\n",
-                         frames.animated ? ("frame " + std::to_string(frame) + ": ").c_str() : "", spp,
-                         o.timeLimit.c_str(), spp);
-        } else {
-            out = renderer->render(camera, frameSettings);
-        }
+        uint32_t spp = 1;
+        RenderOutput out = renderFrame(o, *renderer, camera, settings, frames, frame, timeLimit, progress, spp);
         const double renderMs = msSince(phaseStart);
         const RenderPhases ran = renderer->phases();
         phases.compile = ran.compile;
