@@ -117,6 +117,26 @@ TEST_F(DailyUse, ATerminalShowsTheBarAndQuietHidesIt) {
     EXPECT_EQ(quiet.find("\r["), std::string::npos) << quiet;
 }
 
+// --quiet says a warning once however often it recurs (its line number aside); without it every
+// occurrence is said.
+TEST_F(DailyUse, QuietSaysEachWarningOnce) {
+    write("odd.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nfoo 1\nfoo 2\nfoo 3\nbar 1\nf 1 2 3\n");
+    auto warnings = [](const std::string& err, const std::string& what) {
+        size_t n = 0;
+        for (size_t at = err.find(what); at != std::string::npos; at = err.find(what, at + 1)) ++n;
+        return n;
+    };
+    const std::string render = "render " + quoted("odd.obj") + " --size 8x8 -o " + quoted("o.png");
+    const GpurtRun loud = gpurt(render);
+    ASSERT_EQ(loud.code, 0) << loud.err;
+    EXPECT_EQ(warnings(loud.err, "unknown statement 'foo'"), 3u) << loud.err;
+    EXPECT_EQ(warnings(loud.err, "unknown statement 'bar'"), 1u) << loud.err;
+    const GpurtRun quiet = gpurt(render + " --quiet");
+    ASSERT_EQ(quiet.code, 0) << quiet.err;
+    EXPECT_EQ(warnings(quiet.err, "unknown statement 'foo'"), 1u) << quiet.err;
+    EXPECT_EQ(warnings(quiet.err, "unknown statement 'bar'"), 1u) << quiet.err;
+}
+
 TEST_F(DailyUse, TimeLimitFarBelowOneSampleTakesOne) {
     for (const char* backend : kBackends) {
         SCOPED_TRACE(backend);
