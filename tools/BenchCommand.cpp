@@ -263,7 +263,8 @@ int runBench(const BenchOptions& o) {
         if (std::find(available.begin(), available.end(), b) == available.end())
             throw InputError("--backend: '" + b + "' is not available in this build (embree needs GPURT_WITH_EMBREE)");
 
-    const LoadedScene loaded = loadScene(o.scene);
+    LoadedScene loaded = loadScene(o.scene);
+    turnSceneUp(loaded, o.camera.upAxis);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     const CameraBasis camera = o.camera.camera(scene, size);
@@ -311,7 +312,7 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<BenchOptions>();
     auto* cmd = app.add_subcommand("bench", "Time tracing alone: the stream kernels beside the C++ tracer and Embree");
-    cmd->add_option("scene", o->scene, "Scene file")->required();
+    cmd->add_option("scene", o->scene, "Scene file: .obj, .json, .gltf, .glb, .ply or .gpscene (gpurt pack)")->required();
     cmd->add_option("--rays", o->rays, "primary (one per pixel) or shadow (one per primary hit, to one light)")
         ->check(CLI::IsMember({"primary", "shadow"}));
     cmd->add_option("--backend", o->backends, "gl, cpu or embree (repeatable; default: all available)")

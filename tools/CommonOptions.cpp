@@ -251,8 +251,27 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     return v;
 }
 
-LoadedScene loadSceneToRender(const std::string& path, float crease, int& scaleExponent) {
+void addUpAxisOption(CLI::App& cmd, std::string& upAxis) {
+    cmd.add_option("--up-axis", upAxis,
+                   "The axis that is up in the scene file: y (default), z (CAD, scans), x, -y, -z or -x; the "
+                   "scene is turned so that it is up before the camera is placed (a JSON scene may say "
+                   "\"up_axis\")")
+        ->check(kNotEmpty);
+}
+
+void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption) {
+    UpAxis axis = loaded.scene.upAxis;
+    if (!upAxisOption.empty() && !parseUpAxis(upAxisOption, axis))
+        throw InputError("--up-axis: '" + upAxisOption + "' is not one of y, z, x, -y, -z, -x");
+    if (axis == UpAxis::PosY) return;
+    rotateUpToY(loaded.scene, axis);
+    loaded.grid.reset();  // built for the file's coordinates
+}
+
+LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
+                              int& scaleExponent) {
     LoadedScene loaded = loadScene(path);
+    turnSceneUp(loaded, upAxisOption);
     smoothNormals(loaded.scene, crease);
     scaleExponent = renderScaleExponent(loaded.scene);
     rescaleScene(loaded.scene, scaleExponent);

@@ -57,6 +57,14 @@ glm::ivec2 parseSize(const std::string& option, const std::string& text);
 // that point the render would be killed instead of failing cleanly.
 void checkRenderFitsInMemory(glm::ivec2 size, Backend backend, Integrator integrator);
 
+// --up-axis y|z|x|-y|-z|-x: the axis that is up in the scene file; the scene is turned so that it
+// is up (+y) before anything else (the default camera, --eye and --target are in the turned scene).
+void addUpAxisOption(CLI::App& cmd, std::string& upAxis);
+// Turns the loaded scene so that --up-axis (when given, else the scene's own) points up; a packed
+// scene's grid is then dropped (the commands build one for the turned triangles). InputError for
+// a bad --up-axis.
+void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption);
+
 // Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
 inline const CLI::Validator kNotEmpty(
     [](std::string& value) { return value.empty() ? std::string("empty value") : std::string(); },
@@ -64,6 +72,7 @@ inline const CLI::Validator kNotEmpty(
 
 struct CameraOptions {
     std::string eye, target, up, fovy, size;
+    std::string upAxis;  // --up-axis; empty: the scene's own (a JSON scene's "up_axis", else y)
 
     void add(CLI::App& cmd) {
         cmd.add_option("--eye", eye, "Camera position x,y,z (overrides the scene's camera)")
@@ -74,6 +83,7 @@ struct CameraOptions {
             ->check(kNotEmpty);
         cmd.add_option("--size", size, "Image size WxH (default 512x512, or the scene's)")
             ->check(kNotEmpty);
+        addUpAxisOption(cmd, upAxis);
     }
     // The image size: --size, else the scene file's, else 512x512.
     glm::ivec2 imageSize(std::optional<glm::ivec2> sceneSize) const;
@@ -110,10 +120,11 @@ struct PictureCliOptions {
     static RenderSettings settings(const Values& values, glm::ivec2 size, int given, const Scene& scene);
 };
 
-// The scene as render and view trace it: loaded, with smooth normals for the crease angle
+// The scene as render and view trace it: loaded, turned up (turnSceneUp), with smooth normals for the crease angle
 // (--smooth; < 0: faceted), and, far from unit size where float32 tracing would over- or
 // underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
-LoadedScene loadSceneToRender(const std::string& path, float crease, int& scaleExponent);
+LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
+                              int& scaleExponent);
 
 // The acceleration structure options of render, view and bench: --accel, and the grid's
 // --lambda and --skip.

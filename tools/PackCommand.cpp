@@ -2,6 +2,8 @@
 // packed file (docs/PACKED_FORMAT.md), prints what was packed, and with --dump writes the scene
 // textures as PFM images and the grid's occupancy as PNG projections. CPU only: no GL context.
 #include "Commands.h"
+#include "CommonOptions.h"
+#include "Progress.h"
 
 #include "image/ImageIO.h"
 #include "image/InputError.h"
@@ -35,6 +37,8 @@ struct PackOptions {
     bool lambdaGiven = false;
     std::string dump;
     int threads = 0;
+    std::string upAxis;  // --up-axis
+    ProgressCliOptions progress;
 };
 
 // The largest side of an occupancy picture.
@@ -223,9 +227,13 @@ int runPack(const PackOptions& o) {
     // Options first: nothing is read or written for a bad one.
     const GridOptions gridOptions = checkedOptions(o);
     const auto start = std::chrono::steady_clock::now();
+    // Three steps: reading the scene, building the grid, encoding and writing.
+    ProgressDisplay progress(o.progress.mode());
     LoadedScene loaded = loadScene(o.scene);
     loaded.grid.reset();  // a packed input is repacked with a structure built as asked
     loaded.bvh.reset();
+    turnSceneUp(loaded, o.upAxis);  // the packed scene is stored turned: its up axis is y
+    progress.update(1.0 / 3.0);
     const auto gridStart = std::chrono::steady_clock::now();
     // auto: an explicit --grid NX,NY,NZ asks for the grid; else the estimate chooses, for the
     // scene's camera (the default camera without one).
@@ -236,6 +244,7 @@ int runPack(const PackOptions& o) {
     const Acceleration accel =
         chooseAcceleration(loaded.scene, choice, std::nullopt, std::nullopt, gridOptions, makeCamera(view, 64, 64));
     const double gridMs = millisecondsSince(gridStart);
+    progress.update(2.0 / 3.0);
     const std::vector<unsigned char> bytes = accel.grid ? encodePackedScene(loaded, *accel.grid, o.scene)
                                                         : encodePackedScene(loaded, *accel.bvh, o.scene);
 
@@ -247,6 +256,7 @@ int runPack(const PackOptions& o) {
     }
     writePackedScene(o.output, bytes);
     const double totalMs = millisecondsSince(start);
+    progress.finish();
 
     printScene(o.scene, loaded.scene);
     if (accel.grid) printGrid(o, gridOptions, *accel.grid, loaded.scene.triangles.size(), occupancyOf(*accel.grid));
@@ -273,7 +283,7 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<PackOptions>();
     auto* cmd = app.add_subcommand(
         "pack", "Build the acceleration structure once and write the scene with it as a packed .gpscene file");
-    cmd->add_option("scene", o->scene, "Scene file (.obj, .json or packed)")->required();
+    cmd->add_option("scene", o->scene, "Scene file (.obj, .json, .gltf/.glb, .ply or packed .gpscene)")->required();
     cmd->add_option("-o,--output", o->output, "Output packed scene (.gpscene)")->required();
     cmd->add_option("--accel", o->accel,
                     "Acceleration structure stored: grid, bvh or auto (default: the cheaper by the estimate "
@@ -289,6 +299,8 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--threads", o->threads,
                     "Grid build threads (0: all cores; same file either way)")
         ->check(CLI::Range(0, 1024));
+    addUpAxisOption(*cmd, o->upAxis);
+    o->progress.add(*cmd);
     cmd->callback([&run, o, lambda] {
         o->lambdaGiven = lambda->count() > 0;
         run = [o] { return runPack(*o); };

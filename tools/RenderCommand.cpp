@@ -3,6 +3,7 @@
 // is rendered with the grid it carries.
 #include "Commands.h"
 #include "CommonOptions.h"
+#include "Progress.h"
 #include "raytrace/SceneLoader.h"
 
 #include "image/AtomicFile.h"
@@ -43,6 +44,8 @@ struct RenderOptions {
     int bounces = -1;
     std::string tile;  // --tile I/N
     std::string frames;  // --frames A:B
+    std::string timeLimit;  // --time-limit SECONDS
+    ProgressCliOptions progress;
     PictureCliOptions picture;
     CameraOptions camera;
     ContextOptions context;
@@ -105,9 +108,10 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }
 
 // `frame`: the frame of an animation (--frames prints one line or block per frame).
+// `spp`: the samples a pixel the image has (--spp, or what --time-limit fitted).
 void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& accel,
                 const RenderOutput& out, double totalMs, const Phases& ph,
-                std::optional<int> frame) {
+                std::optional<int> frame, uint32_t spp) {
     const std::pair<const char*, double> phases[] = {
         {"load", ph.load},       {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
         {"compile", ph.compile}, {"trace", ph.trace}, {"shade", ph.shade},     {"read_back", ph.readBack},
@@ -139,6 +143,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         j["overflow_rays"] = s.overflowRays;
         j["integrator"] = o.picture.integrator;
         j["samples"] = s.samples;  // pixel samples: width x height x spp
+        j["spp"] = spp;
+        if (!o.timeLimit.empty()) j["time_limit_s"] = std::stod(o.timeLimit);
         j["samples_per_s"] = samplesPerS;
         if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
         j["phases_ms"] = nlohmann::json::object();
@@ -159,7 +165,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         std::printf("estimate   per ray: grid %.1f, bvh %.1f (triangle tests)\n", accel.estimate->grid, accel.estimate->bvh);
     std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
-    std::printf("samples    %llu, %.3g per second\n", (unsigned long long)s.samples, samplesPerS);
+    std::printf("samples    %llu, %.3g per second (%u a pixel%s)\n", (unsigned long long)s.samples, samplesPerS, spp,
+                o.timeLimit.empty() ? "" : ", fitted to --time-limit");
     if (!s.livePaths.empty()) {
         std::printf("paths      per bounce:");
         for (uint64_t n : s.livePaths) std::printf(" %llu", (unsigned long long)n);
@@ -320,16 +327,52 @@ std::vector<CameraBasis> frameCameras(const RenderOptions& o, const Frames& fram
     return cameras;
 }
 
+// --time-limit SECONDS (> 0), or 0 when not given. Tiles refuse it: the tiles of one image must
+// take the same samples, and each tile would fit its own count to the time.
+double parseTimeLimit(const RenderOptions& o) {
+    if (o.timeLimit.empty()) return 0.0;
+    const float seconds = parseFiniteFloat("--time-limit", o.timeLimit);
+    if (!(seconds > 0.0f)) throw InputError("--time-limit: " + o.timeLimit + " is not a positive number of seconds");
+    if (!o.tile.empty())
+        throw InputError("--time-limit: not with --tile (the tiles of one image must take the same samples: give "
+                         "--spp, e.g. the count a --time-limit render of the whole image printed)");
+    return double(seconds);
+}
+
+// One frame's image (or the only image) and its samples a pixel: settings.samples, or with
+// --time-limit (timeLimit > 0) the most that fit, printed, with --spp when given as their most.
+// `progress` sees the frame's part of all the frames.
+RenderOutput renderFrame(const RenderOptions& o, Renderer& renderer, const CameraBasis& camera, RenderSettings settings,
+                         const Frames& frames, int frame, double timeLimit, ProgressDisplay& progress, uint32_t& spp) {
+    const int index = frame - frames.first, frameCount = frames.last - frames.first + 1;
+    if (progress.mode() != ProgressDisplay::Mode::Off)
+        settings.progress = [&progress, index, frameCount](double f) {
+            progress.update((double(index) + f) / double(frameCount));
+        };
+    spp = settings.samples;
+    if (!(timeLimit > 0)) return renderer.render(camera, settings);
+    const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
+    TimedRender timed = renderWithinTime(renderer, camera, settings, timeLimit, sppGiven ? settings.samples : 1u << 24);
+    spp = timed.samples;
+    const std::string which = frames.animated ? "frame " + std::to_string(frame) + ": " : "";
+    std::fprintf(stderr, "gpurt: %s%u samples a pixel in the time limit of %s s (--spp %u renders this image)\n",
+                 which.c_str(), spp, o.timeLimit.c_str(), spp);
+    return std::move(timed.output);
+}
+
 int runRender(const RenderOptions& o) {
     // Everything that can be refused is checked before anything is rendered or written.
     const Frames frames = renderFrames(o);
     const PictureCliOptions::Values picture = o.picture.values();
     const Backend backend = o.backend == "cpu" ? Backend::Cpu : Backend::Gl;
+    const double timeLimit = parseTimeLimit(o);
+    const int frameCount = frames.last - frames.first + 1;
+    ProgressDisplay progress(o.progress.mode(), timeLimit > 0 ? 0.0 : double(frameCount) * picture.samples, "spp");
 
     Phases phases;
     auto phaseStart = std::chrono::steady_clock::now();
     int scaleExponent = 0;  // depths are scaled back below
-    LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
+    LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent);
     phases.load = msSince(phaseStart);
     const Scene& scene = loaded.scene;
     if (frames.animated && !scene.animation)
@@ -360,7 +403,8 @@ int runRender(const RenderOptions& o) {
         const CameraBasis& camera = cameras[size_t(frame - frames.first)];
         const auto frameStart = std::chrono::steady_clock::now();
         phaseStart = std::chrono::steady_clock::now();
-        RenderOutput out = renderer->render(camera, settings);
+        uint32_t spp = 1;
+        RenderOutput out = renderFrame(o, *renderer, camera, settings, frames, frame, timeLimit, progress, spp);
         const double renderMs = msSince(phaseStart);
         const RenderPhases ran = renderer->phases();
         phases.compile = ran.compile;
@@ -383,9 +427,11 @@ int runRender(const RenderOptions& o) {
         phases.write = msSince(writeStart);
         if (o.statsGiven)
             printStats(o, scene, accel, out, totalMs, phases,
-                       frames.animated ? std::optional(frame) : std::nullopt);
+                       frames.animated ? std::optional(frame) : std::nullopt, spp);
         phases = Phases{};
+        if (frames.animated) progress.mark();
     }
+    progress.finish();
     return 0;
 }
 
@@ -393,10 +439,18 @@ int runRender(const RenderOptions& o) {
 
 void addRenderCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<RenderOptions>();
-    auto* cmd = app.add_subcommand("render", "Render a scene (.obj, .json or packed .gpscene) to a PNG");
-    cmd->add_option("scene", o->scene, "Scene file")->required()->check(kNotEmpty);
-    cmd->add_option("-o,--output", o->output, "Output PNG")->required()->check(kNotEmpty);
-    cmd->add_option("--aov", o->aovs, "Also write an AOV as PFM: depth|prim|normal|steps|color=FILE");
+    auto* cmd = app.add_subcommand(
+        "render", "Render a scene (.obj with its .mtl, .json, .gltf/.glb, .ply or packed .gpscene) to a PNG or EXR");
+    cmd->add_option("scene", o->scene, "Scene file: .obj, .json, .gltf, .glb, .ply or .gpscene (gpurt pack)")
+        ->required()
+        ->check(kNotEmpty);
+    cmd->add_option("-o,--output", o->output,
+                    "Output: .png (8-bit sRGB, tone mapped) or .exr (linear half-float RGB); with --frames the "
+                    "name holds %04d")
+        ->required()
+        ->check(kNotEmpty);
+    cmd->add_option("--aov", o->aovs,
+                    "Also write an AOV: depth|prim|normal|steps|color=FILE, FILE .pfm or .exr (32-bit float)");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")
@@ -410,6 +464,12 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                     "Render frames A to B of the scene's camera animation; -o and each --aov file hold the "
                     "frame number as %04d (or %d)")
         ->check(kNotEmpty);
+    cmd->add_option("--time-limit", o->timeLimit,
+                    "Take as many whole samples a pixel as fit in SECONDS of rendering (at least one; --spp, when "
+                    "given, is the most); the count is printed, and the image is the --spp image of that count. "
+                    "Not with --tile")
+        ->check(kNotEmpty);
+    o->progress.add(*cmd);
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")
         ->check(CLI::Range(0, 64));
     o->picture.add(*cmd);

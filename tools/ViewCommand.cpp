@@ -275,10 +275,11 @@ class Viewer {
         const double sinceTitle = std::chrono::duration<double>(now - lastTitle_).count();
         if (sinceTitle < 0.5) return;
         const uint64_t rays = raysSoFar();
-        char title[160];
-        std::snprintf(title, sizeof title, "gpurt view: %.1f fps, %.0f ms/frame, %.1f Mrays/s, %u/%u samples, %s",
+        char title[192];
+        std::snprintf(title, sizeof title,
+                      "gpurt view: %.1f fps, %.0f ms/frame, %.1f Mrays/s, %u/%u samples, %s, frame %d",
                       titleFrames_ / sinceTitle, 1e3 * sinceTitle / titleFrames_,
-                      double(rays - titleRays_) / sinceTitle * 1e-6, done_, samples_, kModeNames[mode_]);
+                      double(rays - titleRays_) / sinceTitle * 1e-6, done_, samples_, kModeNames[mode_], frame_);
         window_->setTitle(title);
         titleRays_ = rays;
         lastTitle_ = now;
@@ -330,7 +331,7 @@ int runView(const ViewOptions& o) {
     if (!o.screenshot.empty()) checkOutputPaths({o.screenshot});
     o.tracer.options();  // refuses a bad --mask now
     int scaleExponent = 0;
-    LoadedScene loaded = loadSceneToRender(o.scene, picture.crease, scaleExponent);
+    LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, Backend::Gl, picture.integrator);
@@ -350,11 +351,14 @@ int runView(const ViewOptions& o) {
 
     Viewer viewer(o, scene, accel, picture, control, settings, samples, frames);
     viewer.run();
-    // The camera in use, as options of gpurt render (in the scene file's units).
+    // The camera in use, as options of gpurt render (in the scene file's units, turned up as the
+    // viewer turned the scene); on stderr with --bench, whose stdout is its JSON object alone.
     const CameraSpec& c = viewer.camera();
-    std::printf("--eye %s --target %s --up %s --fovy %s --size %dx%d\n",
-                formatVec3(unscaled(c.eye, scaleExponent)).c_str(), formatVec3(unscaled(c.target, scaleExponent)).c_str(),
-                formatVec3(c.up).c_str(), formatFloat(c.fovy).c_str(), viewer.size().x, viewer.size().y);
+    const std::string upAxis = o.camera.upAxis.empty() ? std::string() : " --up-axis " + o.camera.upAxis;
+    std::fprintf(o.bench ? stderr : stdout, "--eye %s --target %s --up %s --fovy %s --size %dx%d%s\n",
+                 formatVec3(unscaled(c.eye, scaleExponent)).c_str(),
+                 formatVec3(unscaled(c.target, scaleExponent)).c_str(), formatVec3(c.up).c_str(),
+                 formatFloat(c.fovy).c_str(), viewer.size().x, viewer.size().y, upAxis.c_str());
     return 0;
 }
 
@@ -363,12 +367,16 @@ int runView(const ViewOptions& o) {
 void addViewCommand(CLI::App& app, std::function<int()>& run) {
     auto o = std::make_shared<ViewOptions>();
     auto* cmd = app.add_subcommand("view", "Explore a scene in a window, rendered progressively by the stream kernels");
-    cmd->add_option("scene", o->scene, "Scene file")->required()->check(kNotEmpty);
+    cmd->add_option("scene", o->scene, "Scene file: .obj, .json, .gltf, .glb, .ply or .gpscene (gpurt pack)")
+        ->required()
+        ->check(kNotEmpty);
     cmd->add_option("--frames", o->frames, "Render this many frames, then close (the samples of a still camera)")
         ->check(CLI::Range(1, 1 << 24));
     cmd->add_option("--screenshot", o->screenshot, "Write the last frame to this PNG on closing (and on P)")
         ->check(kNotEmpty);
-    cmd->add_flag("--bench", o->bench, "Render a fixed number of frames and print one JSON object (fps, ...)");
+    cmd->add_flag("--bench", o->bench,
+                  "Render " + std::to_string(kBenchFrames) + " timed frames and print one JSON object on stdout "
+                  "(fps, ms_per_frame, mrays_per_s, width, height, frames, renderer; the camera goes to stderr)");
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")->check(CLI::Range(0, 64));
     cmd->add_option("--glsl-dir", o->glslDir, "Load GLSL kernels from this folder instead of the embedded copies")
         ->check(CLI::ExistingDirectory);

@@ -31,5 +31,11 @@ struct FileLoc {
 
 // Prints "LOC: warning: message" and a line end to stderr (the file is read on).
 void warnAt(const FileLoc& loc, const std::string& message);
+// Prints "gpurt: warning: message" and a line end to stderr (a warning of no file).
+void warn(const std::string& message);
+
+// false (--quiet): a warning is printed only the first time its file and message occur (lines,
+// columns and the numbers in the message aside); later ones are left out. true (the default): every warning is printed.
+void setWarningRepeats(bool shown);
 
 }  // namespace gpurt

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/accel/grid/GridCpu.h"
@@ -131,9 +132,16 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 
     const int threads = std::min(resolveThreads(settings.threads), std::max(1, out.height));
     std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
+    std::mutex progressMutex;
+    size_t rowsDone = 0;
     parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
         for (int i = 0; i < camera.width; ++i) shadePixel(i, camera.rowBegin + int(row), threadStats[worker]);
+        if (settings.progress) {
+            const std::lock_guard<std::mutex> lock(progressMutex);
+            if (++rowsDone < size_t(out.height)) settings.progress(double(rowsDone) / double(out.height));
+        }
     });
+    if (settings.progress) settings.progress(1.0);
     for (const RenderStats& s : threadStats) {
         out.stats.primaryRays += s.primaryRays;
         out.stats.shadowRays += s.shadowRays;

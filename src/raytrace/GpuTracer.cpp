@@ -124,12 +124,19 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             setSample(s, samples, settings.seed);
             chosen.sample(lights, bounces, nullptr, out.stats);
             chosen.accumulate();
+            // The rounds' occlusion counts already wait for the passes; glFinish makes the
+            // fraction a finished one (a few microseconds a sample, only when asked for).
+            if (settings.progress && s + 1 < samples) {
+                glFinish();
+                settings.progress(double(s + 1) / double(samples));
+            }
         }
         out.color = downloadVectors<glm::vec3>(p.sampleSum);
         for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
     }
     out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows()) * samples;
     flushStats();
+    if (settings.progress) settings.progress(1.0);
     out.stats.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;

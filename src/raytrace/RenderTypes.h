@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -29,6 +30,10 @@ struct RenderSettings {
     // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
     uint32_t samples = 1;
     uint32_t seed = 0;
+    // Called with the fraction of the render done (0..1, rising; 1 once it is done) after each
+    // sample (gl) or image row (cpu), from the rendering thread or a worker (never two at once).
+    // Nothing of the image depends on it.
+    std::function<void(double)> progress;
 };
 
 struct RenderStats {

@@ -7,7 +7,9 @@
 #include "raytrace/accel/grid/GridGl.h"
 #include "stream/KernelStats.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <set>
 
 namespace gpurt {
@@ -75,6 +77,40 @@ class GlRenderer final : public Renderer, public ProgressiveRenderer {
 };
 
 }  // namespace
+
+TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings,
+                             double seconds, uint32_t maxSamples) {
+    const auto start = std::chrono::steady_clock::now();
+    auto secondsSince = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    // The fraction shown is the time spent of the limit (below 1 until the last render is done).
+    RenderSettings round = settings;
+    if (settings.progress)
+        round.progress = [&](double) { settings.progress(std::min(0.99, secondsSince(start) / seconds)); };
+    round.samples = 1;
+    TimedRender result{renderer.render(camera, round), 1};
+    double lastSeconds = secondsSince(start);
+    maxSamples = std::max(1u, maxSamples);
+    for (;;) {
+        // Seconds a sample took in the last render (its pixel-centre pass counted as one more
+        // sample when it had two or more), and the most samples a render fits in 95% of what is
+        // left (samples vary in cost: the cpu backend's jittered samples measured 7% dearer than
+        // its pixel-centre one on the glass box).
+        const double passes = double(result.samples) + (result.samples >= 2 ? 1.0 : 0.0);
+        const double perSample = std::max(1e-9, lastSeconds / passes);
+        const double fits = std::floor(0.95 * (seconds - secondsSince(start)) / perSample) - 1.0;
+        const uint32_t samples = uint32_t(std::clamp(fits, 0.0, double(maxSamples)));
+        if (samples <= result.samples || samples < 2) break;
+        round.samples = samples;
+        const auto roundStart = std::chrono::steady_clock::now();
+        result.output = renderer.render(camera, round);
+        result.samples = samples;
+        lastSeconds = secondsSince(roundStart);
+    }
+    if (settings.progress) settings.progress(1.0);
+    return result;
+}
 
 // Peak resident memory measured at 1024x1024 and 2048x2048 with every AOV (llvmpipe, Mesa 22.3):
 // about 232 bytes a pixel for GL (eleven RGBA32F streams, masks, read-backs), 48 for the CPU

@@ -65,6 +65,23 @@ class Renderer {
     virtual ProgressiveRenderer* progressive() { return nullptr; }
 };
 
+// A render within a time budget (--time-limit): as many whole samples a pixel as fit, and exactly
+// the image render() gives for that many (the sample pattern depends on the count: sampling.h).
+struct TimedRender {
+    RenderOutput output;
+    uint32_t samples = 1;
+};
+
+// Renders the pixel-centre image (--spp 1) and times it; then, while a render of more samples
+// than the last fits in what is left of `seconds` at the last render's rate a sample, renders
+// the most that fit (at most maxSamples) from the start. The rate of the first render, slowed by
+// the kernels' first use (llvmpipe compiles at the first pass), is refined by the later ones.
+// The renders before the last are spent; a render slower than its estimate can pass the limit
+// (samples are whole). settings.samples is ignored; settings.progress sees the time spent of
+// the limit, then 1.
+TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings,
+                             double seconds, uint32_t maxSamples);
+
 // The bytes a render of `pixels` pixels needs (its streams or buffers, masks, read-backs, and a
 // fixed part): what the commands check against the free memory before they start.
 double renderBytes(Backend backend, Integrator integrator, double pixels);

@@ -142,7 +142,7 @@ class SceneReader {
 
     JsonSceneFile read(const json& root) {
         const Pointer top;
-        requireObject(root, top, {"meshes", "lights", "camera", "animation", "background", "render"});
+        requireObject(root, top, {"meshes", "lights", "camera", "animation", "background", "render", "up_axis"});
         JsonSceneFile result;
         Scene& scene = result.scene;
 
@@ -165,6 +165,10 @@ class SceneReader {
             scene.animation = readAnimation(*animation, top / "animation");
         if (const json* background = find(root, "background"))
             scene.background = color(*background, top / "background");
+        if (const json* up = find(root, "up_axis")) {
+            if (!up->is_string() || !parseUpAxis(up->get<std::string>(), scene.upAxis))
+                fail(top / "up_axis", "expected one of \"y\", \"z\", \"x\", \"-y\", \"-z\", \"-x\"");
+        }
         if (const json* render = find(root, "render")) {
             const Pointer at = top / "render";
             requireObject(*render, at, {"size", "max_bounces"});

@@ -2,6 +2,7 @@
 #include "scene/Scene.h"
 
 #include <cmath>
+#include <utility>
 
 namespace gpurt {
 
@@ -15,6 +16,64 @@ bool Bounds::empty() const { return !(min.x <= max.x && min.y <= max.y && min.z 
 glm::vec3 Bounds::center() const { return (min + max) * 0.5f; }
 
 glm::vec3 Bounds::halfExtent() const { return (max - min) * 0.5f; }
+
+namespace {
+constexpr std::pair<UpAxis, const char*> kUpAxisNames[] = {
+    {UpAxis::PosX, "x"}, {UpAxis::NegX, "-x"}, {UpAxis::PosY, "y"},
+    {UpAxis::NegY, "-y"}, {UpAxis::PosZ, "z"}, {UpAxis::NegZ, "-z"}};
+}  // namespace
+
+bool parseUpAxis(const std::string& text, UpAxis& axis) {
+    for (const auto& [value, name] : kUpAxisNames)
+        if (text == name) {
+            axis = value;
+            return true;
+        }
+    return false;
+}
+
+const char* upAxisName(UpAxis axis) {
+    for (const auto& [value, name] : kUpAxisNames)
+        if (value == axis) return name;
+    return "y";
+}
+
+glm::vec3 upAxisToY(glm::vec3 v, UpAxis axis) {
+    switch (axis) {
+        case UpAxis::PosX: return {-v.y, v.x, v.z};
+        case UpAxis::NegX: return {v.y, -v.x, v.z};
+        case UpAxis::PosY: return v;
+        case UpAxis::NegY: return {v.x, -v.y, -v.z};
+        case UpAxis::PosZ: return {v.x, v.z, -v.y};
+        case UpAxis::NegZ: return {v.x, -v.z, v.y};
+    }
+    return v;
+}
+
+void rotateUpToY(Scene& scene, UpAxis axis) {
+    scene.upAxis = UpAxis::PosY;
+    if (axis == UpAxis::PosY) return;
+    auto turn = [axis](glm::vec3& v) { v = upAxisToY(v, axis); };
+    for (Triangle& t : scene.triangles) {
+        turn(t.v0);
+        turn(t.v1);
+        turn(t.v2);
+    }
+    for (TriangleNormals& n : scene.normals) {
+        turn(n.n0);
+        turn(n.n1);
+        turn(n.n2);
+    }
+    for (PointLight& l : scene.lights) turn(l.position);
+    auto turnCamera = [&](CameraSpec& c) {
+        turn(c.eye);
+        turn(c.target);
+        turn(c.up);
+    };
+    if (scene.camera) turnCamera(*scene.camera);
+    if (scene.animation)
+        for (CameraKey& key : scene.animation->keys) turnCamera(key.camera);
+}
 
 CameraSpec CameraAnimation::at(int frame) const {
     const double t = timeOf(frame);

@@ -89,6 +89,18 @@ struct Triangle {
     glm::vec3 v0, v1, v2;
 };
 
+// The axis that points up in a scene file's coordinates (--up-axis, a JSON scene's "up_axis"): y
+// in gpurt's own convention (and OBJ's, glTF's); z in most CAD and scanning data.
+enum class UpAxis { PosX, NegX, PosY, NegY, PosZ, NegZ };
+
+// "x", "-x", "y", "-y", "z", "-z" -> the axis; false for anything else.
+bool parseUpAxis(const std::string& text, UpAxis& axis);
+const char* upAxisName(UpAxis axis);
+// The rotation that turns `axis` into +y, an axis permutation with signs (exact in float, and
+// proper: no mirror image): z: (x, y, z) -> (x, z, -y); -z: (x, -z, y); x: (-y, x, z);
+// -x: (y, -x, z); -y: (x, -y, -z).
+glm::vec3 upAxisToY(glm::vec3 v, UpAxis axis);
+
 // The shading normals at a triangle's vertices (OBJ vn, or made by smoothNormals). All zero: the
 // triangle has none (it is shaded with its geometric normal until smoothNormals gives it some).
 struct TriangleNormals {
@@ -125,6 +137,8 @@ struct Scene {
     std::optional<CameraAnimation> animation;  // JSON "animation"; none elsewhere
     glm::vec3 background{0.05f, 0.05f, 0.08f};
     int maxBounces = 3;
+    // The up axis the file says it has (JSON "up_axis"); the commands turn it up (rotateUpToY).
+    UpAxis upAxis = UpAxis::PosY;
 
     // Box of all triangle vertices; empty() for a scene without triangles.
     Bounds bounds() const;
@@ -136,6 +150,10 @@ struct Scene {
 // gives 1/2 at the centre of the scene. Both backends call this, so they light identically.
 // `backgroundLights`: the path integrator, under which a background that is not black is a light
 // too (CONTRACT.md): it then adds no headlight.
+// Rotates everything placed in the scene (triangles, shading normals, lights, camera, animation) by
+// upAxisToY, so that `axis` points up, and sets upAxis to +y.
+void rotateUpToY(Scene& scene, UpAxis axis);
+
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights = false);
 
 }  // namespace gpurt

@@ -2,17 +2,25 @@
 // stdout and stderr, and the files it left behind.
 #pragma once
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
 
 namespace gpurt::test {
 
@@ -49,6 +57,76 @@ inline std::string gpurtKeepingPreloads(const fs::path& folder) {
     fs::permissions(script, fs::perms::owner_all, fs::perm_options::add);
     return script.string();
 }
+
+// A process started in the background, its output in files; killed by pid if still running.
+class Background {
+  public:
+    // ours: gpurt (it keeps the sanitizer build's preloads and options); else another program,
+    // which gets neither.
+    Background(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err,
+               const std::string& display, bool ours = true) {
+        std::vector<std::string> env;
+        for (char** e = environ; *e; ++e) {
+            const std::string var(*e);
+            const bool sanitizer = var.rfind("LD_PRELOAD=", 0) == 0 || var.rfind("ASAN_OPTIONS=", 0) == 0 ||
+                                   var.rfind("LSAN_OPTIONS=", 0) == 0 || var.rfind("UBSAN_OPTIONS=", 0) == 0;
+            if (var.rfind("DISPLAY=", 0) != 0 && (ours || !sanitizer)) env.push_back(var);
+        }
+        if (!display.empty()) env.push_back("DISPLAY=" + display);
+        std::vector<char*> args, envp;
+        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+        envp.push_back(nullptr);
+        posix_spawn_file_actions_t files;
+        posix_spawn_file_actions_init(&files);
+        posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (posix_spawn(&pid_, args[0], &files, nullptr, args.data(), envp.data()) != 0) pid_ = -1;
+        posix_spawn_file_actions_destroy(&files);
+    }
+    ~Background() { stop(); }
+    bool started() const { return pid_ > 0; }
+    bool running() {
+        if (pid_ <= 0) return false;
+        int status = 0;
+        const pid_t r = waitpid(pid_, &status, WNOHANG);
+        if (r == pid_) {
+            code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            pid_ = -1;
+            return false;
+        }
+        return true;
+    }
+    // The exit status, waiting at most `timeout`; -2 when it is still running then.
+    int wait(std::chrono::seconds timeout) {
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        while (running() && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        return running() ? -2 : code_;
+    }
+    // SIGKILL now (as a scheduler ends a task past its time), and reaped.
+    void killNow() {
+        if (!running()) return;
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+        pid_ = -1;
+        code_ = -1;
+    }
+    void stop() {
+        if (running()) {
+            kill(pid_, SIGTERM);
+            if (wait(std::chrono::seconds(5)) == -2) {
+                kill(pid_, SIGKILL);
+                waitpid(pid_, nullptr, 0);
+            }
+        }
+        pid_ = -1;
+    }
+
+  private:
+    pid_t pid_ = -1;
+    int code_ = -1;
+};
 
 // A fresh folder for each test (named after it), removed afterwards; runs gpurt with its output
 // captured in files outside that folder, so that the folder holds only what gpurt wrote.

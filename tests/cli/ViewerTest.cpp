@@ -10,83 +10,17 @@
 #include "image/ImageIO.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <signal.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <chrono>
 #include <cmath>
 #include <thread>
 
-extern char** environ;
-
 namespace gpurt::test {
 namespace {
 
 using namespace std::chrono_literals;
-
-// A process started in the background, its output in files; killed by pid if still running.
-class Background {
-  public:
-    // ours: gpurt (it keeps the sanitizer build's preloads and options); else another program,
-    // which gets neither.
-    Background(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err,
-               const std::string& display, bool ours = true) {
-        std::vector<std::string> env;
-        for (char** e = environ; *e; ++e) {
-            const std::string var(*e);
-            const bool sanitizer = var.rfind("LD_PRELOAD=", 0) == 0 || var.rfind("ASAN_OPTIONS=", 0) == 0 ||
-                                   var.rfind("LSAN_OPTIONS=", 0) == 0 || var.rfind("UBSAN_OPTIONS=", 0) == 0;
-            if (var.rfind("DISPLAY=", 0) != 0 && (ours || !sanitizer)) env.push_back(var);
-        }
-        if (!display.empty()) env.push_back("DISPLAY=" + display);
-        std::vector<char*> args, envp;
-        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
-        envp.push_back(nullptr);
-        posix_spawn_file_actions_t files;
-        posix_spawn_file_actions_init(&files);
-        posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (posix_spawn(&pid_, args[0], &files, nullptr, args.data(), envp.data()) != 0) pid_ = -1;
-        posix_spawn_file_actions_destroy(&files);
-    }
-    ~Background() { stop(); }
-    bool started() const { return pid_ > 0; }
-    bool running() {
-        if (pid_ <= 0) return false;
-        int status = 0;
-        const pid_t r = waitpid(pid_, &status, WNOHANG);
-        if (r == pid_) {
-            code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-            pid_ = -1;
-            return false;
-        }
-        return true;
-    }
-    // The exit status, waiting at most `timeout`; -2 when it is still running then.
-    int wait(std::chrono::seconds timeout) {
-        const auto end = std::chrono::steady_clock::now() + timeout;
-        while (running() && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(50ms);
-        return running() ? -2 : code_;
-    }
-    void stop() {
-        if (running()) {
-            kill(pid_, SIGTERM);
-            if (wait(5s) == -2) {
-                kill(pid_, SIGKILL);
-                waitpid(pid_, nullptr, 0);
-            }
-        }
-        pid_ = -1;
-    }
-
-  private:
-    pid_t pid_ = -1;
-    int code_ = -1;
-};
 
 // One X server for the test suite.
 class XServer {
@@ -107,10 +41,12 @@ class XServer {
             std::vector<std::string>{"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
             number, log, "", false);
         std::string text;
-        for (int i = 0; i < 200 && server_->running(); ++i) {
+        // Polled until Xvfb writes its display number, at most a minute (a loaded machine).
+        const auto end = std::chrono::steady_clock::now() + 60s;
+        while (server_->running() && std::chrono::steady_clock::now() < end) {
             text = readFile(number);
             if (!text.empty() && text.back() == '\n') break;
-            std::this_thread::sleep_for(50ms);
+            std::this_thread::sleep_for(20ms);
         }
         if (!server_->started() || !server_->running() || text.empty() || text.back() != '\n')
             failure_ = "Xvfb did not start (is the xvfb package installed?): " + readFile(log);
@@ -149,14 +85,36 @@ class Viewer : public GpurtTest {
         return std::make_unique<Background>(argv, dir / "view.out", dir / "view.err", XServer::get().display());
     }
     // The id of the viewer's window, once it is mapped and has shown a frame (its title then
-    // carries the frame rate).
+    // carries the frame rate and the frame count); polled for at most two minutes.
     std::string window() {
-        for (int i = 0; i < 300; ++i) {
+        const auto end = std::chrono::steady_clock::now() + 120s;
+        while (std::chrono::steady_clock::now() < end) {
             const std::string out = xdotool("search --onlyvisible --name '^gpurt view: '");
             if (!out.empty() && std::isdigit(static_cast<unsigned char>(out[0]))) return out.substr(0, out.find('\n'));
-            std::this_thread::sleep_for(100ms);
+            std::this_thread::sleep_for(50ms);
         }
         return {};
+    }
+    // The frame count in the window's title ("..., frame N"), or -1.
+    static int titleFrame(const std::string& id) {
+        const std::string title = xdotool("getwindowname " + id);
+        const size_t at = title.rfind("frame ");
+        return at == std::string::npos ? -1 : std::atoi(title.c_str() + at + 6);
+    }
+    // Waits (at most a minute) until the viewer has handled every event sent before the call and
+    // rendered a frame after them: the title's frame count changes twice (the title is set at
+    // most twice a second, so the first change may report a frame that began before the events;
+    // every frame counted by the second began after the first change, so after the events).
+    bool framesAfterEvents(const std::string& id) {
+        const auto end = std::chrono::steady_clock::now() + 60s;
+        int changes = 0, last = titleFrame(id);
+        while (changes < 2 && std::chrono::steady_clock::now() < end) {
+            std::this_thread::sleep_for(20ms);
+            const int now = titleFrame(id);
+            if (now > last) ++changes;
+            last = std::max(last, now);
+        }
+        return changes >= 2;
     }
     // The camera the viewer printed as render options (its last stdout line).
     std::string printedCamera() const {
@@ -232,17 +190,16 @@ TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
     auto v = view("scenes/boxes.json", {"--size", "200x150", "--spp", "1", "--screenshot", path("shot.png")});
     const std::string id = window();
     ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    // X delivers the events in order; each group is waited for by the frames rendered after it.
     xdotool("mousemove --window " + id + " 100 75");
-    std::this_thread::sleep_for(300ms);
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
     xdotool("mousedown 1");
-    for (int step = 1; step <= 8; ++step) {
+    for (int step = 1; step <= 8; ++step)
         xdotool("mousemove --window " + id + " " + std::to_string(100 + 5 * step) + " " + std::to_string(75 + 2 * step));
-        std::this_thread::sleep_for(50ms);
-    }
     xdotool("mouseup 1");
     xdotool("windowfocus --sync " + id);
     xdotool("key w");
-    std::this_thread::sleep_for(1500ms);
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
     xdotool("key Escape");
     ASSERT_EQ(v->wait(60s), 0) << "the viewer did not close on Esc: " << readFile(dir / "view.err");
     const std::string moved = printedCamera();
@@ -259,7 +216,7 @@ TEST_F(Viewer, DisplayModeKeyShowsTheAovAndResizeKeepsRendering) {
     xdotool("windowsize --sync " + id + " 240 180");
     xdotool("windowfocus --sync " + id);
     xdotool("key 3");
-    std::this_thread::sleep_for(1500ms);
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
     xdotool("key Escape");
     ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
     const std::string camera = printedCamera();
@@ -280,6 +237,41 @@ TEST_F(Viewer, DisplayModeKeyShowsTheAovAndResizeKeepsRendering) {
     EXPECT_EQ(sw, 240);
     EXPECT_EQ(sh, 180);
     expectSame(shot, expected, "normal display mode");
+}
+
+// --bench prints its JSON object and nothing else on stdout (`| jq .fps` works); the camera line
+// goes to stderr.
+TEST_F(Viewer, BenchPrintsOnlyItsJsonOnStdout) {
+    auto v = view("scenes/boxes.json", {"--size", "64x48", "--bench"});
+    ASSERT_TRUE(v->started());
+    ASSERT_EQ(v->wait(300s), 0) << readFile(dir / "view.err");
+    const std::string out = readFile(dir / "view.out");
+    nlohmann::json bench;
+    ASSERT_NO_THROW(bench = nlohmann::json::parse(out)) << out;
+    ASSERT_TRUE(bench.is_object()) << out;
+    EXPECT_GT(bench["fps"].get<double>(), 0.0) << out;
+    EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+    EXPECT_NE(readFile(dir / "view.err").find("--eye "), std::string::npos) << readFile(dir / "view.err");
+}
+
+// The viewer honours --up-axis: a Z-up mesh turned up is the mesh turned by hand, (x, z, -y),
+// rendered with the camera the viewer printed.
+TEST_F(Viewer, UpAxisTurnsTheSceneAsRenderDoes) {
+    const float v[][3] = {{-1, -0.5f, 0}, {1, -0.5f, 0}, {0, 0.5f, 2}, {1, -0.5f, 0}, {0.5f, 1, 0}, {0, 0.5f, 2}};
+    std::string zUp, turned;
+    for (const auto& p : v) {
+        zUp += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+        turned += "v " + std::to_string(p[0]) + " " + std::to_string(p[2]) + " " + std::to_string(-p[1]) + "\n";
+    }
+    write("zup.obj", zUp + "f 1 2 3\nf 4 5 6\n");
+    write("turned.obj", turned + "f 1 2 3\nf 4 5 6\n");
+    auto viewer = view(path("zup.obj"), {"--up-axis", "z", "--size", "96x72", "--frames", "2", "--screenshot",
+                                         path("shot.png")});
+    ASSERT_EQ(viewer->wait(120s), 0) << readFile(dir / "view.err");
+    std::string camera = printedCamera();
+    const std::string option = " --up-axis z";
+    ASSERT_NE(camera.find(option), std::string::npos) << camera;
+    expectRenderMatches(path("turned.obj"), camera.erase(camera.find(option), option.size()), "--spp 2", "shot.png");
 }
 
 }  // namespace

@@ -519,5 +519,55 @@ TEST(ShippedScenesTest, LoadWithTheSeedsTriangleCounts) {
     for (const PointLight& light : room.lights) EXPECT_TRUE(inside(light.position));
 }
 
+// "up_axis" is read, and rotateUpToY turns everything placed in the scene (triangles, normals,
+// lights, camera, animation keys) by the rotation that takes that axis to +y: a quarter turn about
+// x for z and -z, about z for x and -x, a half turn about x for -y (rotateX/rotateZ above, by
+// angle).
+TEST_F(JsonSceneTest, UpAxisTurnsEverythingPlacedInTheScene) {
+    write("tri.obj", std::string(kTriangleObj) + "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\nf 1//1 2//2 3//3\n");
+    const std::pair<const char*, std::function<glm::dvec3(glm::dvec3)>> axes[] = {
+        {"z", [](glm::dvec3 p) { return rotateX(p, -90); }}, {"-z", [](glm::dvec3 p) { return rotateX(p, 90); }},
+        {"x", [](glm::dvec3 p) { return rotateZ(p, 90); }},  {"-x", [](glm::dvec3 p) { return rotateZ(p, -90); }},
+        {"-y", [](glm::dvec3 p) { return rotateX(p, 180); }}, {"y", [](glm::dvec3 p) { return p; }},
+    };
+    for (const auto& [name, turn] : axes) {
+        SCOPED_TRACE(name);
+        const std::string up = std::string(name).back() == 'x' ? "0, 1, 0" : "1, 0, 0";
+        const fs::path path = write("scene.json", std::string("{\"up_axis\": \"") + name + R"(", "meshes": [{"file": "tri.obj"}],
+            "lights": [{"position": [1, 2, 3]}],
+            "camera": {"eye": [4, 5, 6], "target": [0, 0, 0], "up": [)" + up + R"(]},
+            "animation": {"camera": [{"time": 0, "eye": [7, 8, 9], "target": [1, 0, 0], "up": [)" + up + "]}]}}");
+        const Scene file = loadJsonSceneFile(path).scene;
+        Scene scene = file;
+        UpAxis axis = UpAxis::PosY;
+        ASSERT_TRUE(parseUpAxis(name, axis));
+        EXPECT_EQ(scene.upAxis, axis);
+        EXPECT_STREQ(upAxisName(axis), name);
+        rotateUpToY(scene, scene.upAxis);
+        EXPECT_EQ(scene.upAxis, UpAxis::PosY);
+        // The named axis itself ends up as +y.
+        glm::dvec3 named(0.0);
+        named[std::string(name).back() - 'x'] = name[0] == '-' ? -1.0 : 1.0;
+        expectNear(upAxisToY(glm::vec3(named), axis), turn(named));
+        expectNear(upAxisToY(glm::vec3(named), axis), {0, 1, 0});
+        ASSERT_EQ(scene.triangles.size(), 2u);
+        for (size_t t = 0; t < scene.triangles.size(); ++t) {
+            expectNear(scene.triangles[t].v0, turn(file.triangles[t].v0));
+            expectNear(scene.triangles[t].v1, turn(file.triangles[t].v1));
+            expectNear(scene.triangles[t].v2, turn(file.triangles[t].v2));
+        }
+        ASSERT_EQ(scene.normals.size(), 2u);
+        expectNear(scene.normals[1].n0, turn(file.normals[1].n0));
+        expectNear(scene.normals[1].n2, turn(file.normals[1].n2));
+        expectNear(scene.lights[0].position, turn({1, 2, 3}));
+        expectNear(scene.camera->eye, turn({4, 5, 6}));
+        expectNear(scene.camera->up, turn(glm::dvec3(file.camera->up)));
+        expectNear(scene.animation->keys[0].camera.eye, turn({7, 8, 9}));
+        expectNear(scene.animation->keys[0].camera.target, turn({1, 0, 0}));
+    }
+    expectError(R"({"up_axis": "w", "meshes": []})", {"/up_axis", "\"z\""});
+    expectError(R"({"up_axis": 2, "meshes": []})", {"/up_axis"});
+}
+
 }  // namespace
 }  // namespace gpurt
