@@ -57,11 +57,45 @@ class MemoryStream : public Imf::IStream {
 };
 
 void checkSize(int64_t w, int64_t h, const std::string& name) {
+#ifdef GPURT_FUZZ_ENVIRONMENT_TEXELS  // the fuzzer's memory limit (tests/fuzz/CMakeLists.txt)
+    if (w > 0 && h > 0 && w * h > GPURT_FUZZ_ENVIRONMENT_TEXELS)
+        throw InputError(name + ": environment map too large for the fuzzer");
+#endif
     if (w < 1 || h < 1 || w > kMaxEnvironmentWidth || h > kMaxEnvironmentHeight)
         throw InputError(name + ": environment map of " + std::to_string(w) + "x" + std::to_string(h) +
                          " texels, not 1.." + std::to_string(kMaxEnvironmentWidth) + " x 1.." +
                          std::to_string(kMaxEnvironmentHeight));
 }
+
+// stb_image reads through these callbacks so that a file that ends early is told from one that
+// does not: stb itself reads zeros past the end. `overrun` is set when stb asks for bytes past it.
+struct HdrSource {
+    const std::string& bytes;
+    size_t pos = 0;
+    bool overrun = false;
+};
+int hdrRead(void* user, char* data, int size) {
+    auto* s = static_cast<HdrSource*>(user);
+    const size_t n = std::min(size_t(std::max(size, 0)), s->bytes.size() - s->pos);
+    if (n == 0 && size > 0) s->overrun = true;
+    std::memcpy(data, s->bytes.data() + s->pos, n);
+    s->pos += n;
+    return int(n);
+}
+void hdrSkip(void* user, int n) {
+    auto* s = static_cast<HdrSource*>(user);
+    if (n < 0 || size_t(n) > s->bytes.size() - s->pos) {
+        s->overrun = n > 0;
+        s->pos = n > 0 ? s->bytes.size() : s->pos;
+        return;
+    }
+    s->pos += size_t(n);
+}
+int hdrEof(void* user) {
+    auto* s = static_cast<HdrSource*>(user);
+    return s->pos >= s->bytes.size() ? 1 : 0;
+}
+const stbi_io_callbacks kHdrCallbacks = {hdrRead, hdrSkip, hdrEof};
 
 EnvironmentImage decodeHdr(const std::string& bytes, const std::string& name) {
     if (bytes.size() > size_t(INT32_MAX)) throw InputError(name + ": file too large");
@@ -69,11 +103,18 @@ EnvironmentImage decodeHdr(const std::string& bytes, const std::string& name) {
     int w = 0, h = 0, comp = 0;
     if (!stbi_is_hdr_from_memory(data, int(bytes.size())))
         throw InputError(name + ": not a Radiance .hdr file (no #?RADIANCE or #?RGBE header)");
-    if (!stbi_info_from_memory(data, int(bytes.size()), &w, &h, &comp))
+    HdrSource info{bytes};
+    if (!stbi_info_from_callbacks(&kHdrCallbacks, &info, &w, &h, &comp))
         throw InputError(name + ": not a readable Radiance .hdr file (" + stbi_failure_reason() + ")");
     checkSize(w, h, name);
-    float* texels = stbi_loadf_from_memory(data, int(bytes.size()), &w, &h, &comp, 3);
+    HdrSource source{bytes};
+    float* texels = stbi_loadf_from_callbacks(&kHdrCallbacks, &source, &w, &h, &comp, 3);
     if (!texels) throw InputError(name + ": not a readable Radiance .hdr file (" + stbi_failure_reason() + ")");
+    if (source.overrun) {
+        stbi_image_free(texels);
+        throw InputError(name + ": truncated Radiance .hdr file (its " + std::to_string(w) + "x" + std::to_string(h) +
+                         " texels end early)");
+    }
     EnvironmentImage image;
     image.width = w;
     image.height = h;

@@ -20,8 +20,8 @@ std::array<glm::vec3, 9> projectHarmonics(const EnvironmentTable& t) {
     std::array<glm::dvec3, 9> c{};
     const double pi = 3.14159265358979323846;
     for (int j = 0; j < t.height; ++j) {
-        const double theta = (j + 0.5) / t.height * pi;
-        const double dOmega = (2.0 * pi / t.width) * (pi / t.height) * std::sin(theta);
+        // The texel's exact solid angle (a constant map projects exactly).
+        const double dOmega = (2.0 * pi / t.width) * (std::cos(double(j) / t.height * pi) - std::cos(double(j + 1) / t.height * pi));
         for (int i = 0; i < t.width; ++i) {
             const glm::vec2 uv((i + 0.5f) / float(t.width), float((j + 0.5) / t.height));
             const glm::dvec3 d(raymath::environmentDirection(uv, t.rotation));

@@ -143,10 +143,12 @@ TEST_F(Environments, LambertSphereUnderAConstantSkyShowsItsAlbedo) {
                             ASSERT_NEAR(out.color[i][c], sky, 1e-6f);
                             continue;
                         }
-                        if (!path) ASSERT_NEAR(out.color[i][c], albedo[c] * sky, 1e-3f) << i;
+                        // Whitted: the harmonics of a 64 x 32 map, to a part in a thousand.
+                        if (!path) ASSERT_NEAR(out.color[i][c], albedo[c] * sky, 1e-3f * albedo[c] * sky) << i;
                         e.add(out.color[i][c]);
                     }
-                EXPECT_NEAR(e.mean, albedo[c] * sky, 5.0 * e.error + 1e-4) << "channel " << c << ", standard error " << e.error;
+                EXPECT_NEAR(e.mean, albedo[c] * sky, 5.0 * e.error + 1e-3 * albedo[c] * sky)
+                    << "channel " << c << ", standard error " << e.error;
             }
         }
     }
@@ -221,9 +223,12 @@ TEST_F(Environments, RotationTurnsTheMapCounterClockwiseSeenFromAbove) {
                           Case{{1, 0, 0}, -90.0f, {0, 0, 1}}}) {
         SCOPED_TRACE(testing::Message() << "rotation " << c.degrees);
         const Environment env = patchEnvironment(c.patch, c.degrees, "turned.exr");
-        EXPECT_GT(litPlane(env, c.after).meanGl, 0.6);
-        EXPECT_GT(litPlane(env, c.after).meanCpu, 0.6);
-        EXPECT_EQ(litPlane(env, c.patch).largest, 0.0);
+        const PlaneLight turned = litPlane(env, c.after);
+        EXPECT_GT(turned.meanGl, 0.6);
+        EXPECT_GT(turned.meanCpu, 0.6);
+        EXPECT_EQ(litPlane(env, -c.after).largest, 0.0);
+        // The patch's old place is now at right angles: half of it at grazing light at most.
+        EXPECT_LT(litPlane(env, c.patch).meanGl, 0.15 * turned.meanGl);
     }
 }
 
