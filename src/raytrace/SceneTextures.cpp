@@ -185,8 +185,10 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
     return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
-           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) + size(environmentMap_) +
-           size(environmentMarginal_) + size(environmentConditional_) + size(environmentHarmonics_);
+           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) +
+           (environmentTable_.empty() ? 0  // the 1 x 1 stand-ins of a scene without an environment
+                                      : size(environmentMap_) + size(environmentMarginal_) +
+                                            size(environmentConditional_) + size(environmentHarmonics_));
 }
 
 }  // namespace gpurt

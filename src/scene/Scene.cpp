@@ -81,7 +81,8 @@ bool hasOwnLight(const Scene& scene) {
 }
 
 bool addDefaultLight(Scene& scene) {
-    if (hasOwnLight(scene)) return false;
+    // A scene without triangles has nothing to light: it shows its background as before.
+    if (hasOwnLight(scene) || scene.triangles.empty()) return false;
     scene.environment = defaultEnvironment();
     return true;
 }

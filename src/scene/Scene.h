@@ -164,6 +164,7 @@ std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, boo
 // environment, or a background the file set.
 bool hasOwnLight(const Scene& scene);
 // Gives a scene without a light of its own the default light (defaultEnvironment); true if it did.
+// A scene without triangles gets none (nothing to light: its background shows, as before).
 bool addDefaultLight(Scene& scene);
 
 }  // namespace gpurt
