@@ -9,8 +9,9 @@
 // above: what the unturned map shows in direction m the scene sees in direction R_y(a) m, so a
 // direction d reads the map at R_y(-a) d. `rotation` is (cos a, sin a).
 //
-// Importance sampling: texel (i, j) is drawn with probability proportional to its luminance times
-// sin(theta) at its row's centre (EnvironmentTable: the marginal distribution of the rows, the
+// Importance sampling: texel (i, j) is drawn with probability proportional to its luminance (the
+// largest of it and its 8 neighbours, which the bilinear filter blends into it) times sin(theta)
+// at its row's centre (EnvironmentTable: the marginal distribution of the rows, the
 // conditional one of each row's columns), uniformly within it in (u, v); its density in (u, v) is
 // the texel's `uvPdf` (W H times its probability), and in solid angle uvPdf / (2 pi^2 sin(theta)).
 //
