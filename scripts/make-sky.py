@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Writes a procedural sky as a latitude-longitude Radiance .hdr (flat RGBE scanlines), in the
 contract's convention (CONTRACT.md: u = 0.5 + atan2(d.x, -d.z) / (2 pi), v = acos(d.y) / pi, the
-top row first): a blue sky that pales towards the horizon, a small warm sun (half a degree of
-radiance 20000 would not show at these sizes: the sun is 1.5 degrees across, radiance 1500, with
-a soft glow) and a grey-brown ground. Standard library only.
+top row first): a blue sky that pales towards the horizon, a small warm sun (1.5 degrees
+across, radiance 5000: the real one's half degree would be a fraction of a texel at these sizes,
+with a soft glow) and a grey-brown ground. Standard library only.
 
     scripts/make-sky.py OUT.hdr [--width 1024] [--sun-azimuth 40] [--sun-elevation 30]
 """
@@ -25,12 +25,12 @@ def sky(d, sun):
     cos_sun = x * sun[0] + y * sun[1] + z * sun[2]
     if y >= 0.0:
         t = math.sqrt(y)
-        base = (0.55 + (0.18 - 0.55) * t, 0.65 + (0.32 - 0.65) * t, 0.85 + (0.75 - 0.85) * t)
+        base = (0.5 + (0.1 - 0.5) * t, 0.6 + (0.2 - 0.6) * t, 0.75 + (0.45 - 0.75) * t)
     else:
         t = min(1.0, -6.0 * y)
         base = (0.55 + (0.22 - 0.55) * t, 0.6 + (0.19 - 0.6) * t, 0.65 + (0.15 - 0.65) * t)
-    glow = 6.0 * max(0.0, cos_sun) ** 64 + 0.6 * max(0.0, cos_sun) ** 4
-    disc = 1500.0 if cos_sun > math.cos(math.radians(0.75)) else 0.0
+    glow = 3.0 * max(0.0, cos_sun) ** 256 + 0.3 * max(0.0, cos_sun) ** 8
+    disc = 5000.0 if cos_sun > math.cos(math.radians(0.75)) else 0.0
     sunlight = (1.0, 0.9, 0.75)
     return tuple(base[c] + (glow + disc) * sunlight[c] for c in range(3))
 
