@@ -68,7 +68,10 @@ void checkSize(int64_t w, int64_t h, const std::string& name) {
 }
 
 // stb_image reads through these callbacks so that a file that ends early is told from one that
-// does not: stb itself reads zeros past the end. `overrun` is set when stb asks for bytes past it.
+// does not: stb itself reads zeros past the end. `overrun` is set when stb asks for bytes past it,
+// and it is then given line ends ('\n'): on zeros stb's run-length decoder would loop for ever (a
+// run of length 0 makes no progress) and on other bytes its header reader (which reads to a line
+// end); on '\n' the header ends and every run has length 10, so stb returns soon.
 struct HdrSource {
     const std::string& bytes;
     size_t pos = 0;
@@ -76,8 +79,13 @@ struct HdrSource {
 };
 int hdrRead(void* user, char* data, int size) {
     auto* s = static_cast<HdrSource*>(user);
-    const size_t n = std::min(size_t(std::max(size, 0)), s->bytes.size() - s->pos);
-    if (n == 0 && size > 0) s->overrun = true;
+    if (size <= 0) return 0;
+    const size_t n = std::min(size_t(size), s->bytes.size() - s->pos);
+    if (n == 0) {
+        s->overrun = true;
+        std::memset(data, '\n', size_t(size));
+        return size;
+    }
     std::memcpy(data, s->bytes.data() + s->pos, n);
     s->pos += n;
     return int(n);
@@ -162,7 +170,7 @@ EnvironmentImage decodeExr(const std::string& bytes, const std::string& name) {
 
 void checkEnvironmentImage(EnvironmentImage& image, const std::string& name) {
     checkSize(image.width, image.height, name);
-    size_t negative = 0;
+    size_t negative = 0, huge = 0;
     for (size_t i = 0; i < image.texels.size(); ++i) {
         glm::vec3& t = image.texels[i];
         for (int c = 0; c < 3; ++c) {
@@ -174,9 +182,14 @@ void checkEnvironmentImage(EnvironmentImage& image, const std::string& name) {
                 t[c] = 0.0f;
                 ++negative;
             }
+            if (t[c] > kMaxEnvironmentRadiance) {  // the harmonics' sums would overflow float
+                t[c] = kMaxEnvironmentRadiance;
+                ++huge;
+            }
         }
     }
     if (negative > 0) warnAt({name}, std::to_string(negative) + " negative texel channels clamped to 0");
+    if (huge > 0) warnAt({name}, std::to_string(huge) + " texel channels above 1e30 clamped to 1e30");
 }
 
 EnvironmentImage decodeEnvironmentImage(const std::string& bytes, const std::string& name, bool exr) {

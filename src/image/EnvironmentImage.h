@@ -5,7 +5,8 @@
 // Hostile input: a missing, truncated or unreadable file, a map of zero size or larger than
 // kMaxEnvironmentWidth x kMaxEnvironmentHeight, and a texel that is NaN or infinite are refused
 // with InputError naming the file (and the texel); negative texels (EXR can hold them) are clamped
-// to 0 with one warning naming the file.
+// to 0, and channels above kMaxEnvironmentRadiance (RGBE reaches 1.7e38) to it, each with one
+// warning naming the file.
 #pragma once
 
 #include <filesystem>
@@ -19,6 +20,8 @@ namespace gpurt {
 // The largest map read: 16384 x 8192 texels (a 16k lat-long; GL_MAX_TEXTURE_SIZE on llvmpipe).
 constexpr int kMaxEnvironmentWidth = 16384;
 constexpr int kMaxEnvironmentHeight = 8192;
+// The largest radiance kept: sums over the map (its harmonics, 4 pi x radiance) stay finite in float.
+constexpr float kMaxEnvironmentRadiance = 1e30f;
 
 struct EnvironmentImage {
     int width = 0, height = 0;

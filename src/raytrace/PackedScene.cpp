@@ -611,8 +611,9 @@ class SectionDecoder {
         image->texels.resize(size_t(width * height));
         for (glm::vec3& t : image->texels) t = in.vec3();
         for (const glm::vec3& t : image->texels)
-            if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z) || t.x < 0.0f || t.y < 0.0f || t.z < 0.0f)
-                fail("section " + s.tag + ": an environment texel is negative or not finite");
+            if (!(t.x >= 0.0f && t.x <= kMaxEnvironmentRadiance && t.y >= 0.0f && t.y <= kMaxEnvironmentRadiance &&
+                  t.z >= 0.0f && t.z <= kMaxEnvironmentRadiance))
+                fail("section " + s.tag + ": an environment texel is negative, above 1e30 or not finite");
         env.image = std::move(image);
         scene.environment = std::move(env);
     }

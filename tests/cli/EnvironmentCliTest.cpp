@@ -1,7 +1,7 @@
 // The environment light through the program (CONTRACT.md, "Environment light and the default
 // light"): --env with hostile maps (truncated .hdr and .exr, zero-size and huge maps, NaN and
 // infinite texels: refused with exit 1 and one line naming the file; negative texels: clamped to
-// 0 with a warning), a missing file, the JSON scene's "environment", --env-rotate and
+// 0, channels above 1e30 to 1e30, with a warning), a missing file, the JSON scene's "environment", --env-rotate and
 // --env-strength, and the default light: every model without a light of its own comes out well
 // exposed under both integrators (over the object's pixels, the mean of each pixel's largest PNG
 // channel in 0.25..0.75, under 2% with a channel at 255), and --env none turns it off.
@@ -113,6 +113,13 @@ TEST_F(EnvironmentMaps, NonFiniteTexelsAreRefusedAndNegativeOnesClamped) {
     EXPECT_EQ(run.code, 0) << run.err;
     EXPECT_NE(run.err.find("negative"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find(path("negative.exr")), std::string::npos) << run.err;
+    // RGBE reaches 1.7e38; above 1e30 a channel is clamped (the map's sums stay finite).
+    image = sky();
+    image.texels[9].z = 1e35f;
+    writeMap("huge.exr", image);
+    const GpurtRun huge = gpurt(render("huge.exr"));
+    EXPECT_EQ(huge.code, 0) << huge.err;
+    EXPECT_NE(huge.err.find("above 1e30"), std::string::npos) << huge.err;
 }
 
 TEST_F(EnvironmentMaps, BadOptionsAreRefused) {

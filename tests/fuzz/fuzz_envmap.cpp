@@ -1,7 +1,7 @@
 // libFuzzer target for the environment map readers (decodeEnvironmentImage: Radiance .hdr through
 // stb_image, compiled here with the fuzzer's instrumentation; OpenEXR .exr when the input starts
-// with EXR's magic number): any input must give a map within the size limits with finite,
-// non-negative texels, or an InputError, never a crash, a sanitizer report, a hang or another
+// with EXR's magic number): any input must give a map within the size limits with texels in
+// [0, 1e30] (kMaxEnvironmentRadiance), or an InputError, never a crash, a sanitizer report, a hang or another
 // exception. An accepted map is then built into the environment light's table (its sampling
 // distribution and spherical harmonics) and looked up and sampled in a few directions, which must
 // give finite radiance and pdfs.
@@ -34,7 +34,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         image.height > gpurt::kMaxEnvironmentHeight || image.texels.size() != size_t(image.width) * size_t(image.height))
         std::abort();  // an accepted map must be whole and within the limits
     for (const glm::vec3& t : image.texels)
-        if (!finite(t) || t.x < 0.0f || t.y < 0.0f || t.z < 0.0f) std::abort();
+        if (!(t.x >= 0.0f && t.x <= gpurt::kMaxEnvironmentRadiance && t.y >= 0.0f && t.y <= gpurt::kMaxEnvironmentRadiance &&
+              t.z >= 0.0f && t.z <= gpurt::kMaxEnvironmentRadiance))
+            std::abort();
     gpurt::Scene scene;
     gpurt::Environment env;
     env.image = std::make_shared<const gpurt::EnvironmentImage>(std::move(image));
