@@ -209,6 +209,19 @@ void PictureCliOptions::add(CLI::App& cmd) {
         ->check(kNotEmpty);
     cmd.add_option("--tonemap", tonemap, "Tone map of the PNG: aces (filmic, default), reinhard or clamp")
         ->check(CLI::IsMember({"aces", "reinhard", "clamp"}));
+    cmd.add_option("--env", env,
+                   "Environment light: a latitude-longitude map (.hdr or .exr) around the scene, or 'none' (no "
+                   "environment, and no default light for a scene without a light of its own)")
+        ->check(kNotEmpty);
+    cmd.add_option("--env-strength", envStrength, "Scale of the environment's radiance (default 1; also the default light's)")
+        ->check(kNotEmpty);
+    cmd.add_option("--env-rotate", envRotate,
+                   "Turn the environment about +Y by DEG degrees, positive counter-clockwise seen from above (default 0)")
+        ->check(kNotEmpty);
+    cmd.add_option("--env-sampling", envSampling,
+                   "Path integrator: mis (next-event estimation of the environment by its luminance, weighed by MIS "
+                   "with BSDF sampling; default) or bsdf (only BSDF directions find it; for comparison)")
+        ->check(CLI::IsMember({"mis", "bsdf"}));
     cmd.add_option("--integrator", integrator,
                    "whitted (ray tree: shadows, mirror, glass; default) or path (path tracing with next-event "
                    "estimation; --bounces is then the longest path, default " + std::to_string(kDefaultPathBounces) + ")")
@@ -242,6 +255,17 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     // indices and counts exact in float (2^24).
     v.samples = parseCount("--spp", spp, 1, 1u << 24);
     v.seed = parseCount("--seed", seed, 0, UINT32_MAX);
+    v.env = env;
+    if (!envStrength.empty()) {
+        v.envStrength = parseFiniteFloat("--env-strength", envStrength);
+        if (*v.envStrength < 0.0f || *v.envStrength > 1e6f)
+            throw InputError("--env-strength: " + envStrength + " is outside [0, 1e6]");
+    }
+    if (!envRotate.empty()) {
+        v.envRotate = parseFiniteFloat("--env-rotate", envRotate);
+        if (std::abs(*v.envRotate) > 1e6f) throw InputError("--env-rotate: " + envRotate + " is outside [-1e6, 1e6]");
+    }
+    v.envSampled = envSampling != "bsdf";
     v.crease = -1.0f;  // --smooth off
     if (smooth != "off") {
         v.crease = parseFiniteFloat("--smooth", smooth);
@@ -266,6 +290,24 @@ void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption) {
     if (axis == UpAxis::PosY) return;
     rotateUpToY(loaded.scene, axis);
     loaded.grid.reset();  // built for the file's coordinates
+}
+
+void applyEnvironmentOptions(Scene& scene, const PictureCliOptions::Values& values) {
+    if (values.env == "none") {
+        scene.environment.reset();
+        return;
+    }
+    if (!values.env.empty()) {
+        Environment env;
+        env.image = std::make_shared<const EnvironmentImage>(readEnvironmentImage(values.env));
+        env.file = values.env;
+        scene.environment = env;
+    }
+    addDefaultLight(scene);
+    if (!scene.environment) return;
+    if (values.envStrength) scene.environment->strength = *values.envStrength;
+    if (values.envRotate) scene.environment->rotation = *values.envRotate;
+    scene.environment->sampled = values.envSampled;
 }
 
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,

@@ -102,6 +102,7 @@ struct CameraOptions {
 // The picture options of render and view: --spp, --seed, --exposure, --tonemap, --smooth.
 struct PictureCliOptions {
     std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60", integrator = "whitted";
+    std::string env, envStrength, envRotate, envSampling = "mis";
     CLI::Option* sppOption = nullptr;
 
     void add(CLI::App& cmd);
@@ -111,6 +112,10 @@ struct PictureCliOptions {
         float crease = 60.0f;  // --smooth; < 0: off
         ColourSettings colour;
         Integrator integrator = Integrator::Whitted;
+        std::string env;                     // --env: a file, "none", or empty (the scene's)
+        std::optional<float> envStrength;    // --env-strength
+        std::optional<float> envRotate;      // --env-rotate, degrees
+        bool envSampled = true;              // --env-sampling mis (true) or bsdf
     };
     Values values() const;
     // --bounces as given (>= 0), else the integrator's default: the scene's for Whitted (its
@@ -125,6 +130,12 @@ struct PictureCliOptions {
 // underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
                               int& scaleExponent);
+
+// The environment light of render and view (CONTRACT.md): --env FILE replaces the scene's,
+// --env none removes it and the default light; otherwise a scene without a light of its own gets
+// the default light (addDefaultLight). Then --env-strength, --env-rotate and --env-sampling apply
+// to whichever environment the scene has. Throws InputError naming a file that cannot be read.
+void applyEnvironmentOptions(Scene& scene, const PictureCliOptions::Values& values);
 
 // The acceleration structure options of render, view and bench: --accel, and the grid's
 // --lambda and --skip.

@@ -78,6 +78,13 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
     }
     add(scene.lights.data(), scene.lights.size() * sizeof(PointLight));
     add(&scene.background, sizeof(scene.background));
+    if (scene.environment) {  // the map's texels, strength, rotation and sampling
+        const Environment& env = *scene.environment;
+        add(env.image->texels.data(), env.image->texels.size() * sizeof(glm::vec3));
+        const float e[] = {float(env.image->width), float(env.image->height), env.strength, env.rotation,
+                           env.sampled ? 1.0f : 0.0f};
+        add(e, sizeof(e));
+    }
     const float c[] = {camera.eye.x, camera.eye.y, camera.eye.z, camera.forward.x, camera.forward.y, camera.forward.z,
                        camera.right.x, camera.right.y, camera.right.z, camera.upOrtho.x, camera.upOrtho.y,
                        camera.upOrtho.z, camera.tanHalf, camera.aspect};
@@ -373,6 +380,7 @@ int runRender(const RenderOptions& o) {
     auto phaseStart = std::chrono::steady_clock::now();
     int scaleExponent = 0;  // depths are scaled back below
     LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent);
+    applyEnvironmentOptions(loaded.scene, picture);
     phases.load = msSince(phaseStart);
     const Scene& scene = loaded.scene;
     if (frames.animated && !scene.animation)

@@ -332,6 +332,7 @@ int runView(const ViewOptions& o) {
     o.tracer.options();  // refuses a bad --mask now
     int scaleExponent = 0;
     LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent);
+    applyEnvironmentOptions(loaded.scene, picture);
     const Scene& scene = loaded.scene;
     const glm::ivec2 size = o.camera.imageSize(loaded.size);
     checkRenderFitsInMemory(size, Backend::Gl, picture.integrator);

@@ -3,7 +3,7 @@
 // at the hit, into a MaterialRecord (the kernels: shading.glsl fetchMaterialRecord; C++:
 // raytrace/MaterialRecord.h materialRecord); the integrators then ask it only through the
 // functions below, which dispatch on the record's model to the model's file in materials/:
-//   Whitted:  materialAmbient (the ambient term), materialLight (one unshadowed point light),
+//   Whitted:  materialAmbient (the ambient term; materialEnvironmentAmbient under an environment), materialLight (one unshadowed point light),
 //             materialSpawns / materialSplits / materialChildren (the reflected and refracted
 //             rays of the ray tree);
 //   both:     materialEmitted (radiance the surface sends itself, area lights);
@@ -60,6 +60,15 @@ GPURT_FN vec3 materialAmbient(MaterialRecord m) {
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
 #endif
     return classicAmbient(m);
+}
+
+// The ambient term under an environment light whose irradiance at the shading normal is E
+// (Whitted; common/environment.h environmentIrradiance): the diffuse reflection of E.
+GPURT_FN vec3 materialEnvironmentAmbient(MaterialRecord m, vec3 irradiance) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#endif
+    return classicEnvironmentAmbient(m, irradiance);
 }
 
 GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,

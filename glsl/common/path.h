@@ -69,6 +69,25 @@ GPURT_FN float emissionWeight(float prevPdf, float t, vec3 ng, vec3 d, float are
     return powerHeuristic(prevPdf, emitterPdf(t, abs(dot(ng, d)), area));
 }
 
+// The weight of the environment that a ray finds on leaving the scene after the last hit chose its
+// direction with pdf prevPdf: 1 after a delta lobe or from the camera (prevPdf 0), else the BSDF's
+// share against next-event estimation of the environment, which draws that direction with
+// lightPdf (0: the environment is not sampled).
+GPURT_FN float environmentHitWeight(float prevPdf, float lightPdf) {
+    if (!(prevPdf > 0.0f)) return 1.0f;
+    return powerHeuristic(prevPdf, lightPdf);
+}
+
+// Radiance arriving through material m's BSDF (shading normal n, view ray d) from the
+// environment's radiance L in the unshadowed direction l that next-event estimation drew with
+// solid-angle pdf lightPdf, weighed against the BSDF's sampling of l.
+GPURT_FN vec3 pathEnvironmentContribution(MaterialRecord m, vec3 n, vec3 d, vec3 l, vec3 radiance, float lightPdf) {
+    if (!(lightPdf > 0.0f)) return vec3(0.0f);
+    float cosP = max(0.0f, dot(n, l));
+    float w = powerHeuristic(lightPdf, materialPdf(m, n, d, l));
+    return min(materialEval(m, n, d, l) * GPURT_INV_PI * cosP * radiance * (w / lightPdf), vec3(1e30f));
+}
+
 // Russian roulette at hit depth b for throughput w and the random number u: the probability the
 // path survives (1: no roulette yet), or 0 when it ends here.
 GPURT_FN float survival(int b, vec3 w, float u) {

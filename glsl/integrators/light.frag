@@ -1,6 +1,9 @@
 // Adds one point light's diffuse and specular term to the local colour of each surface point
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
+// ENVIRONMENT (with PATH): the environment direction each surface point drew (shadowgen.frag
+// ENVIRONMENT), unshadowed, through the BSDF and weighed against the BSDF's sampling of it
+// (common/path.h pathEnvironmentContribution).
 // PATH: the path integrator's light through the BSDF (common/path.h) instead of Whitted's terms, for point lights (its emitter point is lit in path/bounce.frag).
 #include "scene/shading.glsl"
 #ifdef PATH
@@ -15,6 +18,8 @@ uniform sampler2D hitState;    // the shadow rays' hits
 uniform sampler2D localState;  // in place
 #ifdef EMITTER
 uniform sampler2D lightSample;  // (q, emitting triangle | -1)
+#elif defined(ENVIRONMENT)
+uniform sampler2D lightSample;  // (direction, pdf | 0)
 #else
 uniform vec3 lightPosition;
 uniform vec3 lightColor;
@@ -26,7 +31,10 @@ layout(location = 0) out vec4 localColor;
 void main() {
     vec4 s = readStream(surfacePoint);
     vec4 nm = readStream(surfaceNormal);
-#ifdef EMITTER
+#ifdef ENVIRONMENT
+    vec4 q = readStream(lightSample);
+    if (s.w < 0.0f || !(q.w > 0.0f) || readStream(hitState).w >= 0.0f) discard;  // none, or in shadow
+#elif defined(EMITTER)
     vec4 q = readStream(lightSample);
     if (s.w < 0.0f || q.w < 0.0f || readStream(hitState).w >= 0.0f)
         discard;  // no surface, emitter point behind it, or in shadow: the local colour stays
@@ -45,7 +53,9 @@ void main() {
     vec3 n = shading.xyz;
     vec3 d = view.xyz;
     MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
-#ifdef PATH
+#ifdef ENVIRONMENT
+    vec3 add = pathEnvironmentContribution(m, n, d, q.xyz, environmentRadiance(q.xyz), q.w);
+#elif defined(PATH)
     vec3 add = pathLightContribution(m, s.xyz, n, d, lightPosition, lightColor, lightIntensity);
 #else
     vec3 add = materialLight(m, s.xyz, n, d, lightPosition, lightColor, lightIntensity);

@@ -5,6 +5,10 @@
 // emitter by a binary search of the area table), stores it for the light pass, and aims the ray
 // at it. PATH: only from surfaces that the path integrator's diffuse or glossy lobe can light
 // (not from mirrors and glass: common/material.h materialLit).
+// ENVIRONMENT (with PATH): for the environment light instead: each surface point draws its
+// sample's direction of the environment (environment.glsl sampleEnvironment, dimension
+// GPURT_DIM_ENVIRONMENT + bounce), stores it with its pdf for the light pass, and sends an
+// unbounded shadow ray along it when it is in front of the surface.
 #include "scene/shading.glsl"
 #include "common/sampling.h"
 #ifdef PATH
@@ -18,7 +22,7 @@ uniform sampler2D surfaceNormal;
 uniform sampler2D surfaceView;     // w: the hit's image coordinate x
 uniform sampler2D surfaceShading;  // w: y
 #endif
-#ifdef EMITTER
+#if defined(EMITTER) || defined(ENVIRONMENT)
 uniform uint sampleIndex;
 uniform uint sampleCount;
 uniform uint seed;
@@ -31,6 +35,8 @@ layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
 layout(location = 1) out vec4 rayDir;     // (d, GPURT_A_RAY | GPURT_NO_RAY)
 #ifdef EMITTER
 layout(location = 2) out vec4 lightSample;  // (q, emitting triangle | -1)
+#elif defined(ENVIRONMENT)
+layout(location = 2) out vec4 lightSample;  // (direction, pdf | 0: none)
 #endif
 
 void main() {
@@ -44,7 +50,19 @@ void main() {
         !materialLit(fetchMaterialRecord(int(nm.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w))))
         s.w = -1.0f;  // nothing to light
 #endif
-#ifdef EMITTER
+#ifdef ENVIRONMENT
+    lightSample = vec4(0.0f);
+    if (s.w < 0.0f) return;
+    uvec2 pixel = uvec2(pathPixel(readStream(pathState), int(bounce)));
+    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_ENVIRONMENT + bounce));
+    vec3 l;
+    float pdf;
+    if (!sampleEnvironment(u, l, pdf) || !(dot(n, l) > 0.0f)) return;
+    lightSample = vec4(l, pdf);
+    vec3 o = offsetOrigin(s.xyz, n, rayOffset);
+    vec3 d = l;
+    float tLimit = GPURT_FAR;
+#elif defined(EMITTER)
     lightSample = vec4(0.0f, 0.0f, 0.0f, -1.0f);
     if (s.w < 0.0f) return;
 #ifdef PATH

@@ -1,10 +1,14 @@
 // Shading, step 1 of a bounce (Whitted 1980; Christen 2005, 5.5): turns the traced ray's hit into
 // a surface record (point, facing normal, material, view direction) and starts the local colour
 // with the ambient term; an emitter that the ray hits adds weight * its radiance to the pixel. A
-// path whose ray missed adds weight * background to the pixel and ends.
+// path whose ray missed adds weight * background to the pixel and ends; with an environment light
+// (SCENE_ENVIRONMENT) weight * the environment's radiance along the ray instead, and the ambient
+// term is the diffuse reflection of the environment's irradiance at the shading normal
+// (common/environment.h).
 // PATH: for the path integrator: the emission is weighed against next-event estimation of the
-// same point (common/path.h emissionWeight, from the pdf of the direction the last hit chose), and
-// the local colour starts at 0 (no ambient term).
+// same point (common/path.h emissionWeight, from the pdf of the direction the last hit chose), as is
+// the environment a ray finds against next-event estimation of the environment
+// (environmentHitWeight), and the local colour starts at 0 (no ambient term).
 #include "scene/shading.glsl"
 #ifdef PATH
 #include "common/path.h"
@@ -38,7 +42,16 @@ void main() {
     surfaceShading = vec4(0.0f);
     if (w.w == 0.0f) return;  // path ended at an earlier bounce
     if (h.w < 0.0f) {
+#ifdef SCENE_ENVIRONMENT
+        vec3 away = readStream(rayDir).xyz;
+        vec3 sky = environmentRadiance(away);
+#ifdef PATH
+        sky = sky * environmentHitWeight(readStream(pathState).x, environmentLightPdf(away));
+#endif
+        color = vec4(c.xyz + w.xyz * sky, 0.0f);
+#else
         color = vec4(c.xyz + w.xyz * background, 0.0f);
+#endif
         return;
     }
     vec3 o = readStream(rayOrigin).xyz;
@@ -59,6 +72,10 @@ void main() {
     color = vec4(c.xyz + w.xyz * (materialEmitted(m, ns) * mis), 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);
+#ifdef SCENE_ENVIRONMENT
+    localColor = vec4(materialEnvironmentAmbient(m, environmentAmbient(ns)), 0.0f);
+#else
     localColor = vec4(materialAmbient(m), 0.0f);
+#endif
 #endif
 }

@@ -85,3 +85,7 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 // camera rays, in image order), else the one its path state (pdf, x, y, 0) carries, as the live
 // paths are packed after each round (integrators/path/bounce.frag).
 ivec2 pathPixel(vec4 state, int depth) { return depth == 0 ? ivec2(imagePixel()) : ivec2(state.yz); }
+
+#ifdef SCENE_ENVIRONMENT  // SceneTextures::bind: the scene has an environment light
+#include "environment.glsl"
+#endif

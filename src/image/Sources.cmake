@@ -3,6 +3,7 @@
 set(GPURT_IMAGE_SOURCES
   AtomicFile.cpp
   Colour.cpp
+  EnvironmentImage.cpp
   ExrIO.cpp
   ImageIO.cpp
   InputError.cpp

@@ -23,7 +23,8 @@ CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
     : CpuTracer(scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset()) {}
 
 CpuTracer::CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset)
-    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)) {
+    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)),
+      environment_(buildEnvironmentTable(scene)) {
     triangles_.reserve(scene.triangles.size());
     for (const Triangle& t : scene.triangles)
         triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
@@ -76,6 +77,14 @@ bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, 
     float limit;
     emitterShadowRay(p, n, rayOffset_, q, origin, dir, limit);
     return unblocked(origin, dir, limit, stats);
+}
+
+bool CpuTracer::environmentVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
+                                   glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& l, float& pdf) const {
+    if (!environment_.sampled) return false;
+    const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), seed, GPURT_DIM_ENVIRONMENT + uint32_t(depth)));
+    if (!environment_.sample(u, l, pdf) || !(dot(n, l) > 0.0f)) return false;
+    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, stats);
 }
 
 CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {

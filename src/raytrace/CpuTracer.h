@@ -10,6 +10,7 @@
 
 #include "raytrace/Camera.h"
 #include "raytrace/EmitterTable.h"
+#include "raytrace/EnvironmentTable.h"
 #include "raytrace/RayMath.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/RenderTypes.h"
@@ -49,6 +50,7 @@ class CpuTracer {
     // How far secondary rays start off a surface (UniformGrid::rayOffset).
     float rayOffset() const { return rayOffset_; }
     const EmitterTable& emitters() const { return emitters_; }
+    const EnvironmentTable& environment() const { return environment_; }
     // The surface at a hit of the ray from o along d: the point, the facing geometric normal, the
     // shading normal (common/shading.h) and the material record.
     struct Surface {
@@ -65,6 +67,13 @@ class CpuTracer {
     bool emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
                         glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const;
 
+    // The environment direction l (pdf `pdf`) that sample `sample` of `samples` of pixel (i, j)
+    // draws at hit depth `depth` (GPURT_DIM_ENVIRONMENT + depth), and whether it lights p: in
+    // front of the facing normal n and unblocked (shadowgen.frag ENVIRONMENT). False when the
+    // environment is not sampled.
+    bool environmentVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
+                            glm::vec3 n, RenderStats& stats, glm::vec3& l, float& pdf) const;
+
   private:
     // Traces one shadow ray (counted in stats); true when nothing blocks it.
     bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
@@ -74,6 +83,7 @@ class CpuTracer {
     std::vector<PreparedTriangle> triangles_;
     float rayOffset_;
     EmitterTable emitters_;
+    EnvironmentTable environment_;
 };
 
 }  // namespace gpurt

@@ -23,7 +23,7 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       color(w, h, 4, "color"),
       weight(w, h, 4, "weight"),
       sampleSum(needs.sums ? w : 1, needs.sums ? h : 1, 4, "sampleSum"),
-      lightSample(needs.emitters ? w : 1, needs.emitters ? h : 1, 4, "lightSample"),
+      lightSample(needs.emitters || needs.environment ? w : 1, needs.emitters || needs.environment ? h : 1, 4, "lightSample"),
       pathState(needs.pathState || paths ? w : 1, needs.pathState || paths ? h : 1, 4, "pathState"),
       progressive(progressiveAovs),
       aovHit(progressive ? w : 1, progressive ? h : 1, 4, "aovHit"),

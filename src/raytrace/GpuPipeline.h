@@ -22,6 +22,7 @@ namespace gpurt {
 // 8 ms per 16 MB stream at 1024x1024): the others are 1x1 and their kernels are not set up.
 struct StreamNeeds {
     bool emitters = true;   // lightSample: the emitters' sample points
+    bool environment = false;  // lightSample: the environment's sample directions (path)
     bool pathState = true;  // pathState: rays that spawn (Whitted's bounce) or the path integrator
     bool sums = true;       // sampleSum: more than one sample, or the viewer's progressive sums
     bool operator==(const StreamNeeds&) const = default;
@@ -51,7 +52,7 @@ struct GpuPipeline {
     GPUFloatArray surfacePoint, surfaceNormal, surfaceView, surfaceShading, localColor, color, weight;
     // The sum of the samples so far of each pixel (--spp; the viewer's running mean).
     GPUFloatArray sampleSum;
-    GPUFloatArray lightSample;  // the emitter point each surface point's shadow ray aims at
+    GPUFloatArray lightSample;  // the emitter point (or environment direction) each surface point's shadow ray aims at
     // The integrator's state of each element's ray: Whitted's ray tree (depth, stack height, rays)
     // or the path integrator's (pdf of the ray's direction, pixel).
     GPUFloatArray pathState;

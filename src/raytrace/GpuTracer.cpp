@@ -54,6 +54,7 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums) {
     GpuPipeline::Needs needs;
     needs.emitters = !textures_.emitterTable().empty();
+    needs.environment = paths && textures_.environmentTable().sampled;
     needs.pathState = paths || spawns_;
     needs.sums = sums || progressive;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || whitted_->stackSlots() != stackSlots ||

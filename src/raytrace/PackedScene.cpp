@@ -17,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <zlib.h>
@@ -45,19 +46,20 @@ constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
 constexpr char kModels[] = "MODL";
+constexpr char kEnvironment[] = "ENVM";
 constexpr char kBvhNodes[] = "BVHN";
 constexpr char kBvhList[] = "BVHL";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates, the textures, the material models and the acceleration structure's are
+// texture coordinates, the textures, the material models, the environment and the acceleration structure's are
 // required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
-                                         kTextures,  kModels,    kBvhNodes, kBvhList};
+                                         kTextures,  kModels,    kEnvironment, kBvhNodes, kBvhList};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels || gridSection(tag) || bvhSection(tag);
+           tag == kModels || tag == kEnvironment || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -76,6 +78,9 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kAnimation) return bool(loaded.scene.animation);
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
     if (tag == kTextures) return !loaded.scene.textures.empty();
+    // Only for a scene with an environment or a background of its own: other files stay as they
+    // were before the section existed.
+    if (tag == kEnvironment) return loaded.scene.environment || loaded.scene.backgroundGiven;
     // Only when some material is not of the classic model: files of classic scenes stay as they
     // were before the section existed.
     if (tag == kModels)
@@ -88,6 +93,7 @@ constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
 constexpr size_t kModelBytes = 4;
+constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
 // The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
 constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
 
@@ -595,6 +601,45 @@ class SectionDecoder {
         }
     }
 
+    void environment(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        if (s.size < 4) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
+        const uint32_t flags = in.u32();
+        if (flags > 3) fail("section " + s.tag + ": unknown flags " + std::to_string(flags));
+        scene.backgroundGiven = (flags & 1u) != 0;
+        if (!(flags & 2u)) {
+            if (in.remaining() != 0) fail("section " + s.tag + ": " + std::to_string(in.remaining()) + " bytes after the flags");
+            return;
+        }
+        if (s.size < kEnvironmentMinBytes) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
+        Environment env;
+        env.strength = in.f32();
+        env.rotation = in.f32();
+        if (!std::isfinite(env.strength) || env.strength < 0.0f || !std::isfinite(env.rotation))
+            fail("section " + s.tag + ": strength " + formatFloat(env.strength) + " or rotation " + formatFloat(env.rotation) +
+                 " is not valid");
+        const uint64_t width = in.u32(), height = in.u32(), nameLength = in.u32();
+        if (width < 1 || height < 1 || width > uint64_t(kMaxEnvironmentWidth) || height > uint64_t(kMaxEnvironmentHeight))
+            fail("section " + s.tag + ": environment map of " + std::to_string(width) + "x" + std::to_string(height) +
+                 " texels, not 1.." + std::to_string(kMaxEnvironmentWidth) + " x 1.." + std::to_string(kMaxEnvironmentHeight));
+        if (in.remaining() != nameLength + width * height * 12)
+            fail("section " + s.tag + ": " + std::to_string(in.remaining()) + " bytes for a " + std::to_string(nameLength) +
+                 "-byte name and " + std::to_string(width) + "x" + std::to_string(height) + " texels");
+        env.file.resize(size_t(nameLength));
+        if (nameLength > 0) std::memcpy(env.file.data(), in.take(size_t(nameLength)), size_t(nameLength));
+        auto image = std::make_shared<EnvironmentImage>();
+        image->width = int(width);
+        image->height = int(height);
+        image->texels.resize(size_t(width * height));
+        for (glm::vec3& t : image->texels) t = in.vec3();
+        for (const glm::vec3& t : image->texels)
+            if (!(t.x >= 0.0f && t.x <= kMaxEnvironmentRadiance && t.y >= 0.0f && t.y <= kMaxEnvironmentRadiance &&
+                  t.z >= 0.0f && t.z <= kMaxEnvironmentRadiance))
+                fail("section " + s.tag + ": an environment texel is negative, above 1e30 or not finite");
+        env.image = std::move(image);
+        scene.environment = std::move(env);
+    }
+
     void fixedSize(const Section& s, uint64_t bytes) const {
         if (s.size != bytes)
             fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
@@ -756,6 +801,7 @@ class SectionEncoder {
         else if (tag == kTexcoords) texcoords();
         else if (tag == kTextures) textures();
         else if (tag == kModels) models();
+        else if (tag == kEnvironment) environment();
     }
 
   private:
@@ -882,6 +928,21 @@ class SectionEncoder {
     void models() {
         out_.u64(scene_.materials.size());
         for (const Material& m : scene_.materials) out_.u32(uint32_t(m.model));
+    }
+
+    // Flags (1: the file set the background, 2: an environment follows), then the environment's
+    // strength, rotation, width, height, file name and texels (linear RGB, top row first).
+    void environment() {
+        const std::optional<Environment>& env = scene_.environment;
+        out_.u32((scene_.backgroundGiven ? 1u : 0u) | (env ? 2u : 0u));
+        if (!env) return;
+        out_.f32(env->strength);
+        out_.f32(env->rotation);
+        out_.u32(uint32_t(env->image->width));
+        out_.u32(uint32_t(env->image->height));
+        out_.u32(uint32_t(env->file.size()));
+        out_.raw(env->file.data(), env->file.size());
+        for (const glm::vec3& t : env->image->texels) out_.vec3(t);
     }
 
     ByteWriter& out_;
@@ -1068,6 +1129,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
+    if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {
         UniformGrid grid;

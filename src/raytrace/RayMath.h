@@ -11,4 +11,6 @@ using namespace glm;
 #include "../../glsl/common/shading.h"
 #include "../../glsl/common/material.h"
 #include "../../glsl/common/path.h"
+#include "../../glsl/common/texture.h"
+#include "../../glsl/common/environment.h"
 }  // namespace gpurt::raymath

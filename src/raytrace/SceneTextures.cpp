@@ -92,6 +92,43 @@ GPUFloatArray makeTextureTable(const Scene& scene) {
     return uploadTexels(textureTableTexels(scene), GPUFormat::RGBA32UI, GPUStorage::Buffer);
 }
 
+// The environment's textures (1 x 1 zeros without one): the map (radiance, uvPdf), the marginal
+// and conditional cumulative distributions, the 9 spherical-harmonic coefficients.
+GPUFloatArray makeEnvironmentArray(const EnvironmentTable& t, int which) {
+    const bool has = !t.empty();
+    const int w = has ? t.width : 1, h = has ? t.height : 1;
+    if (has) checkFits("environment map", size_t(t.width), size_t(t.height));
+    std::vector<float> data;
+    switch (which) {
+        case 0: {
+            GPUFloatArray a(w, h, GPUFormat::RGBA32F, "environmentMap");
+            data.assign(size_t(w) * size_t(h) * 4, 0.0f);
+            for (size_t k = 0; has && k < t.texels.size(); ++k)
+                for (int c = 0; c < 4; ++c) data[4 * k + size_t(c)] = t.texels[k][c];
+            a.upload(data);
+            return a;
+        }
+        case 1: {
+            GPUFloatArray a(has ? t.height : 1, 1, GPUFormat::R32F, "environmentMarginal");
+            a.upload(has ? t.marginal : std::vector<float>{1.0f});
+            return a;
+        }
+        case 2: {
+            GPUFloatArray a(w, h, GPUFormat::R32F, "environmentConditional");
+            a.upload(has ? t.conditional : std::vector<float>{1.0f});
+            return a;
+        }
+        default: {
+            GPUFloatArray a(9, 1, GPUFormat::RGBA32F, "environmentHarmonics");
+            data.assign(36, 0.0f);
+            for (size_t k = 0; k < 9; ++k)
+                for (int c = 0; c < 3; ++c) data[4 * k + size_t(c)] = t.harmonics[k][c];
+            a.upload(data);
+            return a;
+        }
+    }
+}
+
 }  // namespace
 
 SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
@@ -106,7 +143,12 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       hasTexcoords_(!scene.texcoords.empty()),
       textureTexels_(makeTextureTexels(scene)),
       textureTable_(makeTextureTable(scene)),
-      srgbTable_(uploadTexels(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)) {
+      srgbTable_(uploadTexels(srgbTableTexels(), GPUFormat::R32F, GPUStorage::Buffer)),
+      environmentTable_(buildEnvironmentTable(scene)),
+      environmentMap_(makeEnvironmentArray(environmentTable_, 0)),
+      environmentMarginal_(makeEnvironmentArray(environmentTable_, 1)),
+      environmentConditional_(makeEnvironmentArray(environmentTable_, 2)),
+      environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)) {
     for (const Material& m : scene.materials)
         if (m.model != 0) models_.insert(m.model);
 }
@@ -129,12 +171,24 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(textureTable_, "textureTable")
         .addInput(srgbTable_, "srgbTable")
         .setUniform("rayOffset", rayOffset_);
+    if (!environmentTable_.empty()) {
+        kernel.addDefine("SCENE_ENVIRONMENT");
+        kernel.addInput(environmentMap_, "environmentMap")
+            .addInput(environmentMarginal_, "environmentMarginal")
+            .addInput(environmentConditional_, "environmentConditional")
+            .addInput(environmentHarmonics_, "environmentHarmonics")
+            .setUniform("environmentRotation", environmentTable_.rotation)
+            .setUniform("environmentSize", glm::ivec2(environmentTable_.width, environmentTable_.height));
+    }
 }
 
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
     return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
-           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_);
+           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) +
+           (environmentTable_.empty() ? 0  // the 1 x 1 stand-ins of a scene without an environment
+                                      : size(environmentMap_) + size(environmentMarginal_) +
+                                            size(environmentConditional_) + size(environmentHarmonics_));
 }
 
 }  // namespace gpurt

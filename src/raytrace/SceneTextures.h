@@ -1,10 +1,12 @@
 // The scene in textures (Purcell et al. 2002, 3.1; Christen 2005, 5.3) for the integrators'
-// kernels: the triangles, materials, vertex normals, texture coordinates, textures and emitters,
+// kernels: the triangles, materials, vertex normals, texture coordinates, textures, emitters and
+// the environment light,
 // laid out as glsl/common/scene_layout.h says. The accelerator uploads its own (accel/). Triangle
 // ids (carried as floats in the hit stream) are checked against 2^24.
 #pragma once
 
 #include "raytrace/EmitterTable.h"
+#include "raytrace/EnvironmentTable.h"
 #include "scene/Scene.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
@@ -42,6 +44,7 @@ class SceneTextures {
     const GPUFloatArray& textureTable() const { return textureTable_; }
     const GPUFloatArray& srgbTable() const { return srgbTable_; }
     const EmitterTable& emitterTable() const { return emitterTable_; }
+    const EnvironmentTable& environmentTable() const { return environmentTable_; }
     size_t bytes() const;
 
   private:
@@ -57,6 +60,10 @@ class SceneTextures {
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;
+    // The environment light (SCENE_ENVIRONMENT; 1 x 1 without one): its map, its distribution's
+    // marginal and conditional cumulative tables, its spherical harmonics (glsl/scene/environment.glsl).
+    EnvironmentTable environmentTable_;
+    GPUFloatArray environmentMap_, environmentMarginal_, environmentConditional_, environmentHarmonics_;
     std::set<int> models_;  // the material models other than the classic one (0) the scene uses
 };
 

@@ -7,6 +7,7 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   CpuTracer.cpp
   SurfaceTexture.cpp
   EmitterTable.cpp
+  EnvironmentTable.cpp
   MaterialRecord.cpp
   PackedScene.cpp
   SceneLoader.cpp

@@ -142,7 +142,7 @@ class SceneReader {
 
     JsonSceneFile read(const json& root) {
         const Pointer top;
-        requireObject(root, top, {"meshes", "lights", "camera", "animation", "background", "render", "up_axis"});
+        requireObject(root, top, {"meshes", "lights", "camera", "animation", "background", "environment", "render", "up_axis"});
         JsonSceneFile result;
         Scene& scene = result.scene;
 
@@ -169,6 +169,9 @@ class SceneReader {
             if (!up->is_string() || !parseUpAxis(up->get<std::string>(), scene.upAxis))
                 fail(top / "up_axis", "expected one of \"y\", \"z\", \"x\", \"-y\", \"-z\", \"-x\"");
         }
+        scene.backgroundGiven = find(root, "background") != nullptr;
+        if (const json* environment = find(root, "environment"))
+            scene.environment = readEnvironment(*environment, top / "environment");
         if (const json* render = find(root, "render")) {
             const Pointer at = top / "render";
             requireObject(*render, at, {"size", "max_bounces"});
@@ -294,6 +297,22 @@ class SceneReader {
             fail(at, std::string("expected a number or an array of 3 numbers, got ") +
                          value.type_name());
         return vector3(value, at);
+    }
+
+    // "environment": {"file": F (.hdr or .exr, relative to the scene's folder), "strength": S
+    // (>= 0, default 1), "rotation": degrees about +Y (default 0)}.
+    Environment readEnvironment(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"file", "strength", "rotation"});
+        Environment env;
+        const Pointer fileAt = at / "file";
+        const std::string fileName = meshFileName(require(value, at, "file"), fileAt);
+        const std::filesystem::path path = meshPath(fileName, fileAt);
+        env.image = std::make_shared<const EnvironmentImage>(readEnvironmentImage(path));
+        env.file = path.string();
+        if (const json* strength = find(value, "strength"))
+            env.strength = static_cast<float>(numberAtLeast(*strength, at / "strength", 0.0));
+        if (const json* rotation = find(value, "rotation")) env.rotation = static_cast<float>(number(*rotation, at / "rotation"));
+        return env;
     }
 
     // A mesh: its file's triangles, moved by its transform, with the file's materials (and

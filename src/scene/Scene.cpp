@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <utility>
+#include <algorithm>
 
 namespace gpurt {
 
@@ -105,6 +106,7 @@ Bounds Scene::bounds() const {
 
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights) {
     if (!scene.lights.empty()) return scene.lights;
+    if (scene.environment) return {};  // lit by its environment
     if (backgroundLights && scene.background != glm::vec3(0.0f)) return {};  // lit by its background
     for (uint32_t m : scene.materialIds)
         if (scene.materials[m].emits()) return {};  // lit by its emitters
@@ -124,6 +126,67 @@ std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, boo
     if (!(headlight.intensity > 0.0f) || !std::isfinite(headlight.intensity))
         headlight.intensity = 1.0f;
     return {headlight};
+}
+
+}  // namespace gpurt
+
+namespace gpurt {
+
+bool hasOwnLight(const Scene& scene) {
+    if (!scene.lights.empty() || scene.environment || scene.backgroundGiven) return true;
+    for (uint32_t m : scene.materialIds)
+        if (scene.materials[m].emits()) return true;
+    return false;
+}
+
+bool addDefaultLight(Scene& scene) {
+    // A scene without triangles has nothing to light: it shows its background as before.
+    if (hasOwnLight(scene) || scene.triangles.empty()) return false;
+    scene.environment = defaultEnvironment();
+    return true;
+}
+
+namespace {
+
+// The default light's radiance in direction d (docs/SCENE_FORMAT.md): a soft studio sky, bright
+// above, darker and warmer below, with a broad warm key light up and to the left of the default
+// camera (which looks along -z) and a dimmer cool rim behind the model. The key's radiance (3.2)
+// stays below where the ACES tone map clips, so a mirror that shows it does not burn out.
+glm::vec3 defaultSky(glm::vec3 d) {
+    const glm::vec3 zenith(0.105f, 0.115f, 0.135f), horizon(0.095f, 0.095f, 0.095f), ground(0.03f, 0.028f, 0.026f);
+    glm::vec3 sky = d.y >= 0.0f ? glm::mix(horizon, zenith, std::sqrt(d.y))
+                                : glm::mix(horizon, ground, std::min(1.0f, -3.0f * d.y));
+    const glm::vec3 key = glm::normalize(glm::vec3(-0.55f, 0.65f, 0.55f));
+    const glm::vec3 rim = glm::normalize(glm::vec3(0.6f, 0.35f, -0.7f));
+    sky += glm::vec3(1.0f, 0.95f, 0.88f) * 3.2f * std::pow(std::max(0.0f, glm::dot(d, key)), 24.0f);
+    sky += glm::vec3(0.85f, 0.9f, 1.0f) * 0.8f * std::pow(std::max(0.0f, glm::dot(d, rim)), 16.0f);
+    return sky;
+}
+
+}  // namespace
+
+Environment defaultEnvironment() {
+    static const std::shared_ptr<const EnvironmentImage> image = [] {
+        auto im = std::make_shared<EnvironmentImage>();
+        im->width = 512;
+        im->height = 256;
+        im->texels.resize(size_t(im->width) * size_t(im->height));
+        const double pi = 3.14159265358979323846;
+        for (int j = 0; j < im->height; ++j)
+            for (int i = 0; i < im->width; ++i) {
+                // The texel centre's direction by the contract's convention (u, v -> d).
+                const double phi = ((i + 0.5) / im->width - 0.5) * 2.0 * pi, theta = (j + 0.5) / im->height * pi;
+                const glm::vec3 d(float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)),
+                                  float(-std::sin(theta) * std::cos(phi)));
+                im->texels[size_t(j) * size_t(im->width) + size_t(i)] = defaultSky(d);
+            }
+        return im;
+    }();
+    Environment env;
+    env.image = image;
+    env.file = "default";
+    env.isDefault = true;
+    return env;
 }
 
 }  // namespace gpurt

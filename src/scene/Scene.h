@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "image/EnvironmentImage.h"
 #include "image/TextureImage.h"
 
 namespace gpurt {
@@ -60,6 +62,21 @@ struct PointLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
 };
+
+// The environment light (CONTRACT.md): a latitude-longitude map around the scene that rays
+// leaving it see, scaled by `strength` and turned by `rotation` degrees about +Y (positive:
+// counter-clockwise seen from above). `file` names it ("default": the procedural default light).
+struct Environment {
+    std::shared_ptr<const EnvironmentImage> image;  // never null
+    float strength = 1.0f;
+    float rotation = 0.0f;
+    std::string file;
+    bool sampled = true;     // path: next-event estimation samples it (--env-sampling bsdf: only BSDF rays find it)
+    bool isDefault = false;  // the default light of a scene without light (defaultEnvironment)
+};
+
+// The default light (docs/SCENE_FORMAT.md): a procedural studio sky, made once as a 512 x 256 map.
+Environment defaultEnvironment();
 
 // The contract's camera parameters (CONTRACT.md, camera convention); fovy in degrees.
 struct CameraSpec {
@@ -136,6 +153,10 @@ struct Scene {
     std::optional<CameraSpec> camera;  // OBJ: none
     std::optional<CameraAnimation> animation;  // JSON "animation"; none elsewhere
     glm::vec3 background{0.05f, 0.05f, 0.08f};
+    bool backgroundGiven = false;  // the file set the background (JSON "background")
+    // The environment light (--env, JSON "environment", or the default light); rays that leave
+    // the scene see it instead of the background.
+    std::optional<Environment> environment;
     int maxBounces = 3;
     // The up axis the file says it has (JSON "up_axis"); the commands turn it up (rotateUpToY).
     UpAxis upAxis = UpAxis::PosY;
@@ -154,6 +175,14 @@ struct Scene {
 // upAxisToY, so that `axis` points up, and sets upAxis to +y.
 void rotateUpToY(Scene& scene, UpAxis axis);
 
+// A scene with an environment gets no headlight: the environment lights it.
 std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights = false);
+
+// Whether the scene has a light of its own (CONTRACT.md): a point light, an emitting triangle, an
+// environment, or a background the file set.
+bool hasOwnLight(const Scene& scene);
+// Gives a scene without a light of its own the default light (defaultEnvironment); true if it did.
+// A scene without triangles gets none (nothing to light: its background shows, as before).
+bool addDefaultLight(Scene& scene);
 
 }  // namespace gpurt

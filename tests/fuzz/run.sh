@@ -14,7 +14,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build-fuzz -j"$(nproc)"
 
 status=0
-for name in obj json packed tile ply gltf texture; do
+for name in obj json packed tile ply gltf texture envmap; do
   # Every run first replays its whole corpus: past about a thousand inputs that alone would take
   # the time given (long runs with GPURT_FUZZ_SECONDS collect that many), so start afresh from
   # the seeds then.
@@ -30,6 +30,7 @@ for name in obj json packed tile ply gltf texture; do
   if [ "$name" = ply ]; then maxLen=8192; fi  # binary PLY seeds up to 2 KB
   if [ "$name" = gltf ]; then maxLen=8192; fi  # the GLB seeds are 2 KB
   if [ "$name" = texture ]; then maxLen=4096; fi  # PNG and JPEG seeds up to 1 KB
+  if [ "$name" = envmap ]; then maxLen=4096; fi   # .hdr and .exr seeds up to 1 KB
   if "build-fuzz/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
       -max_len="$maxLen" "${dict[@]}" -print_final_stats=1 \
       -artifact_prefix="build-fuzz/artifacts/$name-" \

@@ -808,3 +808,55 @@ TEST_F(PackedSceneTest, FuzzedFilesNeverCrash) {
 
 }  // namespace
 }  // namespace gpurt
+
+namespace gpurt {
+namespace {
+
+// The environment light (ENVM: flags, strength, rotation, size, name, texels): written only for a
+// scene with an environment or a background of its own, so that other files stay as they were;
+// kept through the round trip with the flag that the background was given (which decides the
+// default light); sizes and texels that lie are refused.
+TEST_F(PackedSceneTest, EnvironmentTravelsInItsOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "ENVM")) << "a scene without environment or background of its own";
+    LoadedScene lit = source_;
+    auto image = std::make_shared<EnvironmentImage>();
+    image->width = 4;
+    image->height = 2;
+    for (int k = 0; k < 8; ++k) image->texels.push_back(glm::vec3(float(k), 0.5f, 2.0f * float(k)));
+    Environment env;
+    env.image = image;
+    env.strength = 1.5f;
+    env.rotation = -30.0f;
+    env.file = "sky.hdr";
+    lit.scene.environment = env;
+    lit.scene.backgroundGiven = true;
+    const Bytes b = encodePackedScene(lit, grid_, "lit");
+    const Entry envm = section(b, "ENVM");
+    EXPECT_EQ(envm.size, 24 + 7 + 12 * 8);
+    const LoadedScene packed = decodePackedScene(b, "lit.gpscene");
+    ASSERT_TRUE(packed.scene.environment);
+    EXPECT_TRUE(packed.scene.backgroundGiven);
+    EXPECT_EQ(packed.scene.environment->image->texels, image->texels);
+    EXPECT_EQ(packed.scene.environment->strength, 1.5f);
+    EXPECT_EQ(packed.scene.environment->rotation, -30.0f);
+    EXPECT_EQ(packed.scene.environment->file, "sky.hdr");
+    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+
+    LoadedScene background = source_;  // the flag alone
+    background.scene.backgroundGiven = true;
+    const Bytes g = encodePackedScene(background, grid_, "background");
+    EXPECT_EQ(section(g, "ENVM").size, 4u);
+    EXPECT_TRUE(decodePackedScene(g, "g.gpscene").scene.backgroundGiven);
+    EXPECT_FALSE(decodePackedScene(g, "g.gpscene").scene.environment);
+
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset, 7); }), "section ENVM: unknown flags 7");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 12, 5); }), "section ENVM: ");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 16, 0); }), "environment map of 4x0");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 12, 100000); }), "environment map of 100000x2");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 4, 0xff800000u); }), "strength");  // -inf
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 24 + 7, 0x7fc00000u); }), "not finite");  // NaN texel
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, envm.offset + 20, 1u << 30); }), "section ENVM: ");
+}
+
+}  // namespace
+}  // namespace gpurt

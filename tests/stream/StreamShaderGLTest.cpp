@@ -147,8 +147,14 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
                 variants.push_back(library.assemble(path, defines));
         if (path == "accel/grid/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
         if (path == "integrators/whitted/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
-        if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag")
+        if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag") {
             variants.push_back(library.assemble(path, "#define EMITTER\n"));
+            // The environment light's next-event estimation (SceneTextures defines SCENE_ENVIRONMENT).
+            variants.push_back(library.assemble(path, "#define SCENE_ENVIRONMENT\n#define PATH\n#define ENVIRONMENT\n"));
+        }
+        if (path == "integrators/surface.frag")  // the environment on a miss and as Whitted's ambient term
+            for (const char* defines : {"#define SCENE_ENVIRONMENT\n", "#define SCENE_ENVIRONMENT\n#define PATH\n"})
+                variants.push_back(library.assemble(path, defines));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {

@@ -170,6 +170,8 @@ GPURT_FN bool scatterPath(vec3 d, vec3 ng, vec3 ns, bool entering, vec3 diffuse,
 
 // The material interface (common/material.h) for the classic model.
 GPURT_FN vec3 classicAmbient(MaterialRecord m) { return ambientColor(m.kd); }
+// Under an environment of irradiance E at the normal: Lambert's kd E / pi instead.
+GPURT_FN vec3 classicEnvironmentAmbient(MaterialRecord m, vec3 irradiance) { return m.kd * irradiance * GPURT_INV_PI; }
 
 GPURT_FN vec3 classicLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
                            float intensity) {

@@ -9,6 +9,7 @@ std::vector<std::string> passDefines(unsigned flags) {
     if (flags & kPackPass) defines.push_back("PACK");
     if (flags & kLastRound) defines.push_back("LAST_ROUND");
     if (flags & kPixelCentre) defines.push_back("PIXEL_CENTRE");
+    if (flags & kEnvironmentPass) defines.push_back("ENVIRONMENT");
     return defines;
 }
 
@@ -27,6 +28,13 @@ void declareShadowgenPass(GPUKernel& k, GpuPipeline& p, bool path, bool emitter)
     if (emitter && path) k.addInput(p.pathState, "pathState");
     if (path)  // the lobes at the hit's texture coordinates
         k.addInput(p.surfaceView, "surfaceView").addInput(p.surfaceShading, "surfaceShading");
+}
+
+void declareEnvironmentShadowgenPass(GPUKernel& k, GpuPipeline& p) {
+    k.addInput(p.surfacePoint, "surfacePoint").addInput(p.surfaceNormal, "surfaceNormal");
+    k.addOutput(p.rayOrigin).addOutput(p.rayDir).addOutput(p.lightSample);
+    k.addInput(p.pathState, "pathState");
+    k.addInput(p.surfaceView, "surfaceView").addInput(p.surfaceShading, "surfaceShading");
 }
 
 void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter) {

@@ -18,6 +18,7 @@ enum PassFlag : unsigned {
     kPackPass = 4,      // PACK: the path bounce that packs the live paths
     kLastRound = 8,     // LAST_ROUND: Whitted's bounce when no ray can follow
     kPixelCentre = 16,  // PIXEL_CENTRE: raygen through the pixel centres
+    kEnvironmentPass = 32,  // ENVIRONMENT: for the environment light's sample direction (path)
 };
 std::vector<std::string> passDefines(unsigned flags);
 
@@ -32,11 +33,15 @@ void declareSurfacePass(GPUKernel& k, GpuPipeline& p, bool path);
 //   reads surfacePoint, surfaceNormal (PATH: surfaceView, surfaceShading; emitter: pathState);
 //   writes rayOrigin, rayDir (emitter: lightSample).
 void declareShadowgenPass(GPUKernel& k, GpuPipeline& p, bool path, bool emitter);
+// shadowgen.frag ENVIRONMENT: a shadow ray along each surface point's sample direction of the
+// environment. reads surfacePoint, surfaceNormal, surfaceView, surfaceShading, pathState;
+// writes rayOrigin, rayDir, lightSample.
+void declareEnvironmentShadowgenPass(GPUKernel& k, GpuPipeline& p);
 
 // light.frag: a light's term at each surface point its shadow ray found unblocked.
 //   reads surfacePoint, surfaceNormal, surfaceView, surfaceShading, hit (emitter: lightSample);
 //   in place localColor.
-void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter);
+void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter);  // emitter: or the environment
 
 // accumulate.frag: the sample's colour into the pixels' sums.
 //   reads `colour`; in place sampleSum.

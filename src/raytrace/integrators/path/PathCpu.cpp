@@ -6,15 +6,19 @@ using namespace raymath;
 
 namespace {
 
-// Next-event estimation at a hit (shadowgen.frag and light.frag PATH, the emitter's part of
-// path/bounce.frag): each visible point light through the BSDF, and the round's emitter point
-// weighed against the BSDF's sampling of the same direction.
+// Next-event estimation at a hit (shadowgen.frag and light.frag PATH and ENVIRONMENT, the
+// emitter's part of path/bounce.frag): each visible point light through the BSDF, the round's
+// environment direction and emitter point, each weighed against the BSDF's sampling of it.
 glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer::Surface& s, glm::vec3 d,
                       const std::vector<PointLight>& lights, int depth, RenderStats& stats) {
     glm::vec3 local(0.0f);
     for (const PointLight& light : lights)
         if (t.lightVisible(s.p, s.n, light.position, stats))
             local += pathLightContribution(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
+    vec3 l;
+    float pdf;
+    if (t.environmentVisible(px.i, px.j, px.index, px.count, px.seed, depth, s.p, s.n, stats, l, pdf))
+        local += pathEnvironmentContribution(s.material, s.ns, d, l, t.environment().radiance(l), pdf);
     vec3 q;
     uint32_t id;
     if (t.emitterVisible(px.i, px.j, px.index, px.count, px.seed, depth, s.p, s.n, stats, q, id)) {
@@ -40,7 +44,10 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
         if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
         if (b == 0 && aovs.out) aovs.out->steps[aovs.pixel] = static_cast<float>(hit.steps);
         if (hit.prim < 0) {
-            color += weight * t.scene().background;
+            if (t.environment().empty())
+                color += weight * t.scene().background;
+            else
+                color += weight * (t.environment().radiance(d) * environmentHitWeight(prevPdf, t.environment().pdf(d)));
             break;
         }
         const CpuTracer::Surface s = t.surfaceAt(hit, o, d);

@@ -52,8 +52,17 @@ PathGl::PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode ma
       bounce_("pathBounce", "integrators/path/bounce.frag"),
       pack_("pathPack", "integrators/path/bounce.frag", passDefines(kPackPass)),
       deposit_("pathDeposit", "integrators/path/deposit.frag"),
-      accumulate_("pathAccumulate", "integrators/accumulate.frag") {
+      accumulate_("pathAccumulate", "integrators/accumulate.frag"),
+      emitters_(!textures.emitterTable().empty()),
+      environment_(paths && textures.environmentTable().sampled),
+      environmentShadowgen_("pathEnvironmentShadowgen", "integrators/shadowgen.frag",
+                            passDefines(kEnvironmentPass | kPathPass)),
+      environmentLight_("pathEnvironmentLight", "integrators/light.frag", passDefines(kEnvironmentPass | kPathPass)) {
     for (GPUKernel* k : kernels()) textures.bind(*k);
+    if (environment_) {
+        declareEnvironmentShadowgenPass(environmentShadowgen_, p_);
+        declareLightPass(environmentLight_, p_, true);
+    }
     declareSurfacePass(surface_, p_, true);
     declareShadowgenPass(shadowgen_, p_, true, false);
     declareLightPass(light_, p_, false);
@@ -71,11 +80,13 @@ PathGl::PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode ma
 }
 
 std::vector<GPUKernel*> PathGl::kernels() {
-    return {&surface_, &shadowgen_, &light_, &emitterShadowgen_, &bounce_, &pack_, &deposit_, &accumulate_};
+    std::vector<GPUKernel*> k = {&surface_, &shadowgen_, &light_, &emitterShadowgen_, &bounce_, &pack_, &deposit_, &accumulate_};
+    if (environment_) k.insert(k.begin() + 4, {&environmentShadowgen_, &environmentLight_});
+    return k;
 }
 
 void PathGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
-    for (GPUKernel* k : {&emitterShadowgen_, &bounce_, &pack_})
+    for (GPUKernel* k : {&emitterShadowgen_, &environmentShadowgen_, &bounce_, &pack_})
         k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
 }
 
@@ -103,6 +114,7 @@ void PathGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderO
         }
         if (masked_) surfaceMask_.update();
         lightPointLights(lights, stats);
+        lightEnvironment(b, stats);
         sampleEmitters(b, stats);
         // Packing costs (an atomic counter and five stores a path): only from the depth on which
         // Russian roulette ends many paths, or once the rows in use are half empty.
@@ -152,9 +164,18 @@ void PathGl::lightPointLights(const std::vector<PointLight>& lights, RenderStats
 
 // The emitter point of each hit and its shadow ray; it is lit in the bounce pass.
 void PathGl::sampleEmitters(int depth, RenderStats& stats) {
-    if (!p_.needs.emitters) return;
+    if (!emitters_) return;
     emitterShadowgen_.setUniform("bounce", unsigned(depth)).dispatch();
     stats.shadowRays += traceRays(true);
+}
+
+// The environment direction of each hit, its shadow ray, and its light into the local colour
+// (before sampleEmitters, which reuses lightSample).
+void PathGl::lightEnvironment(int depth, RenderStats& stats) {
+    if (!environment_) return;
+    environmentShadowgen_.setUniform("bounce", unsigned(depth)).dispatch();
+    stats.shadowRays += traceRays(true);
+    environmentLight_.dispatch();
 }
 
 // The paths go on in their elements.
@@ -185,7 +206,9 @@ void PathGl::depositPaths(int depth) { deposit_.setUniform("depth", depth).dispa
 void PathGl::setPathRows(std::optional<int> rows) {
     rows_ = rows.value_or(p_.height);
     const std::optional<StreamRect> rect = rows ? std::optional<StreamRect>(StreamRect{0, 0, p_.width, *rows}) : std::nullopt;
-    for (GPUKernel* k : {&surface_, &shadowgen_, &light_, &emitterShadowgen_, &bounce_, &pack_, &deposit_}) k->setRect(rect);
+    for (GPUKernel* k : {&surface_, &shadowgen_, &light_, &emitterShadowgen_, &environmentShadowgen_, &environmentLight_,
+                         &bounce_, &pack_, &deposit_})
+        k->setRect(rect);
     p_.accel.setRect(rect);
 }
 
@@ -195,7 +218,8 @@ void PathGl::maskPasses(bool on) {
     surface_.setMask(on ? &aliveMask_ : nullptr, false);
     bounce_.setMask(on ? &aliveMask_ : nullptr, false);
     pack_.setMask(on ? &aliveMask_ : nullptr, false);
-    for (GPUKernel* k : {&shadowgen_, &light_, &emitterShadowgen_}) k->setMask(on ? &surfaceMask_ : nullptr, false);
+    for (GPUKernel* k : {&shadowgen_, &light_, &emitterShadowgen_, &environmentShadowgen_, &environmentLight_})
+        k->setMask(on ? &surfaceMask_ : nullptr, false);
 }
 
 }  // namespace gpurt

@@ -1,7 +1,7 @@
 // The path integrator on the gl backend (common/path.h): each sample one path per pixel, as rounds
 // of passes over the paths still alive. Round b traces the rays of the paths at depth b, shades
 // their hits, gathers light by next-event estimation (a shadow ray per point light, one to an
-// emitter point), and samples each path's next direction, packing the survivors to the front of
+// emitter point, one along a direction of the environment), and samples each path's next direction, packing the survivors to the front of
 // the streams once many have ended (stream compaction, Purcell et al. 2002). CPU twin: PathCpu.
 #pragma once
 
@@ -32,6 +32,7 @@ class PathGl final : public GlIntegrator {
     void shadeSurfaces(bool masked);
     void lightPointLights(const std::vector<PointLight>& lights, RenderStats& stats);
     void sampleEmitters(int depth, RenderStats& stats);
+    void lightEnvironment(int depth, RenderStats& stats);
     void continuePaths(int depth);
     uint64_t packPaths(int depth);
     void depositPaths(int depth);
@@ -50,6 +51,9 @@ class PathGl final : public GlIntegrator {
     // hit in it (the shadow rays' passes).
     GPUMask aliveMask_, surfaceMask_;
     GPUKernel surface_, shadowgen_, light_, emitterShadowgen_, bounce_, pack_, deposit_, accumulate_;
+    // Next-event estimation of the environment light (built only when the scene's is sampled).
+    bool emitters_, environment_;
+    GPUKernel environmentShadowgen_, environmentLight_;
 };
 
 }  // namespace gpurt

@@ -6,11 +6,13 @@ using namespace raymath;
 
 namespace {
 
-// The local colour at a hit (light.frag, its EMITTER variant): the material's ambient term, each
+// The local colour at a hit (light.frag, its EMITTER variant): the material's ambient term (under
+// an environment: the diffuse reflection of its irradiance at the shading normal), each
 // point light's term where it is visible, and the round's emitter point's.
 glm::vec3 whittedLocal(const CpuTracer& t, const PixelSample& px, const CpuTracer::Surface& s, glm::vec3 d,
                        const std::vector<PointLight>& lights, int round, RenderStats& stats) {
-    glm::vec3 local = materialAmbient(s.material);
+    glm::vec3 local = t.environment().empty() ? materialAmbient(s.material)
+                                              : materialEnvironmentAmbient(s.material, t.environment().irradiance(s.ns));
     for (const PointLight& light : lights)
         if (t.lightVisible(s.p, s.n, light.position, stats))
             local += materialLight(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
@@ -46,7 +48,7 @@ glm::vec3 whittedSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye
         float sideA = 1.0f;
         CpuTracer::Surface s{};
         if (hit.prim < 0) {
-            color += weight * t.scene().background;
+            color += weight * (t.environment().empty() ? t.scene().background : t.environment().radiance(d));
         } else {
             s = t.surfaceAt(hit, o, d);
             color += weight * materialEmitted(s.material, s.ns);
