@@ -280,9 +280,7 @@ int runBench(const BenchOptions& o) {
         // first light, or the headlight at the eye.
         std::vector<glm::vec4> hits;
         CpuTracer(scene, makeCpuAccelerator(scene, accel), accel.rayOffset()).traceStream(rays, false, o.threads, hits);
-        // A scene lit only by emitters has no point light: toward the eye then.
-        const std::vector<PointLight> lights = lightsOrHeadlight(scene, camera.eye);
-        rays = shadowRays(scene, accel.rayOffset(), rays, hits, lights.empty() ? camera.eye : lights.front().position);
+        rays = shadowRays(scene, accel.rayOffset(), rays, hits, shadowRayTarget(scene, camera.eye));
     }
     const BenchInput input{scene, accel, camera, shadow, rays};
 

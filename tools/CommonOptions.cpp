@@ -139,19 +139,6 @@ void GridCliOptions::add(CLI::App& cmd) {
         ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
 }
 
-std::optional<UniformGrid> GridCliOptions::build(const LoadedScene& loaded) const {
-    if (!loaded.grid || (lambdaOption && lambdaOption->count() > 0)) {
-        GridOptions options;
-        options.lambda = lambda;
-        options.skip = skip;
-        return buildGrid(loaded.scene, options);
-    }
-    if (skip) return std::nullopt;
-    UniformGrid grid = *loaded.grid;
-    grid.skip.clear();
-    return grid;
-}
-
 Acceleration GridCliOptions::accelerate(const LoadedScene& loaded, const CameraBasis& camera) const {
     AccelChoice choice = AccelChoice::Auto;
     parseAccelChoice(accel, choice);

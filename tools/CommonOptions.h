@@ -146,12 +146,10 @@ struct GridCliOptions {
     CLI::Option* lambdaOption = nullptr;
 
     void add(CLI::App& cmd);
-    // The grid to trace: a packed scene's own unless --lambda asks for another (built from its
-    // triangles like any other scene's, so every route gives the same image for the same options),
-    // else a new one. std::nullopt: use loaded.grid as it is.
-    std::optional<UniformGrid> build(const LoadedScene& loaded) const;
     // The structure to trace for --accel (accel/Acceleration.h chooseAcceleration): a packed
-    // scene's own where it is of the kind asked (its grid only without --lambda), else built;
+    // scene's own where it is of the kind asked (its grid only without --lambda, which asks for a
+    // grid built from the triangles as any other scene's, so every route gives the same image),
+    // else built;
     // `camera` is the view auto's estimate traces.
     Acceleration accelerate(const LoadedScene& loaded, const CameraBasis& camera) const;
 };

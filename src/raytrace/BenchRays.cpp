@@ -18,6 +18,11 @@ RayStream primaryRays(const CameraBasis& camera) {
     return rays;
 }
 
+glm::vec3 shadowRayTarget(const Scene& scene, glm::vec3 eye) {
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene, eye);
+    return lights.empty() ? eye : lights.front().position;
+}
+
 RayStream shadowRays(const Scene& scene, float rayOffset, const RayStream& primary,
                      const std::vector<glm::vec4>& hits, glm::vec3 light) {
     RayStream rays;

@@ -227,10 +227,8 @@ TEST(EmbreeCrossCheckTest, BothAcceleratorsOnTheBenchViewsOfEveryScene) {
                 ++bothHit;
                 same += hit.prim == prim;
             }
-            // A scene lit only by emitters has no point light: the headlight at the eye then.
-            const std::vector<PointLight> lights = lightsOrHeadlight(scene, camera.eye);
-            const glm::vec3 light = lights.empty() ? camera.eye : lights.front().position;
-            const RayStream shadow = shadowRays(scene, accel.rayOffset(), primary, embreeHits, light);
+            const RayStream shadow =
+                shadowRays(scene, accel.rayOffset(), primary, embreeHits, shadowRayTarget(scene, camera.eye));
             int shadowRays = 0, occlusionSame = 0;
             for (size_t k = 0; k < shadow.tLimit.size(); ++k) {
                 if (shadow.tLimit[k] < 0.0f) continue;
