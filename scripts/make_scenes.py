@@ -8,6 +8,10 @@ from geometry generated here, so that every shipped asset can be regenerated and
                    mirror cube and an octahedron on a floor (60,026 triangles)
   D  cornell.json  the classic Cornell box with an area light (MTL Ke), a glass sphere (illum 7,
                    Ni 1.5, exact vertex normals) and a mirror block
+  E  cornell_blocks.json  the classic Cornell box with two white blocks
+  F  metal_rough_spheres.json  glTF's metallic-roughness model in the spirit of Khronos'
+                   MetalRoughSpheres: 5 x 5 spheres, metallic 0..1 down, roughness 0..1 across,
+                   under the sky of sky.json
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -449,13 +453,36 @@ def scene_e():
     return obj.triangles
 
 
+def scene_f():
+    """The sphere grid of glTF materials (JSON metallic, roughness): one UV sphere mesh
+    (sphere.obj, radius 1, exact normals) placed 25 times with a material each."""
+    obj = ObjWriter("A UV sphere of radius 1 at the origin, 64 segments by 32 rings, exact vertex normals")
+    add_sphere(obj, (0.0, 0.0, 0.0), 1.0, 64, 32)
+    obj.save("sphere.obj")
+    meshes = []
+    for row in range(5):  # metallic, top row 0
+        for column in range(5):  # roughness, left column 0
+            metallic, roughness = row / 4.0, column / 4.0
+            meshes.append({"file": "sphere.obj",
+                           "transform": {"translate": [2.4 * (column - 2), 2.4 * (2 - row), 0.0]},
+                           "material": {"name": "m%g r%g" % (metallic, roughness), "diffuse": [0.9, 0.55, 0.3],
+                                        "metallic": metallic, "roughness": roughness}})
+    write("metal_rough_spheres.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 0.0, 17.0], "target": [0.0, 0.0, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 40.0},
+        "render": {"size": [480, 480], "max_bounces": 4},
+    }) + "\n")
+    return obj.triangles * 25
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
         return 0
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
-                       ("E cornell blocks", scene_e)):
+                       ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

@@ -24,18 +24,23 @@
 // Material models (the record's `model`; Material::model in the scene).
 #define GPURT_MODEL_CLASSIC 0       // Phong lobes, mirror, smooth glass (materials/classic.h)
 #define GPURT_MODEL_DEBUG_NORMAL 1  // the shading normal as a colour (materials/debug_normal.h)
-#define GPURT_MODEL_COUNT 2         // the models this gpurt knows (a packed file's are checked)
+#define GPURT_MODEL_GLTF 2          // glTF 2.0 metallic-roughness (materials/gltf.h)
+#define GPURT_MODEL_COUNT 3         // the models this gpurt knows (a packed file's are checked)
 
 // What the integrators know of a material at one hit.
 struct MaterialRecord {
     int model;          // GPURT_MODEL_*
-    vec3 kd;            // diffuse colour, textured at the hit
+    vec3 kd;            // diffuse colour (glTF: base colour), textured at the hit
     vec3 ks;            // specular colour
     float ns;           // Phong exponent
     vec3 reflectivity;  // mirror weight
     vec3 tf;            // transmission filter of a dielectric
     float ior;          // index of refraction; 0: not a dielectric
-    vec3 emission;      // radiance emitted from both sides
+    vec3 emission;      // radiance emitted from both sides, textured at the hit
+    bool emitterLight;  // its triangles are sampled as area lights (no emissive texture)
+    float metallic;     // glTF: metallic and roughness, textured at the hit
+    float roughness;
+    float occlusion;    // glTF: the ambient terms' factor (occlusion map; 1 without)
 };
 
 #include "raytree.h"
@@ -45,6 +50,10 @@ struct MaterialRecord {
 #if defined(__cplusplus) || defined(SCENE_MODEL_1)
 #define GPURT_WITH_DEBUG_NORMAL
 #include "materials/debug_normal.h"
+#endif
+#if defined(__cplusplus) || defined(SCENE_MODEL_2)
+#define GPURT_WITH_GLTF
+#include "materials/gltf.h"
 #endif
 
 // The radiance the surface sends along the ray by itself at shading normal ns (emission).
@@ -59,6 +68,9 @@ GPURT_FN vec3 materialAmbient(MaterialRecord m) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
 #endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfAmbient(m);
+#endif
     return classicAmbient(m);
 }
 
@@ -68,6 +80,9 @@ GPURT_FN vec3 materialEnvironmentAmbient(MaterialRecord m, vec3 irradiance) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
 #endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfEnvironmentAmbient(m, irradiance);
+#endif
     return classicEnvironmentAmbient(m, irradiance);
 }
 
@@ -76,12 +91,18 @@ GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 light
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
 #endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfLight(m, p, n, d, lightPos, lightColor, intensity);
+#endif
     return classicLight(m, p, n, d, lightPos, lightColor, intensity);
 }
 
 GPURT_FN bool materialSpawns(MaterialRecord m) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfSpawns(m);
 #endif
     return classicSpawns(m);
 }
@@ -90,6 +111,9 @@ GPURT_FN bool materialSpawns(MaterialRecord m) {
 GPURT_FN bool materialSplits(MaterialRecord m) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return false;
 #endif
     return classicSplits(m);
 }
@@ -100,12 +124,18 @@ GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool e
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0;
 #endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfChildren(m, d, ng, ns, w, dirA, weightA, sideA, dirB, weightB);
+#endif
     return classicChildren(m, d, ng, ns, entering, w, dirA, weightA, sideA, dirB, weightB);
 }
 
 GPURT_FN bool materialLit(MaterialRecord m) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfLit(m);
 #endif
     return classicLit(m);
 }
@@ -114,12 +144,18 @@ GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
 #endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfEval(m, n, d, wi);
+#endif
     return classicEval(m, n, d, wi);
 }
 
 GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0.0f;
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfMaterialPdf(m, n, d, wi);
 #endif
     return classicPdf(m, n, d, wi);
 }
@@ -129,6 +165,9 @@ GPURT_FN bool materialSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool en
                              GPURT_OUT(float) side) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfSample(m, d, ng, ns, u, lobe, dir, factor, pdf, side);
 #endif
     return classicSample(m, d, ng, ns, entering, u, lobe, dir, factor, pdf, side);
 }

@@ -54,6 +54,36 @@ GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng
     return dot(s, ng) < 0.0f ? -s : s;
 }
 
+// The shading normal ns (facing as ng) bent by a tangent-space normal map (glTF normalTexture):
+// `texel` the map's linear value at the hit, its x and y times `scale`. The tangent frame is made
+// per triangle from its edges e1, e2 and their texture coordinate differences dt1, dt2 (image
+// coordinates, v down as glTF's): T along increasing u, made orthogonal to the front-side
+// normal, B = cross(N, T) times the handedness (B points along decreasing v, image up, unless
+// the mapping is mirrored). `front`: the ray sees the triangle's front (frontFace); the map bends
+// the front side's normal and a back hit sees it flipped. Where the frame or the result is
+// degenerate (no texture coordinates, a normal facing away), ns stays.
+GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, bool front, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, vec3 texel,
+                           float scale) {
+    float det = dt1.x * dt2.y - dt2.x * dt1.y;
+    if (!(abs(det) > 1e-12f)) return ns;
+    vec3 dpdu = (e1 * dt2.y - e2 * dt1.y) / det;
+    vec3 dpdv = (e2 * dt1.x - e1 * dt2.x) / det;
+    vec3 n = front ? ns : -ns;
+    vec3 t = dpdu - n * dot(n, dpdu);
+    float tt = dot(t, t);
+    if (!(tt > 1e-24f)) return ns;
+    t = t / sqrt(tt);
+    vec3 b = cross(n, t);
+    if (dot(b, dpdv) > 0.0f) b = -b;
+    vec3 m = texel * 2.0f - vec3(1.0f);
+    vec3 bent = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
+    float bb = dot(bent, bent);
+    if (!(bb > 1e-24f)) return ns;
+    bent = bent / sqrt(bb);
+    if (!front) bent = -bent;
+    return dot(bent, ng) > 0.0f ? bent : ns;
+}
+
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
 // languages evaluate the same operations.
 GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }
@@ -148,15 +178,21 @@ GPURT_FN float emitterIntensity(vec3 p, vec3 q, vec3 e1, vec3 e2, float totalAre
 #define GPURT_INV_PI 0.31830988f
 GPURT_FN float maxChannel(vec3 c) { return max(c.x, max(c.y, c.z)); }
 
-// The unit vector at angle acos(cosTheta) from the unit axis a, at azimuth 2 pi u about it, in
-// the branchless orthonormal basis of Duff et al. 2017 ("Building an Orthonormal Basis,
-// Revisited").
-GPURT_FN vec3 directionAbout(vec3 a, float cosTheta, float u) {
+// Two unit vectors t, b that make (t, b, a) a right-handed orthonormal basis about the unit axis
+// a: the branchless basis of Duff et al. 2017 ("Building an Orthonormal Basis, Revisited").
+GPURT_FN void orthonormalBasis(vec3 a, GPURT_OUT(vec3) t, GPURT_OUT(vec3) b) {
     float s = a.z >= 0.0f ? 1.0f : -1.0f;
     float k = -1.0f / (s + a.z);
     float m = a.x * a.y * k;
-    vec3 t = vec3(1.0f + s * a.x * a.x * k, s * m, -s * a.x);
-    vec3 b = vec3(m, s + a.y * a.y * k, -a.y);
+    t = vec3(1.0f + s * a.x * a.x * k, s * m, -s * a.x);
+    b = vec3(m, s + a.y * a.y * k, -a.y);
+}
+
+// The unit vector at angle acos(cosTheta) from the unit axis a, at azimuth 2 pi u about it
+// (orthonormalBasis).
+GPURT_FN vec3 directionAbout(vec3 a, float cosTheta, float u) {
+    vec3 t, b;
+    orthonormalBasis(a, t, b);
     float sinTheta = sqrt(max(0.0f, 1.0f - cosTheta * cosTheta));
     float phi = 2.0f * GPURT_PI * u;
     return contractNormalize(t * (sinTheta * cos(phi)) + b * (sinTheta * sin(phi)) + a * cosTheta);

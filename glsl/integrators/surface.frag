@@ -63,12 +63,12 @@ void main() {
     MaterialRecord m = fetchMaterialRecord(material, t);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
-    vec3 ns = fetchShadingNormal(int(h.w), h.y, h.z, ng);
+    vec3 ns = fetchMappedNormal(material, int(h.w), e1, e2, d, ng, fetchShadingNormal(int(h.w), h.y, h.z, ng), t);
     surfaceNormal = vec4(ng, float(material));
     surfaceShading = vec4(ns, t.y);
     surfaceView = vec4(d, t.x);
 #ifdef PATH
-    float mis = emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea);
+    float mis = m.emitterLight ? emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea) : 1.0f;
     color = vec4(c.xyz + w.xyz * (materialEmitted(m, ns) * mis), 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);

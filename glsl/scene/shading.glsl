@@ -44,6 +44,32 @@ vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #endif
 }
 
+// Channel `code` % 4 (0 R .. 3 A) of texture `code` / 4 at image coordinates t, filtered, as a
+// linear number in [0, 1]; 1 for code -1 (src/raytrace/SurfaceTexture.cpp sampleChannel).
+float textureChannel(int code, vec2 t) {
+#ifdef SCENE_TEXTURES
+    if (code < 0) return 1.0f;
+    uvec4 info = texelFetch(textureTable, code >> 2);
+    int first = int(info.x), w = int(info.y), h = int(info.z);
+    uint shift = 8u * uint(code & 3);
+    ivec2 columns, rows;
+    vec2 f;
+    bilinearFootprint(t, w, h, int(info.w & 0xffu), int(info.w >> 8), columns, rows, f);
+    float c00 = float((texelFetch(textureTexels, first + rows.x * w + columns.x).x >> shift) & 0xffu);
+    float c01 = float((texelFetch(textureTexels, first + rows.x * w + columns.y).x >> shift) & 0xffu);
+    float c10 = float((texelFetch(textureTexels, first + rows.y * w + columns.x).x >> shift) & 0xffu);
+    float c11 = float((texelFetch(textureTexels, first + rows.y * w + columns.y).x >> shift) & 0xffu);
+    return bilinearBlend(vec3(c00), vec3(c01), vec3(c10), vec3(c11), f).x / 255.0f;
+#else
+    return 1.0f;
+#endif
+}
+
+// The linear values of texture `tex`'s red, green and blue channels at t (a normal map).
+vec3 textureLinear(int tex, vec2 t) {
+    return vec3(textureChannel(4 * tex, t), textureChannel(4 * tex + 1, t), textureChannel(4 * tex + 2, t));
+}
+
 // The material record (common/material.h) of material m at image coordinates t: every field of
 // its texels, the diffuse colour textured at t (surface.frag computes t; the later passes read it
 // from surfaceView.w and surfaceShading.w). What a kernel does not use the compiler drops.
@@ -61,8 +87,40 @@ MaterialRecord fetchMaterialRecord(int m, vec2 t) {
     r.reflectivity = c.xyz;
     r.tf = e.xyz;
     r.ior = e.w;
-    r.emission = texelFetch(materials, at + ivec2(3, 0), 0).xyz;
+    vec4 emission = texelFetch(materials, at + ivec2(3, 0), 0);
+    r.emission = emission.xyz;
+    r.emitterLight = true;
+    r.metallic = 0.0f;
+    r.roughness = 1.0f;
+    r.occlusion = 1.0f;
+#ifdef SCENE_MODEL_2
+    vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);
+    vec4 g = texelFetch(materials, at + ivec2(6, 0), 0);
+    r.metallic = f.x * textureChannel(int(g.y), t);
+    r.roughness = f.y * textureChannel(int(g.x), t);
+    r.occlusion = 1.0f + f.w * (textureChannel(int(emission.w), t) - 1.0f);
+    if (g.w >= 0.0f) {
+        r.emission = texturedDiffuse(int(g.w), r.emission, t);
+        r.emitterLight = false;
+    }
+#endif
     return r;
+}
+
+// The shading normal ns of triangle `id` (edges e1, e2, seen along d, geometric normal ng) with
+// material m's normal map applied at image coordinates t (common/shading.h normalMapped).
+vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t) {
+#ifdef SCENE_NORMAL_MAPS
+    vec4 f = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 5, 0), 0);
+    vec4 g = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 6, 0), 0);
+    if (g.z < 0.0f) return ns;
+    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangleTexcoords, at, 0);
+    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, a.zw - a.xy, b.xy - a.xy, textureLinear(int(g.z), t), f.z);
+#else
+    return ns;
+#endif
 }
 
 // The radiance an emitter's material m emits (the light a shadow ray towards it carries).

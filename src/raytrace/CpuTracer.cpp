@@ -2,6 +2,8 @@
 // a CpuAccelerator, with the shared shading, material and path code of glsl/common.
 #include "raytrace/CpuTracer.h"
 
+#include "raytrace/SurfaceTexture.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -97,6 +99,15 @@ CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::v
     if (!scene_.normals.empty()) {
         const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
         s.ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, s.n);
+    }
+    const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+    if (m.normalTexture >= 0 && !scene_.texcoords.empty()) {  // shading.glsl fetchMappedNormal
+        const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
+        const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
+        const Texture& map = scene_.textures[size_t(m.normalTexture)];
+        const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
+        s.ns = normalMapped(s.ns, s.n, frontFace(tri.e1, tri.e2, d), tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel,
+                            m.normalScale);
     }
     return s;
 }

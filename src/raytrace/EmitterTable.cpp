@@ -15,7 +15,8 @@ EmitterTable buildEmitterTable(const Scene& scene) {
     std::vector<double> areas;
     double total = 0.0;
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
-        if (!scene.materials[scene.materialIds[t]].emits()) continue;
+        const Material& m = scene.materials[scene.materialIds[t]];
+        if (!m.emits() || m.emissiveTexture >= 0) continue;  // textured emission: found by rays only
         const Triangle& tri = scene.triangles[t];
         const glm::dvec3 c = glm::cross(glm::dvec3(tri.v1) - glm::dvec3(tri.v0), glm::dvec3(tri.v2) - glm::dvec3(tri.v0));
         const double area = 0.5 * glm::length(c);

@@ -46,6 +46,7 @@ constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
 constexpr char kModels[] = "MODL";
+constexpr char kPbr[] = "PBRM";
 constexpr char kEnvironment[] = "ENVM";
 constexpr char kBvhNodes[] = "BVHN";
 constexpr char kBvhList[] = "BVHL";
@@ -54,12 +55,12 @@ constexpr char kBvhList[] = "BVHL";
 // required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
-                                         kTextures,  kModels,    kEnvironment, kBvhNodes, kBvhList};
+                                         kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels || tag == kEnvironment || gridSection(tag) || bvhSection(tag);
+           tag == kModels || tag == kPbr || tag == kEnvironment || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -86,6 +87,9 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kModels)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return m.model != 0; });
+    if (tag == kPbr)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return m.model == GPURT_MODEL_GLTF; });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
@@ -93,6 +97,10 @@ constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
 constexpr size_t kModelBytes = 4;
+// PBRM per material: metallic, roughness, normal scale, occlusion strength (f32), then the
+// roughness, metallic and occlusion channels (texture, channel) and the normal and emissive
+// textures (i32, -1: none).
+constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
 // The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
 constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
@@ -263,10 +271,19 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
                              ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
         if (mat.model < 0 || uint32_t(mat.model) > kLastMaterialModel) failAt(file, unknownModel(m, mat.model));
     }
-    for (size_t m = 0; m < scene.materials.size(); ++m)
-        if (scene.materials[m].diffuseTexture < -1 || scene.materials[m].diffuseTexture >= int(scene.textures.size()))
-            failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(scene.materials[m].diffuseTexture) +
-                             " out of range (" + std::to_string(scene.textures.size()) + " textures)");
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
+        for (int texture : {mat.diffuseTexture, mat.roughnessTexture.texture, mat.metallicTexture.texture, mat.normalTexture,
+                            mat.emissiveTexture, mat.occlusionTexture.texture})
+            if (texture < -1 || texture >= int(scene.textures.size()))
+                failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
+                                 std::to_string(scene.textures.size()) + " textures)");
+        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture})
+            if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
+        if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
+            !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
+            failAt(file, "material " + std::to_string(m) + ": metallic, roughness and occlusion strength must be in [0, 1], the normal scale finite");
+    }
 }
 
 // The texture coordinates' count, and each texture's size and wrap modes.
@@ -601,6 +618,27 @@ class SectionDecoder {
         }
     }
 
+    // Each material's glTF fields (count = the materials', then kPbrBytes each). Read after the
+    // materials.
+    void pbr(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kPbrBytes, "materials' glTF fields", kMaxTextureMaterials, scene.materials.size(),
+                                   "materials");
+        for (uint64_t k = 0; k < n; ++k) {
+            Material& m = scene.materials[size_t(k)];
+            m.metallic = in.f32();
+            m.roughness = in.f32();
+            m.normalScale = in.f32();
+            m.occlusionStrength = in.f32();
+            for (TextureChannel* c : {&m.roughnessTexture, &m.metallicTexture, &m.occlusionTexture}) {
+                c->texture = int(int32_t(in.u32()));
+                c->channel = int(int32_t(in.u32()));
+            }
+            m.normalTexture = int(int32_t(in.u32()));
+            m.emissiveTexture = int(int32_t(in.u32()));
+        }
+    }
+
     void environment(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
         if (s.size < 4) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
@@ -801,6 +839,7 @@ class SectionEncoder {
         else if (tag == kTexcoords) texcoords();
         else if (tag == kTextures) textures();
         else if (tag == kModels) models();
+        else if (tag == kPbr) pbr();
         else if (tag == kEnvironment) environment();
     }
 
@@ -928,6 +967,22 @@ class SectionEncoder {
     void models() {
         out_.u64(scene_.materials.size());
         for (const Material& m : scene_.materials) out_.u32(uint32_t(m.model));
+    }
+
+    void pbr() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) {
+            out_.f32(m.metallic);
+            out_.f32(m.roughness);
+            out_.f32(m.normalScale);
+            out_.f32(m.occlusionStrength);
+            for (TextureChannel c : {m.roughnessTexture, m.metallicTexture, m.occlusionTexture}) {
+                out_.u32(uint32_t(int32_t(c.texture)));
+                out_.u32(uint32_t(int32_t(c.channel)));
+            }
+            out_.u32(uint32_t(int32_t(m.normalTexture)));
+            out_.u32(uint32_t(int32_t(m.emissiveTexture)));
+        }
     }
 
     // Flags (1: the file set the background, 2: an environment follows), then the environment's
@@ -1129,6 +1184,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
+    if (section(kPbr)) decoder.pbr(*section(kPbr), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {

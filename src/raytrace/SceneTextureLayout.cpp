@@ -142,11 +142,18 @@ TextureTexels materialTexels(const Scene& scene) {
     TextureTexels materials = emptyTexture("materials", n * GPURT_MATERIAL_TEXELS, 1, 4, true);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
-        const vec4 texel[GPURT_MATERIAL_TEXELS] = {vec4(mat.diffuse, mat.shininess),
-                                                   vec4(mat.specular, float(mat.diffuseTexture)),
-                                                   vec4(mat.reflectivity, float(mat.model)),
-                                                   vec4(mat.emission, 0.0f),
-                                                   vec4(mat.transmission, mat.ior)};
+        // A texture channel as one number (glsl/scene/shading.glsl textureChannel): 4 texture +
+        // channel, -1 none.
+        auto channel = [](TextureChannel c) { return c.given() ? float(4 * c.texture + c.channel) : -1.0f; };
+        const vec4 texel[GPURT_MATERIAL_TEXELS] = {
+            vec4(mat.diffuse, mat.shininess),
+            vec4(mat.specular, float(mat.diffuseTexture)),
+            vec4(mat.reflectivity, float(mat.model)),
+            vec4(mat.emission, channel(mat.occlusionTexture)),
+            vec4(mat.transmission, mat.ior),
+            vec4(mat.metallic, mat.roughness, mat.normalScale, mat.occlusionStrength),
+            vec4(channel(mat.roughnessTexture), channel(mat.metallicTexture), float(mat.normalTexture),
+                 float(mat.emissiveTexture))};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

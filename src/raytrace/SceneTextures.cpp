@@ -149,8 +149,10 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       environmentMarginal_(makeEnvironmentArray(environmentTable_, 1)),
       environmentConditional_(makeEnvironmentArray(environmentTable_, 2)),
       environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)) {
-    for (const Material& m : scene.materials)
+    for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
+        if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
+    }
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -158,6 +160,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     // for a feature the scene lacks costs its full price unless it is compiled out.
     if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
+    if (hasNormalMaps_) kernel.addDefine("SCENE_NORMAL_MAPS");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     kernel.addInput(triangles_, "triangles")

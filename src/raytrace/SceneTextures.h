@@ -57,6 +57,7 @@ class SceneTextures {
     GPUFloatArray emitters_;
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
+    bool hasNormalMaps_ = false;  // some material has a normal map (and the scene texture coordinates)
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;

@@ -33,6 +33,27 @@ glm::vec3 sampleTexture(const Texture& texture, glm::vec2 t) {
                                   texel(columns.y, rows.y), f);
 }
 
+float sampleChannel(const Texture& texture, glm::vec2 t, int channel) {
+    const Rgba8Image& image = texture.image;
+    glm::ivec2 columns, rows;
+    glm::vec2 f;
+    raymath::bilinearFootprint(t, image.width, image.height, int(texture.wrapS), int(texture.wrapT), columns, rows, f);
+    const uint32_t shift = 8u * uint32_t(channel);
+    auto texel = [&](int x, int y) {
+        const uint32_t c = image.texels[size_t(y) * size_t(image.width) + size_t(x)];
+        return glm::vec3(float((c >> shift) & 0xffu));
+    };
+    return raymath::bilinearBlend(texel(columns.x, rows.x), texel(columns.y, rows.x), texel(columns.x, rows.y),
+                                  texel(columns.y, rows.y), f).x /
+           255.0f;
+}
+
+glm::vec2 texcoordAt(const Scene& scene, uint32_t prim, float u, float v) {
+    if (scene.texcoords.empty()) return glm::vec2(0.0f);
+    const TriangleTexcoords& c = scene.texcoords[prim];
+    return raymath::interpolateTexcoord(c.t0, c.t1, c.t2, u, v);
+}
+
 glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float u, float v) {
     if (m.diffuseTexture < 0 || scene.texcoords.empty()) return m.diffuse;
     const TriangleTexcoords& c = scene.texcoords[prim];

@@ -18,6 +18,13 @@ const std::array<float, 256>& srgbDecodeTable();
 // The bilinearly filtered linear colour of `texture` at image coordinates t.
 glm::vec3 sampleTexture(const Texture& texture, glm::vec2 t);
 
+// Channel `channel` (0 R .. 3 A) of `texture` at image coordinates t, bilinearly filtered, as a
+// linear number in [0, 1] (glsl/scene/shading.glsl textureChannel).
+float sampleChannel(const Texture& texture, glm::vec2 t, int channel);
+
+// The texture coordinates of triangle `prim` at barycentrics (u, v) (zeros without any).
+glm::vec2 texcoordAt(const Scene& scene, uint32_t prim, float u, float v);
+
 // Material m's diffuse colour at barycentrics (u, v) of triangle `prim`: m.diffuse, times its
 // texture's colour at the interpolated texture coordinates when it has one.
 glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float u, float v);

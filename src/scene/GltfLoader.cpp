@@ -318,8 +318,13 @@ class GltfReader {
     std::vector<glm::vec2> primitiveTexcoords(const tinygltf::Primitive& prim, const std::string& at, uint32_t material,
                                               size_t vertices, const Scene& scene) const {
         std::vector<glm::vec2> texcoords;
-        if (scene.materials[material].diffuseTexture < 0) return texcoords;
-        const std::string set = "TEXCOORD_" + std::to_string(texcoordSets_[material]);
+        if (prim.attributes.count("TANGENT") && !tangentsWarned_ && scene.materials[material].normalTexture >= 0) {
+            warn(at + ": TANGENT is not used; normal maps use tangents generated per triangle from the texture coordinates");
+            tangentsWarned_ = true;
+        }
+        if (material >= uvs_.size() || uvs_[material].set < 0) return texcoords;
+        const MaterialUv& uv = uvs_[material];
+        const std::string set = "TEXCOORD_" + std::to_string(uv.set);
         const auto attribute = prim.attributes.find(set);
         if (attribute == prim.attributes.end()) {
             warn(at + ": no " + set + " for its material's texture; it is sampled at (0, 0)");
@@ -330,7 +335,8 @@ class GltfReader {
         if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
         texcoords.resize(vertices);
         for (size_t v = 0; v < vertices; ++v) {
-            const glm::vec2 c{float(t[2 * v]), float(t[2 * v + 1])};
+            const glm::dvec3 mapped = uv.transform * glm::dvec3(t[2 * v], t[2 * v + 1], 1.0);
+            const glm::vec2 c{float(mapped.x), float(mapped.y)};
             texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
         }
         return texcoords;
@@ -383,11 +389,10 @@ class GltfReader {
             fail(at + ": baseColorFactor, metallicFactor and roughnessFactor must be in [0, 1]");
         Material m;
         m.name = g.name.empty() ? at : g.name;
-        // Metals reflect (tinted by their colour); gpurt has no glossy lobe yet, so a rough metal
-        // is mostly diffuse and only a smooth one a mirror.
-        const float mirror = float(metallic * (1.0 - roughness));
-        m.reflectivity = colour * mirror;
-        m.diffuse = colour * (1.0f - mirror);
+        m.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF: Appendix B's BRDF
+        m.diffuse = colour;
+        m.metallic = float(metallic);
+        m.roughness = float(roughness);
         m.specular = glm::vec3(0.0f);
         glm::dvec3 emissive(0.0);
         if (g.emissiveFactor.size() == 3) emissive = glm::dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]);
@@ -398,29 +403,120 @@ class GltfReader {
         if (transmission != g.extensions.end()) {
             const double t = number(transmission->second, "transmissionFactor", 0.0);
             if (!inUnit(t)) fail(at + ": transmissionFactor must be in [0, 1]");
-            if (t > 0.0) {
+            if (t > 0.0) {  // the classic model's smooth dielectric
                 const auto ior = g.extensions.find("KHR_materials_ior");
+                m.model = 0;
                 m.ior = float(ior != g.extensions.end() ? number(ior->second, "ior", 1.5) : 1.5);
                 m.transmission = colour * float(t);
                 m.diffuse = glm::vec3(0.0f);
-                m.reflectivity = glm::vec3(0.0f);
+                if (roughness > 0.0) warn(at + ": KHR_materials_transmission with roughness " + std::to_string(roughness) + " is rendered as smooth glass");
+                if (transmission->second.Has("transmissionTexture")) warn(at + ": transmissionTexture is not used");
             }
         }
         if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
             m.ior < 0.0f || (m.ior > 0.0f && m.ior < 1.0f))
             fail(at + ": emission must be finite and >= 0, ior >= 1");
+        // The texture slots; all share the texture coordinates of the first one used (its
+        // TEXCOORD_n and KHR_texture_transform), a slot that asks for others is warned about.
+        MaterialUv uv;
+        const std::string named = at + " ('" + m.name + "')";
         const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
-        if (baseTexture.index >= 0 && m.diffuse != glm::vec3(0.0f)) {
-            m.diffuseTexture = textureOf(baseTexture.index, at + " ('" + m.name + "')", scene);
-            if (baseTexture.texCoord < 0) fail(at + ": baseColorTexture texCoord " + std::to_string(baseTexture.texCoord));
-            if (baseTexture.extensions.count("KHR_texture_transform"))
-                warn(at + ": KHR_texture_transform is not used; the texture is mapped untransformed");
+        if (baseTexture.index >= 0 && (m.diffuse != glm::vec3(0.0f) || m.model == 2))
+            m.diffuseTexture = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
+        if (m.model == 2) {
+            const tinygltf::TextureInfo& mr = g.pbrMetallicRoughness.metallicRoughnessTexture;
+            if (mr.index >= 0) {
+                const int tex = slot(mr.index, mr.texCoord, mr.extensions, "metallicRoughnessTexture", named, uv, scene);
+                if (tex >= 0) {
+                    m.roughnessTexture = {tex, 1};  // G
+                    m.metallicTexture = {tex, 2};   // B
+                }
+            }
+            const tinygltf::NormalTextureInfo& normal = g.normalTexture;
+            if (normal.index >= 0) {
+                m.normalTexture = slot(normal.index, normal.texCoord, normal.extensions, "normalTexture", named, uv, scene);
+                m.normalScale = float(normal.scale);
+                if (!std::isfinite(m.normalScale)) fail(at + ": normalTexture scale must be finite");
+            }
+            const tinygltf::TextureInfo& glow = g.emissiveTexture;
+            if (glow.index >= 0 && m.emits())
+                m.emissiveTexture = slot(glow.index, glow.texCoord, glow.extensions, "emissiveTexture", named, uv, scene);
+            const tinygltf::OcclusionTextureInfo& occlusion = g.occlusionTexture;
+            if (occlusion.index >= 0) {
+                const int tex = slot(occlusion.index, occlusion.texCoord, occlusion.extensions, "occlusionTexture", named, uv, scene);
+                if (tex >= 0) m.occlusionTexture = {tex, 0};  // R
+                m.occlusionStrength = float(occlusion.strength);
+                if (!inUnit(occlusion.strength)) fail(at + ": occlusionTexture strength must be in [0, 1]");
+            }
+        } else {
+            for (const char* unused : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+                if ((std::strcmp(unused, "normalTexture") == 0 && g.normalTexture.index >= 0) ||
+                    (std::strcmp(unused, "occlusionTexture") == 0 && g.occlusionTexture.index >= 0) ||
+                    (std::strcmp(unused, "emissiveTexture") == 0 && g.emissiveTexture.index >= 0))
+                    warn(named + ": " + unused + " of a transmissive material is not used");
         }
-        texcoordSets_.resize(scene.materials.size() + 1, 0);
-        texcoordSets_.back() = std::max(baseTexture.texCoord, 0);
+        for (const auto& extension : g.extensions)
+            if (extension.first != "KHR_materials_emissive_strength" && extension.first != "KHR_materials_transmission" &&
+                extension.first != "KHR_materials_ior")
+                warn(named + ": " + extension.first + " is not used");
+        if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
+            warn(named + ": alphaMode " + g.alphaMode + " is not used yet; the material is opaque");
+        uvs_.resize(scene.materials.size() + 1);
+        uvs_.back() = uv;
         scene.materials.push_back(m);
         materialIds_[size_t(index)] = int(scene.materials.size() - 1);
         return uint32_t(scene.materials.size() - 1);
+    }
+
+    // The texture coordinates a material's textures share: TEXCOORD_set (-1: no texture) mapped
+    // by KHR_texture_transform's matrix (offset + rotation + scale, in glTF's u right, v down).
+    struct MaterialUv {
+        int set = -1;
+        glm::dmat3 transform{1.0};
+        std::string slot;  // the slot that chose them
+    };
+
+    // The scene texture of one texture slot of a material (-1 with a warning when its image could
+    // not be read); the first slot fixes the material's texture coordinates (uv).
+    int slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions, const char* name, const std::string& material,
+             MaterialUv& uv, Scene& scene) {
+        if (texCoord < 0 || texCoord > 255) fail(material + ": " + name + " texCoord " + std::to_string(texCoord) + " out of range");
+        int set = texCoord;
+        glm::dmat3 transform(1.0);
+        const auto t = extensions.find("KHR_texture_transform");
+        if (t != extensions.end()) {
+            const tinygltf::Value& v = t->second;
+            auto pair = [&](const char* key, double fallback) {
+                glm::dvec2 p(fallback);
+                if (v.IsObject() && v.Has(key)) {
+                    const tinygltf::Value& a = v.Get(key);
+                    if (!a.IsArray() || a.ArrayLen() != 2 || !(a.Get(0).IsNumber() || a.Get(0).IsInt()) ||
+                        !(a.Get(1).IsNumber() || a.Get(1).IsInt()))
+                        fail(material + ": " + name + " KHR_texture_transform " + key + " is not 2 numbers");
+                    p = glm::dvec2(a.Get(0).GetNumberAsDouble(), a.Get(1).GetNumberAsDouble());
+                }
+                return p;
+            };
+            const glm::dvec2 offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+            const double rotation = number(v, "rotation", 0.0);
+            if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(scale.x) || !std::isfinite(scale.y) ||
+                !std::isfinite(rotation))
+                fail(material + ": " + name + " KHR_texture_transform is not finite");
+            const double c = std::cos(rotation), s = std::sin(rotation);
+            // Column-major: u' = c sx u + s sy v + ox, v' = -s sx u + c sy v + oy.
+            transform = glm::dmat3(c * scale.x, -s * scale.x, 0.0, s * scale.y, c * scale.y, 0.0, offset.x, offset.y, 1.0);
+            if (v.IsObject() && v.Has("texCoord")) set = v.Get("texCoord").GetNumberAsInt();
+            if (set < 0 || set > 255) fail(material + ": " + name + " KHR_texture_transform texCoord out of range");
+        }
+        if (uv.set < 0) {
+            uv.set = set;
+            uv.transform = transform;
+            uv.slot = name;
+        } else if (uv.set != set || uv.transform != transform) {
+            warn(material + ": " + name + " asks for other texture coordinates than " + uv.slot + " (TEXCOORD_" +
+                 std::to_string(set) + " or KHR_texture_transform); it is mapped with " + uv.slot + "'s");
+        }
+        return textureOf(index, material, scene);
     }
 
     // The scene texture of glTF texture `index` (one per image and sampler), or -1 with a warning
@@ -524,7 +620,8 @@ class GltfReader {
     const tinygltf::Model& m_;
     std::string name_;
     std::vector<int> materialIds_;
-    std::vector<int> texcoordSets_;  // per scene material: the TEXCOORD set of its texture
+    std::vector<MaterialUv> uvs_;  // per scene material: the texture coordinates of its textures
+    mutable bool tangentsWarned_ = false;  // TANGENT's warning is said once per file
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;

@@ -376,8 +376,14 @@ class SceneReader {
             textures = textureBase_.emplace(key, int(scene.textures.size())).first;
             scene.textures.insert(scene.textures.end(), obj.textures.begin(), obj.textures.end());
         }
+        const int base = textures->second;
+        auto shift = [base](int& texture) {
+            if (texture >= 0) texture += base;
+        };
         for (Material m : obj.materials) {
-            if (m.diffuseTexture >= 0) m.diffuseTexture += textures->second;
+            for (int* texture : {&m.diffuseTexture, &m.roughnessTexture.texture, &m.metallicTexture.texture,
+                                 &m.normalTexture, &m.emissiveTexture, &m.occlusionTexture.texture})
+                shift(*texture);
             scene.materials.push_back(m);
         }
     }
@@ -476,7 +482,8 @@ class SceneReader {
     }
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
-        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission"});
+        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
+                                  "metallic", "roughness"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -495,6 +502,18 @@ class SceneReader {
             if (!(eta > 0.0)) fail(at / "ior", "must be > 0, got " + formatNumber(eta));
             material.ior = static_cast<float>(eta);
         }
+        // "metallic" or "roughness": glTF's metallic-roughness model, "diffuse" its base colour.
+        for (const char* key : {"metallic", "roughness"}) {
+            const json* given = find(value, key);
+            if (!given) continue;
+            const double v = numberAtLeast(*given, at / key, 0.0);
+            if (v > 1.0) fail(at / key, "must be <= 1, got " + formatNumber(v));
+            (std::string(key) == "metallic" ? material.metallic : material.roughness) = static_cast<float>(v);
+            material.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF
+        }
+        if (material.model == 2 && (find(value, "ior") || find(value, "reflectivity") || find(value, "specular") ||
+                                    find(value, "shininess") || find(value, "transmission")))
+            fail(at, "metallic and roughness (glTF's model) do not go with specular, shininess, reflectivity, ior or transmission");
         if (const json* transmission = find(value, "transmission")) {
             material.transmission = color(*transmission, at / "transmission");
             for (int i = 0; i < 3; ++i)

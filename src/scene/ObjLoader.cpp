@@ -342,6 +342,8 @@ class MtlReader : public tinyobj::MaterialReader {
     // Materials (by name) whose library gives Tf (or Kt) and Ni: tinyobjloader's defaults (Tf 0,
     // Ni 1) cannot be told from values a file gives.
     std::set<std::string> givenFilter, givenIndex;
+    // Materials that use the MTL PBR extension (Pr, Pm, map_Pr, map_Pm): glTF's model.
+    std::set<std::string> givenPbr;
 
   private:
     void noteGivenKeys(const std::string& text) {
@@ -357,6 +359,7 @@ class MtlReader : public tinyobj::MaterialReader {
             }
             if (key == "Tf" || key == "Kt") givenFilter.insert(current);
             if (key == "Ni") givenIndex.insert(current);
+            if (key == "Pr" || key == "Pm" || key == "map_Pr" || key == "map_Pm") givenPbr.insert(current);
         }
     }
 
@@ -375,6 +378,8 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Tf";
         else if (bad(m.ior) || (isDielectric(m.illum) && m.ior == 0.0f))
             what = "Ni";
+        else if (bad(m.roughness) || bad(m.metallic))
+            what = "Pr or Pm";
         if (what.empty()) return std::nullopt;
         return Problem{library, "material " + quote(m.name) + ": " + what + " must be finite and not negative"};
     }
@@ -509,6 +514,24 @@ Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path
             material.transmission = glm::min(material.transmission, glm::vec3(1.0f));
             warnAt(FileLoc{name}, "material " + quote(m.name) + ": Tf above 1, clamped to 1");
         }
+    }
+    // The MTL PBR extension (Pr roughness, Pm metallic, their maps' first channel, norm, map_Ke):
+    // glTF's metallic-roughness model with Kd the base colour (glsl/common/materials/gltf.h).
+    if (mtlReader.givenPbr.count(m.name) && material.ior == 0.0f) {
+        material.model = 2;
+        material.roughness = std::clamp(static_cast<float>(m.roughness), 0.0f, 1.0f);
+        material.metallic = std::clamp(static_cast<float>(m.metallic), 0.0f, 1.0f);
+        if (!(material.roughness == static_cast<float>(m.roughness)) || !(material.metallic == static_cast<float>(m.metallic)))
+            warnAt(FileLoc{name}, "material " + quote(m.name) + ": Pr and Pm are clamped to [0, 1]");
+        if (!m.roughness_texname.empty())
+            material.roughnessTexture = {textureOf(m.roughness_texname, folder, name, m.name, textureFiles, scene), 0};
+        if (!m.metallic_texname.empty())
+            material.metallicTexture = {textureOf(m.metallic_texname, folder, name, m.name, textureFiles, scene), 0};
+        if (!m.normal_texname.empty())
+            material.normalTexture = textureOf(m.normal_texname, folder, name, m.name, textureFiles, scene);
+        if (!m.emissive_texname.empty() && material.emits())
+            material.emissiveTexture = textureOf(m.emissive_texname, folder, name, m.name, textureFiles, scene);
+        return material;
     }
     // MTL illumination models 3, 5 and 7 turn on ray-traced reflection.
     if (m.illum == 3 || m.illum == 5 || m.illum == 7) material.reflectivity = material.specular;

@@ -16,6 +16,15 @@
 
 namespace gpurt {
 
+// One channel (0 R, 1 G, 2 B, 3 A) of a texture of Scene::textures, read as linear numbers;
+// texture -1: none.
+struct TextureChannel {
+    int texture = -1;
+    int channel = 0;
+
+    bool given() const { return texture >= 0; }
+};
+
 // Phong material from an MTL file (Kd, Ks, Ns); reflectivity is the mirror weight of a Whitted
 // reflection (Ks when the MTL illumination model turns ray-traced reflection on, else 0).
 struct Material {
@@ -35,8 +44,24 @@ struct Material {
     // texture's linear colour at the hit's texture coordinates (glTF baseColorTexture, MTL map_Kd).
     int diffuseTexture = -1;
     // The material model (glsl/common/material.h GPURT_MODEL_*): 0, the classic model of the
-    // fields above (glsl/common/materials/classic.h).
+    // fields above (glsl/common/materials/classic.h); 2, glTF's metallic-roughness
+    // (glsl/common/materials/gltf.h: diffuse is the base colour, with the fields below).
     int model = 0;
+    // glTF model: metallic and roughness factors, each times a texture's channel where it has one
+    // (glTF metallicRoughnessTexture: roughness G, metallic B; MTL map_Pr / map_Pm: R).
+    float metallic = 0.0f;
+    float roughness = 1.0f;
+    TextureChannel roughnessTexture, metallicTexture;
+    // Tangent-space normal map (glTF normalTexture, MTL norm) and its scale (x, y times it).
+    int normalTexture = -1;
+    float normalScale = 1.0f;
+    // The emission is emission times this texture's colour (sRGB) where it has one (glTF
+    // emissiveTexture, MTL map_Ke). Such emitters are not sampled as lights (found by rays only).
+    int emissiveTexture = -1;
+    // Ambient occlusion (glTF occlusionTexture, channel R): the ambient terms are times
+    // 1 + strength (texel - 1).
+    TextureChannel occlusionTexture;
+    float occlusionStrength = 1.0f;
 
     bool emits() const { return emission != glm::vec3(0.0f); }
 };

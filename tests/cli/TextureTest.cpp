@@ -71,7 +71,10 @@ class Textures : public GpurtTest {
 // The unit square of quad.obj faces the camera, its texture's four quadrants red (top left),
 // green, blue and white (ImageMagick made it). At the centre of each quadrant's square the colour
 // over the white one's, at the mirror-image pixel (the same light: the headlight sits on the axis),
-// is the texel's linear colour as libpng reads it from the file. A texture flipped (OBJ's v axis
+// is the texel's linear colour as libpng reads it from the file. The glTF's material (metallic 0,
+// roughness 1: glTF's model) adds the same specular light s to every quadrant whatever its
+// colour: there (colour - s) / (white - s) is the texel's, s a channel's darkest quadrant (each
+// channel is 0 in some quadrant). A texture flipped (OBJ's v axis
 // up, glTF's down) or mirrored puts another quadrant there. The same for obj2gltf's glTF of the
 // quad, embedded (GLB) and with its texture beside it (.gltf).
 TEST_F(Textures, QuadrantsLandWhereTheImageHasThem) {
@@ -93,16 +96,21 @@ TEST_F(Textures, QuadrantsLandWhereTheImageHasThem) {
                     const int px = qx ? far : near, py = qy ? far : near;
                     ASSERT_GE(*prim.at(px, py), 0.0f) << px << "," << py;
                     const unsigned char* texel = &texels[(size_t(2 * qy) * 4 + size_t(2 * qx)) * 3];
-                    for (int c = 0; c < 3; ++c)
-                        EXPECT_NEAR(color.at(px, py)[c] / white[c], srgbToLinear(texel[c]), 1e-4)
+                    for (int c = 0; c < 3; ++c) {
+                        float s = white[c];
+                        for (int k = 0; k < 4; ++k) s = std::min(s, color.at(k & 1 ? far : near, k & 2 ? far : near)[c]);
+                        if (std::string(scene) == "quad.obj") EXPECT_EQ(s, 0.0f) << "Lambert: black is black";
+                        EXPECT_NEAR((color.at(px, py)[c] - s) / (white[c] - s), srgbToLinear(texel[c]), 1e-4)
                             << "quadrant " << qx << "," << qy << " channel " << c;
+                    }
                 }
         }
 }
 
 // glTF files obj2gltf made from the textured OBJs (the globe's JPEG and the quad's PNG embedded, or
 // beside the file) hit the same triangles (the globe: the same ids) and give the same colours as
-// the OBJ, on both backends.
+// the OBJ given the glTF's material through MTL's PBR extension (obj2gltf wrote metallic 0,
+// roughness 1: the OBJ's MTL copied with `Pr 1`, `Pm 0` added), on both backends.
 TEST_F(Textures, GltfFromObj2gltfRendersAsItsObj) {
     const std::pair<const char*, const char*> models[] = {
         {"globe.glb", "globe.obj"}, {"quad.glb", "quad.obj"}, {"quad_separate.gltf", "quad.obj"}};
@@ -111,7 +119,16 @@ TEST_F(Textures, GltfFromObj2gltfRendersAsItsObj) {
             SCOPED_TRACE(std::string(gltf) + " " + backend);
             const std::string options = std::string("--size 80x60 --eye 0.6,0.7,2.6 --target 0,0,0 --backend ") + backend;
             render(kAssets + gltf, "gltf", options);
-            render(kAssets + obj, "obj", options);
+            // The OBJ beside an MTL of the same material plus Pr 1, Pm 0, its map_Kd the asset's.
+            const std::string stem = fs::path(obj).stem().string();
+            std::string mtl = readFile(fs::path(kAssets) / (stem + ".mtl"));
+            const size_t map = mtl.find("map_Kd ");
+            ASSERT_NE(map, std::string::npos);
+            mtl.insert(map + 7, fs::absolute(fs::path(kAssets)).string() + "/");
+            mtl += "Pr 1\nPm 0\n";
+            write(stem + ".mtl", mtl);
+            write(obj, readFile(fs::path(kAssets) / obj));
+            render(path(obj), "obj", options);
             // obj2gltf splits the quad along its other diagonal: there the ids differ, not what is hit.
             const Pfm primA = readPfm(dir / "gltf_prim.pfm"), primB = readPfm(dir / "obj_prim.pfm");
             ASSERT_EQ(primA.topFirst.size(), primB.topFirst.size());

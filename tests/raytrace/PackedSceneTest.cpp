@@ -567,11 +567,11 @@ TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
                    }),
                    "section MODL: " + std::to_string(materials - 1) + " material models for " +
                        std::to_string(materials) + " materials");
-    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, modl.offset + 8 + 4 * 3, 2); }),
-                   "section MODL: material 3: unknown material model 2");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, modl.offset + 8 + 4 * 3, GPURT_MODEL_COUNT); }),
+                   "section MODL: material 3: unknown material model " + std::to_string(GPURT_MODEL_COUNT));
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, modl.offset + 8, 0xffffffffu); }),
                    "material 0: unknown material model 4294967295");
-    for (const int model : {2, -1}) {
+    for (const int model : {GPURT_MODEL_COUNT, -1}) {
         LoadedScene unknown = debug;
         unknown.scene.materials[4].model = model;
         const std::string message =

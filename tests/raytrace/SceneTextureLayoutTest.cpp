@@ -100,13 +100,17 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
     EXPECT_EQ(materials.rows, 1);
     for (size_t m = 0; m < 3; ++m) {
         const Material& mat = scene.materials[m];
-        const float expected[20] = {
+        // scene_layout.h: a channel is 4 texture + channel, -1 none (these materials have none).
+        const float expected[4 * GPURT_MATERIAL_TEXELS] = {
             mat.diffuse.x,      mat.diffuse.y,      mat.diffuse.z,      mat.shininess,
             mat.specular.x,     mat.specular.y,     mat.specular.z,     float(mat.diffuseTexture),
             mat.reflectivity.x, mat.reflectivity.y, mat.reflectivity.z, 0.0f,
-            mat.emission.x,     mat.emission.y,     mat.emission.z,     0.0f,
-            mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior};
-        for (int k = 0; k < 20; ++k) EXPECT_EQ(materials.floats[m * 20 + size_t(k)], expected[k]);
+            mat.emission.x,     mat.emission.y,     mat.emission.z,     -1.0f,
+            mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior,
+            mat.metallic,       mat.roughness,      mat.normalScale,    mat.occlusionStrength,
+            -1.0f,              -1.0f,              -1.0f,              -1.0f};
+        for (int k = 0; k < 4 * GPURT_MATERIAL_TEXELS; ++k)
+            EXPECT_EQ(materials.floats[m * 4 * GPURT_MATERIAL_TEXELS + size_t(k)], expected[k]) << m << " " << k;
     }
 
     // Sizes as SceneTextures allocates them: texels x channels x 4 bytes.

@@ -189,8 +189,10 @@ TEST(GltfLoader, MaterialsCameraAndPointLights) {
     EXPECT_EQ(scene.materialIds, (std::vector<uint32_t>{1, 2, 3, 0}));
     const Material& chrome = scene.materials[1];
     EXPECT_EQ(chrome.name, "chrome");
-    EXPECT_EQ(chrome.reflectivity, glm::vec3(0.2f, 0.4f, 0.6f));  // a smooth metal: a tinted mirror
-    EXPECT_EQ(chrome.diffuse, glm::vec3(0.0f));
+    EXPECT_EQ(chrome.model, 2);  // GPURT_MODEL_GLTF: glTF's metallic-roughness model, factors as given
+    EXPECT_EQ(chrome.diffuse, glm::vec3(0.2f, 0.4f, 0.6f));
+    EXPECT_EQ(chrome.metallic, 1.0f);
+    EXPECT_EQ(chrome.roughness, 0.0f);
     const Material& glass = scene.materials[2];
     EXPECT_FLOAT_EQ(glass.ior, 1.33f);
     EXPECT_EQ(glass.transmission, glm::vec3(0.9f, 1.0f, 0.8f));

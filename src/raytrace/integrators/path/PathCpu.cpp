@@ -52,7 +52,8 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
         }
         const CpuTracer::Surface s = t.surfaceAt(hit, o, d);
         if (b == 0 && aovs.out) aovs.write(hit.t, static_cast<float>(hit.prim), s.n);
-        color += weight * (materialEmitted(s.material, s.ns) * emissionWeight(prevPdf, hit.t, s.n, d, t.emitters().totalArea));
+        const float mis = s.material.emitterLight ? emissionWeight(prevPdf, hit.t, s.n, d, t.emitters().totalArea) : 1.0f;
+        color += weight * (materialEmitted(s.material, s.ns) * mis);
         if (b == maxDepth) break;
         if (materialLit(s.material)) color += weight * directLight(t, px, s, d, lights, b, stats);
 

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Reference images from Blender's Cycles (Debian `blender`, its bundled glTF importer) for a glTF
+scene seen by gpurt's camera (CONTRACT.md), and the comparison of gpurt's image with it.
+
+Render (inside Blender):
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+      render SCENE.glb --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fovy DEG] --size WxH --spp N \\
+      [--env FILE.hdr --env-strength S --env-rotate DEG] [--bounces N] -o OUT.exr [--png OUT.png]
+Compare (inside Blender too: it reads the EXRs):
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+      compare GPURT.exr CYCLES.exr [--regions N] [--side-by-side OUT.png]
+  prints, for an N x N grid of regions, the mean of each image's luminance there and their ratio;
+  --side-by-side writes both (clamped, sRGB) next to each other.
+
+Conventions: gpurt's scene is +Y up, as glTF's; Blender's importer turns it to +Z up, (x, y, z) ->
+(x, -z, y), and the camera is placed in those coordinates. The environment: gpurt reads direction
+d at u = 0.5 + atan2(d.x, -d.z) / 2 pi; Cycles' equirectangular map reads Blender's direction b at
+u = 0.5 + atan2(b.y, -b.x) / 2 pi = 0.5 + atan2(-d.z, -d.x) / 2 pi, a quarter turn further, so
+the map is turned by -90 degrees (plus --env-rotate) about Blender's z. Cycles' pixel filter is
+narrowed to a box of nearly a point, as gpurt samples pixels uniformly.
+"""
+
+import argparse
+import math
+import sys
+
+
+def parse_vector(text):
+    values = [float(v) for v in text.split(",")]
+    if len(values) != 3:
+        raise argparse.ArgumentTypeError("expected X,Y,Z: " + text)
+    return values
+
+
+def to_blender(v):
+    return (v[0], -v[2], v[1])
+
+
+def render(args):
+    import bpy
+    from mathutils import Matrix, Vector
+
+    import numpy
+    # Debian 12's Blender 3.4 glTF importer still says numpy.bool, which numpy 1.24 removed.
+    if "bool" not in numpy.__dict__:
+        numpy.bool = bool
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.import_scene.gltf(filepath=args.scene)
+    scene = bpy.context.scene
+    width, height = (int(v) for v in args.size.split("x"))
+
+    eye, target, up = Vector(to_blender(args.eye)), Vector(to_blender(args.target)), Vector(to_blender(args.up))
+    forward = (target - eye).normalized()
+    right = forward.cross(up).normalized()
+    true_up = right.cross(forward)
+    camera_data = bpy.data.cameras.new("gpurt")
+    camera_data.sensor_fit = "VERTICAL"
+    camera_data.angle_y = math.radians(args.fovy)
+    camera = bpy.data.objects.new("gpurt", camera_data)
+    scene.collection.objects.link(camera)
+    rotation = Matrix((right, true_up, -forward)).transposed()  # columns: camera x, y, z
+    camera.matrix_world = Matrix.Translation(eye) @ rotation.to_4x4()
+    scene.camera = camera
+
+    world = bpy.data.worlds.new("gpurt")
+    scene.world = world
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    background = nodes["Background"]
+    if args.env:
+        texture = nodes.new("ShaderNodeTexEnvironment")
+        texture.image = bpy.data.images.load(args.env)
+        texture.interpolation = "Linear"
+        mapping = nodes.new("ShaderNodeMapping")
+        coordinates = nodes.new("ShaderNodeTexCoord")
+        mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(-90.0 - args.env_rotate))
+        links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+        links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+        links.new(texture.outputs["Color"], background.inputs["Color"])
+        background.inputs["Strength"].default_value = args.env_strength
+    else:
+        background.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = args.spp
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.max_bounces = args.bounces
+    scene.cycles.diffuse_bounces = scene.cycles.glossy_bounces = scene.cycles.transmission_bounces = args.bounces
+    scene.cycles.sample_clamp_direct = scene.cycles.sample_clamp_indirect = 0.0
+    scene.cycles.filter_width = 0.01
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = False
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.render.filepath = args.output
+    bpy.ops.render.render(write_still=True)
+    if args.png:
+        scene.render.image_settings.file_format = "PNG"
+        scene.render.image_settings.color_depth = "8"
+        bpy.data.images["Render Result"].save_render(args.png)
+
+
+def read_exr(path):
+    import bpy
+    import numpy
+
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "Non-Color"
+    width, height = image.size
+    pixels = numpy.array(image.pixels[:], dtype=numpy.float64).reshape(height, width, 4)[::-1, :, :3]
+    return pixels
+
+
+def compare(args):
+    import bpy
+    import numpy
+
+    a, b = read_exr(args.gpurt), read_exr(args.cycles)
+    if a.shape != b.shape:
+        sys.exit("compare: %s is %dx%d, %s %dx%d" % (args.gpurt, a.shape[1], a.shape[0], args.cycles, b.shape[1], b.shape[0]))
+    weights = numpy.array([0.2126, 0.7152, 0.0722])
+    la, lb = a @ weights, b @ weights
+    n = args.regions
+    height, width = la.shape
+    print("region  gpurt    cycles   gpurt/cycles")
+    ratios = []
+    for j in range(n):
+        for i in range(n):
+            ys, xs = slice(j * height // n, (j + 1) * height // n), slice(i * width // n, (i + 1) * width // n)
+            ma, mb = la[ys, xs].mean(), lb[ys, xs].mean()
+            ratio = ma / mb if mb > 1e-6 else float("nan")
+            ratios.append(ratio)
+            print("%d,%d     %.4f   %.4f   %.3f" % (i, j, ma, mb, ratio))
+    print("whole   %.4f   %.4f   %.3f" % (la.mean(), lb.mean(), la.mean() / max(lb.mean(), 1e-9)))
+    if args.side_by_side:
+        def srgb(x):
+            x = numpy.clip(x, 0.0, 1.0)
+            return numpy.where(x <= 0.0031308, 12.92 * x, 1.055 * numpy.power(x, 1.0 / 2.4) - 0.055)
+        both = numpy.concatenate([srgb(a), numpy.ones((height, 4, 3)), srgb(b)], axis=1)
+        out = bpy.data.images.new("side", both.shape[1], both.shape[0], alpha=False)
+        out.colorspace_settings.name = "Non-Color"
+        rgba = numpy.concatenate([both, numpy.ones(both.shape[:2] + (1,))], axis=2)[::-1]
+        out.pixels[:] = rgba.ravel()
+        out.filepath_raw = args.side_by_side
+        out.file_format = "PNG"
+        out.save()
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="cycles-reference.py")
+    commands = parser.add_subparsers(dest="command", required=True)
+    r = commands.add_parser("render")
+    r.add_argument("scene")
+    r.add_argument("--eye", type=parse_vector, required=True)
+    r.add_argument("--target", type=parse_vector, required=True)
+    r.add_argument("--up", type=parse_vector, default=[0.0, 1.0, 0.0])
+    r.add_argument("--fovy", type=float, default=45.0)
+    r.add_argument("--size", default="320x240")
+    r.add_argument("--spp", type=int, default=64)
+    r.add_argument("--bounces", type=int, default=4)
+    r.add_argument("--env")
+    r.add_argument("--env-strength", type=float, default=1.0)
+    r.add_argument("--env-rotate", type=float, default=0.0)
+    r.add_argument("-o", "--output", required=True)
+    r.add_argument("--png")
+    c = commands.add_parser("compare")
+    c.add_argument("gpurt")
+    c.add_argument("cycles")
+    c.add_argument("--regions", type=int, default=4)
+    c.add_argument("--side-by-side")
+    args = parser.parse_args(argv)
+    if args.command == "render":
+        render(args)
+    else:
+        compare(args)
+
+
+if __name__ == "__main__":
+    main()

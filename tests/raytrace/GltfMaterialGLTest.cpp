@@ -1,0 +1,267 @@
+// glTF materials (CONTRACT.md, "Physically based materials") on both backends:
+//  - the white furnace: a sphere of each of several (metallic, roughness, base colour) under a
+//    uniform environment of radiance 1, path traced, shows its directional albedo E(n.v), computed
+//    by quadrature of Appendix B's BRDF in the test (GltfReference.h), per region of n.v, within
+//    the samples' standard error;
+//  - normal maps: the shading normal a constant normal map gives a quad (shown by the debug
+//    normal model as 0.5 n + 0.5) is the tangent frame's closed form: T along +u, B along -v
+//    (image up), N the face's normal, bent by the texel's (2 c - 1) with x, y times the scale;
+//  - metallic-roughness, emissive and occlusion maps: a texture of one value is the factor times
+//    that value (against the same material with the value folded into its factors).
+#include "../common/GLTest.h"
+#include "EnvironmentTestMaps.h"
+#include "GltfReference.h"
+#include "TestScenes.h"
+#include "raytrace/MaterialRecord.h"
+
+#include <cmath>
+
+namespace gpurt::test {
+namespace {
+
+class GltfMaterials : public GLTest {};
+
+struct Mean {
+    double sum = 0.0, sum2 = 0.0;
+    size_t n = 0;
+    void add(double x) {
+        sum += x;
+        sum2 += x * x;
+        ++n;
+    }
+    double mean() const { return sum / double(n); }
+    double error() const {
+        const double m = mean();
+        return n > 1 ? std::sqrt(std::max(0.0, sum2 / double(n) - m * m) / double(n - 1)) : 0.0;
+    }
+};
+
+uint32_t addGltfMaterial(Scene& scene, const GltfParams& p) {
+    Material m;
+    m.model = GPURT_MODEL_GLTF;
+    m.diffuse = glm::vec3(p.base);
+    m.metallic = float(p.metallic);
+    m.roughness = float(p.roughness);
+    scene.materials.push_back(m);
+    return uint32_t(scene.materials.size() - 1);
+}
+
+// The contract's camera ray through the centre of pixel (i, j) of a size x size image (written
+// out here, independently of raytrace/Camera).
+glm::dvec3 pixelRay(const CameraSpec& spec, int size, int i, int j) {
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(spec.target - spec.eye));
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(spec.up)));
+    const glm::dvec3 up = glm::cross(right, forward);
+    const double t = std::tan(double(spec.fovy) * gltfref::kPi / 360.0);
+    const double x = (2.0 * (i + 0.5) / size - 1.0) * t, y = (1.0 - 2.0 * (j + 0.5) / size) * t;
+    return glm::normalize(forward + x * right + y * up);
+}
+
+TEST_F(GltfMaterials, FurnaceSpheresShowTheirDirectionalAlbedo) {
+    const GltfParams cases[] = {
+        {glm::dvec3(0.8), 0.0, 0.5},               // rough plastic
+        {glm::dvec3(0.95, 0.64, 0.54), 1.0, 0.3},  // copper
+        {glm::dvec3(0.2, 0.5, 0.8), 0.5, 0.8},     // half metal, very rough
+        {glm::dvec3(1.0, 0.78, 0.34), 1.0, 0.0},   // polished gold: a mirror
+        {glm::dvec3(0.7, 0.2, 0.2), 0.0, 0.0},     // a smooth coat over red
+        {glm::dvec3(1.0), 0.0, 1.0},               // white, roughest
+    };
+    const EnvironmentImage white = makeMap(16, 8, [](glm::vec3) { return glm::vec3(1.0f); });
+    CameraSpec spec;
+    spec.eye = {0.0f, 0.0f, 3.2f};
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.fovy = 45.0f;
+    const int size = 40, seeds = 24;
+    for (const GltfParams& p : cases) {
+        SCOPED_TRACE("metallic " + std::to_string(p.metallic) + " roughness " + std::to_string(p.roughness));
+        Scene scene;
+        addIcosphere(scene, glm::vec3(0.0f), 1.0f, 3, addGltfMaterial(scene, p));  // faceted: n is the AOV's
+        scene.environment = environmentThroughFile(white, "white.hdr");
+        ASSERT_EQ(scene.environment->image->texels[0], glm::vec3(1.0f));
+        const UniformGrid grid = buildGrid(scene, GridOptions{});
+        const CameraBasis camera = makeCamera(spec, size, size);
+        RenderSettings settings;
+        settings.width = settings.height = size;
+        settings.samples = 1;  // the pixel's centre: the AOV's normal is the sample's
+        settings.maxBounces = 4;
+        settings.integrator = Integrator::Path;
+        CpuTracer cpu(scene, grid);
+        GpuTracer gl(scene, grid);
+        // E(mu) tabulated by quadrature, looked up linearly.
+        const int table = 64;
+        std::vector<glm::dvec3> albedo(table + 1);
+        for (int k = 0; k <= table; ++k) albedo[size_t(k)] = gltfReferenceAlbedo(p, std::max(1e-3, double(k) / table), 200);
+        auto expected = [&](double mu) {
+            const double x = std::clamp(mu, 0.0, 1.0) * table;
+            const int k = std::min(table - 1, int(x));
+            return glm::mix(albedo[size_t(k)], albedo[size_t(k + 1)], x - k);
+        };
+        for (int backend = 0; backend < 2; ++backend) {
+            SCOPED_TRACE(backend == 0 ? "gl" : "cpu");
+            // The residual in three bands of n.v apart, each channel: a wrong Fresnel at grazing
+            // views cannot hide behind the centre.
+            Mean bands[3][3];
+            for (int s = 0; s < seeds; ++s) {
+                settings.seed = uint32_t(s);
+                const RenderOutput out = backend == 0 ? gl.render(camera, settings) : cpu.render(camera, settings);
+                for (int j = 0; j < size; ++j)
+                    for (int i = 0; i < size; ++i) {
+                        const size_t at = size_t(j * size + i);
+                        if (out.prim[at] < 0.0f) {
+                            ASSERT_NEAR(out.color[at].x, 1.0f, 1e-5f);
+                            continue;
+                        }
+                        const double mu = -glm::dot(glm::dvec3(out.normal[at]), pixelRay(spec, size, i, j));
+                        const glm::dvec3 e = expected(mu);
+                        const int band = mu > 0.7 ? 0 : (mu > 0.35 ? 1 : 2);
+                        for (int c = 0; c < 3; ++c) bands[band][c].add(out.color[at][c] - e[c]);
+                    }
+            }
+            for (int band = 0; band < 3; ++band)
+                for (int c = 0; c < 3; ++c) {
+                    const Mean& m = bands[band][c];
+                    ASSERT_GT(m.n, 50u) << "band " << band;
+                    EXPECT_NEAR(m.mean(), 0.0, 5.0 * m.error() + 3e-3) << "band " << band << " channel " << c << ", standard error "
+                                                                      << m.error();
+                }
+        }
+    }
+}
+
+// The sRGB transfer function's inverse (IEC 61966-2-1), for 8-bit codes.
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// A 2 x 2 texture of one colour.
+int addFlatTexture(Scene& scene, uint32_t rgba) {
+    Texture t;
+    t.name = "flat";
+    t.image.width = t.image.height = 2;
+    t.image.texels.assign(4, rgba);
+    scene.textures.push_back(t);
+    return int(scene.textures.size() - 1);
+}
+
+// A quad in the plane z = 0 (facing +z), texture coordinates (0, 0) at its top-left corner
+// (-1, 1) as glTF's (u right, v down), with `material`.
+void addTexturedQuad(Scene& scene, uint32_t material, bool mirrored = false) {
+    const glm::vec3 a(-1, 1, 0), b(-1, -1, 0), c(1, -1, 0), d(1, 1, 0);
+    const float u0 = mirrored ? 1.0f : 0.0f, u1 = 1.0f - u0;
+    scene.triangles.push_back({a, b, c});
+    scene.triangles.push_back({a, c, d});
+    scene.materialIds.insert(scene.materialIds.end(), {material, material});
+    scene.texcoords.push_back({{u0, 0.0f}, {u0, 1.0f}, {u1, 1.0f}});
+    scene.texcoords.push_back({{u0, 0.0f}, {u1, 1.0f}, {u1, 0.0f}});
+}
+
+TEST_F(GltfMaterials, NormalMapBendsTheNormalInTheTangentFrame) {
+    // The texel (r, g, b) bytes; the tangent-space normal (2 c - 1), x and y times the scale.
+    const uint32_t r = 200, g = 90, b = 230;
+    const float scale = 0.8f;
+    const glm::dvec3 m(2.0 * r / 255.0 - 1.0, 2.0 * g / 255.0 - 1.0, 2.0 * b / 255.0 - 1.0);
+    for (bool mirrored : {false, true}) {
+        SCOPED_TRACE(mirrored ? "u mirrored" : "u along +x");
+        Scene scene;
+        Material mat;
+        mat.model = GPURT_MODEL_DEBUG_NORMAL;
+        mat.normalScale = scale;
+        scene.materials.push_back(mat);
+        scene.materials[0].normalTexture = addFlatTexture(scene, r | (g << 8) | (b << 16) | 0xff000000u);
+        addTexturedQuad(scene, 0, mirrored);
+        // T along increasing u (+x, or -x mirrored), B image up (+y) either way, N = +z.
+        const glm::dvec3 t(mirrored ? -1.0 : 1.0, 0.0, 0.0), bt(0.0, 1.0, 0.0), n(0.0, 0.0, 1.0);
+        const glm::dvec3 bent = glm::normalize(t * (m.x * scale) + bt * (m.y * scale) + n * m.z);
+        for (bool back : {false, true}) {
+            SCOPED_TRACE(back ? "seen from behind" : "seen from the front");
+            CameraSpec spec;
+            spec.eye = {0.0f, 0.0f, back ? -3.0f : 3.0f};
+            spec.target = {0.0f, 0.0f, 0.0f};
+            spec.fovy = 30.0f;
+            const glm::dvec3 shown = back ? -bent : bent;  // the back sees the front's normal flipped
+            const UniformGrid grid = buildGrid(scene, GridOptions{});
+            const CameraBasis camera = makeCamera(spec, 16, 16);
+            RenderSettings settings;
+            settings.width = settings.height = 16;
+            CpuTracer cpu(scene, grid);
+            GpuTracer gl(scene, grid);
+            for (const RenderOutput& out : {gl.render(camera, settings), cpu.render(camera, settings)}) {
+                size_t hits = 0;
+                for (size_t i = 0; i < out.color.size(); ++i) {
+                    if (out.prim[i] < 0.0f) continue;
+                    ++hits;
+                    for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.color[i][c], 0.5 * shown[c] + 0.5, 2e-3) << i;
+                }
+                EXPECT_GT(hits, 100u);
+            }
+        }
+    }
+}
+
+// Whitted and path renders of a material whose metallic-roughness, emissive and occlusion maps
+// hold one value each equal those of the same material with the values folded into its factors
+// (map channels: roughness G, metallic B, occlusion R; emissive sRGB).
+TEST_F(GltfMaterials, FlatMapsAreTheirValueTimesTheFactor) {
+    const uint32_t mr = (0u) | (128u << 8) | (64u << 16) | 0xff000000u;  // G roughness 128, B metallic 64
+    const uint32_t glow = 200u | (100u << 8) | (50u << 16) | 0xff000000u;
+    const uint32_t ao = 100u | 0xff000000u;
+    for (Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
+        SCOPED_TRACE(integrator == Integrator::Path ? "path" : "whitted");
+        Scene mapped;
+        Material m;
+        m.model = GPURT_MODEL_GLTF;
+        m.diffuse = glm::vec3(0.7f, 0.5f, 0.3f);
+        m.metallic = 0.9f;
+        m.roughness = 0.7f;
+        m.emission = glm::vec3(0.5f, 0.25f, 1.0f);
+        m.occlusionStrength = 0.6f;
+        mapped.materials.push_back(m);
+        const int mrTexture = addFlatTexture(mapped, mr);
+        mapped.materials[0].roughnessTexture = {mrTexture, 1};
+        mapped.materials[0].metallicTexture = {mrTexture, 2};
+        mapped.materials[0].emissiveTexture = addFlatTexture(mapped, glow);
+        mapped.materials[0].occlusionTexture = {addFlatTexture(mapped, ao), 0};
+        addTexturedQuad(mapped, 0);
+        mapped.lights.push_back({glm::vec3(0.5f, 1.0f, 2.0f), glm::vec3(1.0f), 4.0f});
+
+        Scene folded = mapped;
+        Material& f = folded.materials[0];
+        f.roughness *= 128.0f / 255.0f;
+        f.metallic *= 64.0f / 255.0f;
+        f.emission *= glm::vec3(float(srgbToLinear(200.0 / 255.0)), float(srgbToLinear(100.0 / 255.0)), float(srgbToLinear(50.0 / 255.0)));
+        f.roughnessTexture = f.metallicTexture = f.occlusionTexture = TextureChannel{};
+        f.emissiveTexture = -1;
+        // Occlusion only scales the ambient term: 1 + 0.6 (100/255 - 1) of it.
+        const double occlusion = 1.0 + 0.6 * (100.0 / 255.0 - 1.0);
+
+        CameraSpec spec;
+        spec.eye = {0.3f, 0.2f, 3.0f};
+        spec.target = {0.0f, 0.0f, 0.0f};
+        spec.fovy = 35.0f;
+        const CameraBasis camera = makeCamera(spec, 24, 24);
+        RenderSettings settings;
+        settings.width = settings.height = 24;
+        // Whitted: the pixel centre, so that a pixel on the quad's edge is all quad or all
+        // background (the occlusion shift is per covered sample).
+        settings.samples = integrator == Integrator::Whitted ? 1 : 8;
+        settings.integrator = integrator;
+        const UniformGrid gm = buildGrid(mapped, GridOptions{}), gf = buildGrid(folded, GridOptions{});
+        const RenderOutput a = GpuTracer(mapped, gm).render(camera, settings), b = GpuTracer(folded, gf).render(camera, settings);
+        const RenderOutput ac = CpuTracer(mapped, gm).render(camera, settings), bc = CpuTracer(folded, gf).render(camera, settings);
+        // The ambient term of the folded material (Whitted, no environment): 0.1 x the albedo at
+        // normal incidence, the part occlusion scales.
+        const glm::vec3 ambient = raymath::gltfAmbient(materialRecord(f));
+        for (size_t i = 0; i < a.color.size(); ++i) {
+            if (a.prim[i] < 0.0f) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double shift = integrator == Integrator::Whitted ? (occlusion - 1.0) * ambient[c] : 0.0;
+                // The emitter with a texture is not sampled as a light, the folded one is: the path
+                // integrator's estimate differs in noise only, the pixel's own emission is the same.
+                const double tolerance = integrator == Integrator::Path ? 0.05 * (b.color[i][c] + 0.05) : 2e-4;
+                EXPECT_NEAR(a.color[i][c], b.color[i][c] + shift, tolerance) << "gl pixel " << i << " channel " << c;
+                EXPECT_NEAR(ac.color[i][c], bc.color[i][c] + shift, tolerance) << "cpu pixel " << i << " channel " << c;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace gpurt::test
