@@ -54,6 +54,13 @@ GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng
     return dot(s, ng) < 0.0f ? -s : s;
 }
 
+// The vertex colour at barycentrics (u, v) of a triangle whose corners have c0, c1, c2 (linear
+// RGB): it multiplies the diffuse colour at the hit (the kernels: shading.glsl fetchMaterialRecord;
+// C++: raytrace/MaterialRecord.cpp materialRecord).
+GPURT_FN vec3 interpolateVertexColor(vec3 c0, vec3 c1, vec3 c2, float u, float v) {
+    return c0 * (1.0f - u - v) + c1 * u + c2 * v;
+}
+
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
 // languages evaluate the same operations.
 GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }

@@ -9,7 +9,7 @@ uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays star
 
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
 // What a scene lacks is compiled out (SceneTextures::bind defines SCENE_TEXTURES,
-// SCENE_VERTEX_NORMALS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.
+// SCENE_VERTEX_NORMALS, SCENE_VERTEX_COLORS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.
 vec2 fetchTexcoord(int id, float u, float v) {
 #ifdef SCENE_TEXTURES
     ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
@@ -44,10 +44,24 @@ vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #endif
 }
 
-// The material record (common/material.h) of material m at image coordinates t: every field of
-// its texels, the diffuse colour textured at t (surface.frag computes t; the later passes read it
-// from surfaceView.w and surfaceShading.w). What a kernel does not use the compiler drops.
-MaterialRecord fetchMaterialRecord(int m, vec2 t) {
+// The vertex colour of triangle `id` at barycentrics (u, v) (common/shading.h); white without
+// vertex colours (compiled out: SCENE_VERTEX_COLORS).
+vec3 fetchVertexColor(int id, float u, float v) {
+#ifdef SCENE_VERTEX_COLORS
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    return interpolateVertexColor(texelFetch(vertexColors, at, 0).xyz, texelFetch(vertexColors, at + ivec2(1, 0), 0).xyz,
+                                  texelFetch(vertexColors, at + ivec2(2, 0), 0).xyz, u, v);
+#else
+    return vec3(1.0f);
+#endif
+}
+
+// The material record (common/material.h) of material m at barycentrics uv of triangle `id`: every
+// field of its texels, the diffuse colour textured at the hit's image coordinates t and times its
+// vertex colour (surface.frag writes uv; the later passes read it from surfaceView.w and
+// surfaceShading.w, the triangle from surfacePoint.w). What a kernel does not use the compiler drops.
+MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
+    vec2 t = fetchTexcoord(id, uv.x, uv.y);
     ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);
     vec4 a = texelFetch(materials, at, 0);
     vec4 b = texelFetch(materials, at + ivec2(1, 0), 0);
@@ -56,6 +70,7 @@ MaterialRecord fetchMaterialRecord(int m, vec2 t) {
     MaterialRecord r;
     r.model = int(c.w);
     r.kd = texturedDiffuse(int(b.w), a.xyz, t);
+    r.kd = r.kd * fetchVertexColor(id, uv.x, uv.y);
     r.ks = b.xyz;
     r.ns = a.w;
     r.reflectivity = c.xyz;

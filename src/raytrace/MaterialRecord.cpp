@@ -8,6 +8,7 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
     const Material& m = scene.materials[scene.materialIds[prim]];
     raymath::MaterialRecord r = materialRecord(m);
     r.kd = diffuseAt(scene, m, prim, u, v);
+    r.kd = r.kd * vertexColorAt(scene, prim, u, v);
     return r;
 }
 

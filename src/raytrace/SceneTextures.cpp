@@ -69,6 +69,11 @@ GPUFloatArray makeVertexNormals(const Scene& scene) {
     return uploadTexels(vertexNormalTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
+GPUFloatArray makeVertexColors(const Scene& scene) {
+    checkFits("vertex colour", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(scene.colors.size(), GPURT_TRIANGLES_PER_ROW));
+    return uploadTexels(vertexColorTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
+}
+
 GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
     return uploadTexels(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
@@ -148,7 +153,9 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       environmentMap_(makeEnvironmentArray(environmentTable_, 0)),
       environmentMarginal_(makeEnvironmentArray(environmentTable_, 1)),
       environmentConditional_(makeEnvironmentArray(environmentTable_, 2)),
-      environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)) {
+      environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)),
+      vertexColors_(makeVertexColors(scene)),
+      hasVertexColors_(!scene.colors.empty()) {
     for (const Material& m : scene.materials)
         if (m.model != 0) models_.insert(m.model);
 }
@@ -158,6 +165,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     // for a feature the scene lacks costs its full price unless it is compiled out.
     if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
+    if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     kernel.addInput(triangles_, "triangles")
@@ -170,6 +178,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(textureTexels_, "textureTexels")
         .addInput(textureTable_, "textureTable")
         .addInput(srgbTable_, "srgbTable")
+        .addInput(vertexColors_, "vertexColors")
         .setUniform("rayOffset", rayOffset_);
     if (!environmentTable_.empty()) {
         kernel.addDefine("SCENE_ENVIRONMENT");
@@ -185,7 +194,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
     return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
-           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) +
+           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) + size(vertexColors_) +
            (environmentTable_.empty() ? 0  // the 1 x 1 stand-ins of a scene without an environment
                                       : size(environmentMap_) + size(environmentMarginal_) +
                                             size(environmentConditional_) + size(environmentHarmonics_));

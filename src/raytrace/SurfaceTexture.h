@@ -22,4 +22,8 @@ glm::vec3 sampleTexture(const Texture& texture, glm::vec2 t);
 // texture's colour at the interpolated texture coordinates when it has one.
 glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float u, float v);
 
+// The vertex colour of triangle `prim` at barycentrics (u, v) (common/shading.h
+// interpolateVertexColor, as the kernels' fetchVertexColor); white when the scene has none.
+glm::vec3 vertexColorAt(const Scene& scene, uint32_t prim, float u, float v);
+
 }  // namespace gpurt
