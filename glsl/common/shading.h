@@ -56,9 +56,10 @@ GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng
 
 // The vertex colour at barycentrics (u, v) of a triangle whose corners have c0, c1, c2 (linear
 // RGB): it multiplies the diffuse colour at the hit (the kernels: shading.glsl fetchMaterialRecord;
-// C++: raytrace/MaterialRecord.cpp materialRecord).
+// C++: raytrace/MaterialRecord.cpp materialRecord). Written from c0 along the edges, so that equal
+// corners give exactly their colour (white changes nothing, bit for bit).
 GPURT_FN vec3 interpolateVertexColor(vec3 c0, vec3 c1, vec3 c2, float u, float v) {
-    return c0 * (1.0f - u - v) + c1 * u + c2 * v;
+    return c0 + (c1 - c0) * u + (c2 - c0) * v;
 }
 
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
