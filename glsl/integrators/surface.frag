@@ -59,6 +59,7 @@ void main() {
     vec3 v0, e1, e2;
     int material;
     fetchTriangle(int(h.w), v0, e1, e2, material);
+    vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
     MaterialRecord m = fetchMaterialRecord(material, int(h.w), h.yz);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);

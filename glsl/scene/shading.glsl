@@ -21,6 +21,18 @@ vec2 fetchTexcoord(int id, float u, float v) {
 #endif
 }
 
+// The vertex colour of triangle `id` at barycentrics (u, v) (common/shading.h); white without
+// vertex colours (compiled out: SCENE_VERTEX_COLORS).
+vec3 fetchVertexColor(int id, float u, float v) {
+#ifdef SCENE_VERTEX_COLORS
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    return interpolateVertexColor(texelFetch(vertexColors, at, 0).xyz, texelFetch(vertexColors, at + ivec2(1, 0), 0).xyz,
+                                  texelFetch(vertexColors, at + ivec2(2, 0), 0).xyz, u, v);
+#else
+    return vec3(1.0f);
+#endif
+}
+
 vec3 textureTexel(int first, int width, int x, int y) {
     uint c = texelFetch(textureTexels, first + y * width + x).x;
     return vec3(texelFetch(srgbTable, int(c & 0xffu)).x, texelFetch(srgbTable, int((c >> 8) & 0xffu)).x,
@@ -44,22 +56,11 @@ vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #endif
 }
 
-// The vertex colour of triangle `id` at barycentrics (u, v) (common/shading.h); white without
-// vertex colours (compiled out: SCENE_VERTEX_COLORS).
-vec3 fetchVertexColor(int id, float u, float v) {
-#ifdef SCENE_VERTEX_COLORS
-    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    return interpolateVertexColor(texelFetch(vertexColors, at, 0).xyz, texelFetch(vertexColors, at + ivec2(1, 0), 0).xyz,
-                                  texelFetch(vertexColors, at + ivec2(2, 0), 0).xyz, u, v);
-#else
-    return vec3(1.0f);
-#endif
-}
-
-// The material record (common/material.h) of material m at barycentrics uv of triangle `id`: every
-// field of its texels, the diffuse colour textured at the hit's image coordinates t and times its
-// vertex colour (surface.frag writes uv; the later passes read it from surfaceView.w and
-// surfaceShading.w, the triangle from surfacePoint.w). What a kernel does not use the compiler drops.
+// The material record (common/material.h) of material m at image coordinates t: every field of
+// its texels, the diffuse colour textured at t and times the vertex colour, t and the colour those
+// of triangle `id` at the hit's barycentrics uv (surface.frag writes uv; the later passes read it
+// from surfaceView.w and surfaceShading.w, id from surfacePoint.w). What a kernel does not use the
+// compiler drops.
 MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
     vec2 t = fetchTexcoord(id, uv.x, uv.y);
     ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);

@@ -827,10 +827,10 @@ class SectionEncoder {
         else if (tag == kBvhList) u32s(accel_.bvh->triangles);
         else if (tag == kNormals) normals();
         else if (tag == kTexcoords) texcoords();
+        else if (tag == kColors) colors();
         else if (tag == kTextures) textures();
         else if (tag == kModels) models();
         else if (tag == kEnvironment) environment();
-        else if (tag == kColors) colors();
     }
 
   private:
@@ -1165,10 +1165,10 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kNormals)) decoder.normals(*section(kNormals), loaded.scene);
     if (section(kAnimation)) decoder.animation(*section(kAnimation), loaded.scene);
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
+    if (section(kColors)) decoder.colors(*section(kColors), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
-    if (section(kColors)) decoder.colors(*section(kColors), loaded.scene);
 
     if (section(kGrid)) {
         UniformGrid grid;

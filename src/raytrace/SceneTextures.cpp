@@ -144,6 +144,8 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       hasVertexNormals_(!scene.normals.empty()),
       emitterTable_(buildEmitterTable(scene)),
       emitters_(makeEmitters(emitterTable_)),
+      vertexColors_(makeVertexColors(scene)),
+      hasVertexColors_(!scene.colors.empty()),
       texcoords_(makeTexcoords(scene)),
       hasTexcoords_(!scene.texcoords.empty()),
       textureTexels_(makeTextureTexels(scene)),
@@ -153,9 +155,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       environmentMap_(makeEnvironmentArray(environmentTable_, 0)),
       environmentMarginal_(makeEnvironmentArray(environmentTable_, 1)),
       environmentConditional_(makeEnvironmentArray(environmentTable_, 2)),
-      environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)),
-      vertexColors_(makeVertexColors(scene)),
-      hasVertexColors_(!scene.colors.empty()) {
+      environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)) {
     for (const Material& m : scene.materials)
         if (m.model != 0) models_.insert(m.model);
 }
@@ -165,9 +165,9 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     // for a feature the scene lacks costs its full price unless it is compiled out.
     if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
-    if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
+    if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .addInput(vertexNormals_, "vertexNormals")

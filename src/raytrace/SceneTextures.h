@@ -57,6 +57,8 @@ class SceneTextures {
     bool hasVertexNormals_;
     EmitterTable emitterTable_;
     GPUFloatArray emitters_;
+    GPUFloatArray vertexColors_;  // SCENE_VERTEX_COLORS: the scene has vertex colours
+    bool hasVertexColors_;
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
     GPUFloatArray textureTexels_;
@@ -66,8 +68,6 @@ class SceneTextures {
     // marginal and conditional cumulative tables, its spherical harmonics (glsl/scene/environment.glsl).
     EnvironmentTable environmentTable_;
     GPUFloatArray environmentMap_, environmentMarginal_, environmentConditional_, environmentHarmonics_;
-    GPUFloatArray vertexColors_;  // SCENE_VERTEX_COLORS: the scene has vertex colours
-    bool hasVertexColors_;
     std::set<int> models_;  // the material models other than the classic one (0) the scene uses
 };
 
