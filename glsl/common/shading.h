@@ -43,6 +43,14 @@ GPURT_FN vec3 facingNormal(vec3 e1, vec3 e2, vec3 d) {
     return n;
 }
 
+// The vertex colour at barycentrics (u, v) of a triangle whose corners have c0, c1, c2 (linear
+// RGB): it multiplies the diffuse colour at the hit (the kernels: shading.glsl fetchMaterialRecord;
+// C++: raytrace/MaterialRecord.cpp materialRecord). Written from c0 along the edges, so that equal
+// corners give exactly their colour (white changes nothing, bit for bit).
+GPURT_FN vec3 interpolateVertexColor(vec3 c0, vec3 c1, vec3 c2, float u, float v) {
+    return c0 + (c1 - c0) * u + (c2 - c0) * v;
+}
+
 // The shading normal at barycentrics (u, v) (weights of vertices 1 and 2) from the vertex normals
 // n0, n1, n2, turned to the side of the facing geometric normal ng; ng itself when the triangle
 // has no vertex normals (all zero) or they cancel. Light and mirror directions use it; ray offsets,

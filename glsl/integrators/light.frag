@@ -52,7 +52,7 @@ void main() {
     vec4 view = readStream(surfaceView);
     vec3 n = shading.xyz;
     vec3 d = view.xyz;
-    MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
+    MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
 #ifdef ENVIRONMENT
     vec3 add = pathEnvironmentContribution(m, n, d, q.xyz, environmentRadiance(q.xyz), q.w);
 #elif defined(PATH)

@@ -19,8 +19,8 @@ uniform sampler2D pathState;  // the path's pixel (packed paths: shading.glsl pa
 uniform sampler2D surfacePoint;
 uniform sampler2D surfaceNormal;
 #ifdef PATH
-uniform sampler2D surfaceView;     // w: the hit's image coordinate x
-uniform sampler2D surfaceShading;  // w: y
+uniform sampler2D surfaceView;     // w: the hit's barycentric u
+uniform sampler2D surfaceShading;  // w: v
 #endif
 #if defined(EMITTER) || defined(ENVIRONMENT)
 uniform uint sampleIndex;
@@ -47,7 +47,7 @@ void main() {
     rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
 #ifdef PATH
     if (s.w >= 0.0f &&
-        !materialLit(fetchMaterialRecord(int(nm.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w))))
+        !materialLit(fetchMaterialRecord(int(nm.w), int(s.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w))))
         s.w = -1.0f;  // nothing to light
 #endif
 #ifdef ENVIRONMENT

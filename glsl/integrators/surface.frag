@@ -25,9 +25,9 @@ uniform vec3 background;
 layout(location = 0) out vec4 color;          // (accumulated colour, 0)
 layout(location = 1) out vec4 surfacePoint;   // (p, triangle | -1 when this path has no hit)
 layout(location = 2) out vec4 surfaceNormal;  // (n facing the ray, material)
-layout(location = 3) out vec4 surfaceView;    // (ray direction, image coordinate x of the hit)
+layout(location = 3) out vec4 surfaceView;    // (ray direction, barycentric u of the hit)
 layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
-layout(location = 5) out vec4 surfaceShading; // (shading normal, image coordinate y): the normal
+layout(location = 5) out vec4 surfaceShading; // (shading normal, barycentric v): the normal
                                               // smooth, facing as the geometric one
 
 void main() {
@@ -60,13 +60,13 @@ void main() {
     int material;
     fetchTriangle(int(h.w), v0, e1, e2, material);
     vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
-    MaterialRecord m = fetchMaterialRecord(material, t);
+    MaterialRecord m = fetchMaterialRecord(material, int(h.w), h.yz);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
     vec3 ns = fetchMappedNormal(material, int(h.w), e1, e2, d, ng, fetchShadingNormal(int(h.w), h.y, h.z, ng), t);
     surfaceNormal = vec4(ng, float(material));
-    surfaceShading = vec4(ns, t.y);
-    surfaceView = vec4(d, t.x);
+    surfaceShading = vec4(ns, h.z);
+    surfaceView = vec4(d, h.y);
 #ifdef PATH
     float mis = m.emitterLight ? emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea) : 1.0f;
     color = vec4(c.xyz + w.xyz * (materialEmitted(m, ns) * mis), 0.0f);

@@ -9,6 +9,7 @@ uniform sampler2D triangleTexcoords;  // per triangle (t0, t1), (t2, 0, 0)
 uniform usamplerBuffer textureTexels; // every texture image's sRGB RGBA8 texels
 uniform usamplerBuffer textureTable;  // per texture (first texel, width, height, wrapS | wrapT << 8)
 uniform samplerBuffer srgbTable;      // the linear value of each sRGB code
+uniform sampler2D vertexColors;       // per triangle c0, c1, c2 as the triangles' texels
 uniform samplerBuffer emitters;  // EmitterTable: (cdf, triangle id) per emitting triangle
 uniform int emitterCount;        // 0: no emitters
 uniform float emitterArea;       // their total area

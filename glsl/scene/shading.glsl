@@ -9,7 +9,7 @@ uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays star
 
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
 // What a scene lacks is compiled out (SceneTextures::bind defines SCENE_TEXTURES,
-// SCENE_VERTEX_NORMALS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.
+// SCENE_VERTEX_NORMALS, SCENE_VERTEX_COLORS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.
 vec2 fetchTexcoord(int id, float u, float v) {
 #ifdef SCENE_TEXTURES
     ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
@@ -18,6 +18,18 @@ vec2 fetchTexcoord(int id, float u, float v) {
     return interpolateTexcoord(a.xy, a.zw, b.xy, u, v);
 #else
     return vec2(0.0f);
+#endif
+}
+
+// The vertex colour of triangle `id` at barycentrics (u, v) (common/shading.h); white without
+// vertex colours (compiled out: SCENE_VERTEX_COLORS).
+vec3 fetchVertexColor(int id, float u, float v) {
+#ifdef SCENE_VERTEX_COLORS
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    return interpolateVertexColor(texelFetch(vertexColors, at, 0).xyz, texelFetch(vertexColors, at + ivec2(1, 0), 0).xyz,
+                                  texelFetch(vertexColors, at + ivec2(2, 0), 0).xyz, u, v);
+#else
+    return vec3(1.0f);
 #endif
 }
 
@@ -71,9 +83,12 @@ vec3 textureLinear(int tex, vec2 t) {
 }
 
 // The material record (common/material.h) of material m at image coordinates t: every field of
-// its texels, the diffuse colour textured at t (surface.frag computes t; the later passes read it
-// from surfaceView.w and surfaceShading.w). What a kernel does not use the compiler drops.
-MaterialRecord fetchMaterialRecord(int m, vec2 t) {
+// its texels, the diffuse colour textured at t and times the vertex colour, t and the colour those
+// of triangle `id` at the hit's barycentrics uv (surface.frag writes uv; the later passes read it
+// from surfaceView.w and surfaceShading.w, id from surfacePoint.w). What a kernel does not use the
+// compiler drops.
+MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
+    vec2 t = fetchTexcoord(id, uv.x, uv.y);
     ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);
     vec4 a = texelFetch(materials, at, 0);
     vec4 b = texelFetch(materials, at + ivec2(1, 0), 0);
@@ -82,6 +97,7 @@ MaterialRecord fetchMaterialRecord(int m, vec2 t) {
     MaterialRecord r;
     r.model = int(c.w);
     r.kd = texturedDiffuse(int(b.w), a.xyz, t);
+    r.kd = r.kd * fetchVertexColor(id, uv.x, uv.y);
     r.ks = b.xyz;
     r.ns = a.w;
     r.reflectivity = c.xyz;

@@ -33,6 +33,8 @@ bool parseToneMap(const std::string& text, ToneMap& mode) {
 
 float encodeSrgb(float displayLinear) { return raymath::srgbEncode(displayLinear); }
 
+float decodeSrgb(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
 int toneMapCode(ToneMap mode) {
     return mode == ToneMap::Aces       ? GPURT_TONEMAP_ACES
            : mode == ToneMap::Reinhard ? GPURT_TONEMAP_REINHARD

@@ -25,6 +25,9 @@ float exposureScale(float exposure);
 
 // The sRGB transfer function of one display-linear value in [0, 1] (colour.h srgbEncode).
 float encodeSrgb(float displayLinear);
+// Its inverse (IEC 61966-2-1): the linear value of an sRGB-encoded one in [0, 1] (the operations of
+// glsl/common/texture.h srgbDecode8, for the readers of encoded colours: PLY vertex colours).
+float decodeSrgb(float encoded);
 
 // Display-linear colour in [0, 1] per pixel (what writePng sRGB-encodes) from linear radiance.
 // NaN channels give 0.

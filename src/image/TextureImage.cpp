@@ -1,5 +1,6 @@
 #include "image/TextureImage.h"
 
+#include <algorithm>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +12,26 @@
 #include <png.h>
 
 #include "image/InputError.h"
+
+// stb_image, only its BMP and TGA readers, compiled into this file with static linkage (as
+// EnvironmentImage.cpp compiles its Radiance reader: tinygltf's prebuilt library carries its own
+// copy; the fuzz build instruments this one).
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_BMP
+#define STBI_ONLY_TGA
+#define STBI_NO_STDIO
+#define STBI_MAX_DIMENSIONS 16384
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+#include <stb/stb_image.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 namespace gpurt {
 namespace {
@@ -128,6 +149,92 @@ Rgba8Image decodeJpeg(const unsigned char* bytes, size_t size, uint64_t maxTexel
     return out;
 }
 
+// BMP and TGA through stb_image. stb reads zeros past the end of a memory buffer, so it reads
+// through these callbacks instead, which note when it asks for bytes the file does not have (a
+// truncated file): they then give none, and stb fills in zeros and returns.
+struct StbSource {
+    const unsigned char* bytes;
+    size_t size;
+    size_t pos = 0;
+    bool overrun = false;
+};
+int stbRead(void* user, char* data, int size) {
+    auto* s = static_cast<StbSource*>(user);
+    if (size <= 0) return 0;
+    const size_t n = std::min(size_t(size), s->size - s->pos);
+    if (n == 0) s->overrun = true;
+    std::memcpy(data, s->bytes + s->pos, n);
+    s->pos += n;
+    return int(n);
+}
+void stbSkip(void* user, int n) {
+    auto* s = static_cast<StbSource*>(user);
+    if (n > 0 && size_t(n) > s->size - s->pos) s->overrun = true;
+    s->pos = n < 0 ? s->pos - std::min(s->pos, size_t(-int64_t(n))) : std::min(s->size, s->pos + size_t(n));
+}
+int stbEof(void* user) {
+    auto* s = static_cast<StbSource*>(user);
+    return s->pos >= s->size ? 1 : 0;
+}
+const stbi_io_callbacks kStbCallbacks = {stbRead, stbSkip, stbEof};
+
+uint32_t littleEndian(const unsigned char* p, int bytes) {
+    uint32_t v = 0;
+    for (int k = bytes - 1; k >= 0; --k) v = v << 8 | p[k];
+    return v;
+}
+
+// The fewest bytes of pixel data a BMP or TGA of its header's size and depth needs (all of the
+// file for an uncompressed one; a TGA's run-length packets hold at most 128 pixels each), so that
+// a few hundred bytes cannot make stb allocate for a 16384 x 4096 image. 0 when the header is too
+// short to say (stb then refuses it).
+uint64_t leastPixelBytes(const unsigned char* bytes, size_t size, bool bmp, uint64_t width, uint64_t height) {
+    if (bmp) {
+        if (size < 30) return 0;
+        const uint32_t headerSize = littleEndian(bytes + 14, 4);
+        const uint64_t bits = littleEndian(bytes + (headerSize == 12 ? 24 : 28), 2);
+        const uint64_t row = (width * bits + 31) / 32 * 4;
+        return row * (height - 1) + (width * bits + 7) / 8;  // the last row's padding may be missing
+    }
+    if (size < 18) return 0;
+    const uint64_t pixel = (uint64_t(bytes[16]) + 7) / 8;
+    const uint64_t pixels = width * height;
+    return bytes[2] >= 9 ? (pixels + 127) / 128 * (1 + pixel) : pixels * pixel;
+}
+
+Rgba8Image decodeStb(const unsigned char* bytes, size_t size, bool bmp, uint64_t maxTexels, const std::string& name) {
+    const std::string kind = bmp ? "BMP" : "TGA";
+    if (size > size_t(INT32_MAX)) throw InputError(name + ": file too large");
+    int w = 0, h = 0, comp = 0;
+    StbSource info{bytes, size};
+    if (!stbi_info_from_callbacks(&kStbCallbacks, &info, &w, &h, &comp))
+        throw InputError(name + ": not a readable " + kind + " (" + stbi_failure_reason() + ")");
+    checkSize(uint64_t(w), uint64_t(h), maxTexels, name);
+    const uint64_t least = leastPixelBytes(bytes, size, bmp, uint64_t(w), uint64_t(h));
+    if (least > size)
+        throw InputError(name + ": truncated " + kind + " (a " + std::to_string(w) + " x " + std::to_string(h) +
+                         " image needs at least " + std::to_string(least) + " bytes of pixels; the file has " +
+                         std::to_string(size) + " bytes)");
+    StbSource source{bytes, size};
+    stbi_uc* pixels = stbi_load_from_callbacks(&kStbCallbacks, &source, &w, &h, &comp, 4);  // RGBA, 8 bits
+    if (!pixels) throw InputError(name + ": not a readable " + kind + " (" + stbi_failure_reason() + ")");
+    if (source.overrun) {
+        stbi_image_free(pixels);
+        throw InputError(name + ": truncated " + kind + " (its " + std::to_string(w) + " x " + std::to_string(h) +
+                         " pixels end early)");
+    }
+    Rgba8Image out;
+    out.width = w;
+    out.height = h;
+    out.texels.resize(size_t(w) * size_t(h));
+    for (size_t k = 0; k < out.texels.size(); ++k) {
+        const stbi_uc* p = pixels + 4 * k;
+        out.texels[k] = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+    }
+    stbi_image_free(pixels);
+    return out;
+}
+
 }  // namespace
 
 Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::string& name) {
@@ -135,7 +242,13 @@ Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::strin
     static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (size >= 8 && std::memcmp(bytes, kPng, 8) == 0) return decodePng(bytes, size, maxTexels, name);
     if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return decodeJpeg(bytes, size, maxTexels, name);
-    throw InputError(name + ": not a PNG or JPEG image");
+    if (size >= 2 && bytes[0] == 'B' && bytes[1] == 'M') return decodeStb(bytes, size, true, maxTexels, name);
+    // TGA has no signature: stb's test of its header (colour map and image types, sizes, depths).
+    int w = 0, h = 0, comp = 0;
+    StbSource test{bytes, size};
+    if (size >= 18 && size <= size_t(INT32_MAX) && stbi_info_from_callbacks(&kStbCallbacks, &test, &w, &h, &comp))
+        return decodeStb(bytes, size, false, maxTexels, name);
+    throw InputError(name + ": not a PNG, JPEG, BMP or TGA image");
 }
 
 Rgba8Image readImage(const std::filesystem::path& path) {

@@ -1,5 +1,6 @@
-// Texture images for materials (glTF base colour textures, MTL map_Kd): PNG (libpng) and JPEG
-// (libjpeg-turbo), chosen by their signature, decoded to 8-bit sRGB RGBA.
+// Texture images for materials (glTF base colour textures, MTL map_Kd): PNG (libpng), JPEG
+// (libjpeg-turbo), BMP and TGA (stb_image: the Maya-era OBJ files use BMP), chosen by their
+// signature (TGA, which has none, by stb's test of its header), decoded to 8-bit sRGB RGBA.
 #pragma once
 
 #include <cstdint>
@@ -27,9 +28,11 @@ struct Rgba8Image {
     std::vector<uint32_t> texels;
 };
 
-// Decodes a PNG or JPEG held in memory. Throws InputError("<name>: ...") when it is neither, is
-// damaged or truncated, or is larger than the limits above, which is checked from the header
-// before anything is allocated for the pixels.
+// Decodes a PNG, JPEG, BMP or TGA held in memory. Throws InputError("<name>: ...") when it is
+// none of them, is damaged or truncated, or is larger than the limits above, which is checked from
+// the header before anything is allocated for the pixels (for BMP and TGA also against the bytes
+// the file has: an uncompressed image needs all its pixels, a run-length TGA one byte and a pixel
+// for every 128).
 Rgba8Image decodeImage(const unsigned char* bytes, size_t size, const std::string& name);
 
 // The same for a file.

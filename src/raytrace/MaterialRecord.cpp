@@ -19,6 +19,7 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
     const Material& m = scene.materials[scene.materialIds[prim]];
     raymath::MaterialRecord r = materialRecord(m);
     r.kd = diffuseAt(scene, m, prim, u, v);
+    r.kd = r.kd * vertexColorAt(scene, prim, u, v);
     if (m.model == GPURT_MODEL_GLTF) {  // shading.glsl: SCENE_MODEL_2
         const glm::vec2 t = texcoordAt(scene, prim, u, v);
         r.metallic = m.metallic * channelAt(scene, m.metallicTexture, t);

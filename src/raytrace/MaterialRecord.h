@@ -10,7 +10,7 @@
 namespace gpurt {
 
 // The record of triangle `prim`'s material at barycentrics (u, v): its fields, the diffuse colour
-// textured there.
+// textured there and times its vertex colour.
 raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float u, float v);
 // Material m's record without its texture (kd is its diffuse factor): for questions no texture
 // changes (materialSpawns, materialSplits).

@@ -50,17 +50,20 @@ constexpr char kPbr[] = "PBRM";
 constexpr char kEnvironment[] = "ENVM";
 constexpr char kBvhNodes[] = "BVHN";
 constexpr char kBvhList[] = "BVHL";
+constexpr char kColors[] = "VCOL";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates, the textures, the material models, the environment and the acceleration structure's are
-// required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// texture coordinates, the textures, the material models, the environment, the acceleration structure's
+// and the vertex colours are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
-                                         kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList};
+                                         kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
+                                         kColors};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels || tag == kPbr || tag == kEnvironment || gridSection(tag) || bvhSection(tag);
+           tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || gridSection(tag) ||
+           bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -78,6 +81,8 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kNormals) return !loaded.scene.normals.empty();
     if (tag == kAnimation) return bool(loaded.scene.animation);
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
+    // Only for a scene with vertex colours: other files stay as they were before the section existed.
+    if (tag == kColors) return !loaded.scene.colors.empty();
     if (tag == kTextures) return !loaded.scene.textures.empty();
     // Only for a scene with an environment or a background of its own: other files stay as they
     // were before the section existed.
@@ -94,6 +99,7 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
 }
 constexpr size_t kNormalsBytes = 9 * 4;
 constexpr size_t kTexcoordsBytes = 6 * 4;
+constexpr size_t kColorsBytes = 9 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
 constexpr size_t kModelBytes = 4;
@@ -309,6 +315,17 @@ void checkTextures(const FileLoc& file, const Scene& scene) {
         failAt(file, std::to_string(texels) + " texels in all textures; at most " + std::to_string(2 * kMaxTextureTexels));
 }
 
+// One colour record per triangle, each corner's linear RGB finite and in [0, 1].
+void checkColors(const FileLoc& file, const Scene& scene) {
+    const size_t n = scene.triangles.size();
+    if (!scene.colors.empty() && scene.colors.size() != n)
+        failAt(file, std::to_string(scene.colors.size()) + " vertex colours for " + std::to_string(n) + " triangles");
+    for (size_t t = 0; t < scene.colors.size(); ++t)
+        for (const glm::vec3 c : {scene.colors[t].c0, scene.colors[t].c1, scene.colors[t].c2})
+            if (!isFinite(c) || !nonNegative(c) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+                failAt(file, "triangle " + std::to_string(t) + ": vertex colours must be finite and in [0, 1]");
+}
+
 void checkLights(const FileLoc& file, const Scene& scene) {
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
@@ -432,6 +449,7 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Pac
     checkTriangles(file, scene);
     checkMaterials(file, scene);
     checkTextures(file, scene);
+    checkColors(file, scene);
     checkLights(file, scene);
     checkCameras(file, scene);
     checkRenderSettings(file, loaded);
@@ -555,6 +573,18 @@ class SectionDecoder {
             t.n0 = in.vec3();
             t.n1 = in.vec3();
             t.n2 = in.vec3();
+        }
+    }
+
+    // Per triangle c0, c1, c2.
+    void colors(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = perTriangle(in, s, kColorsBytes, "vertex colours", scene);
+        scene.colors.resize(size_t(n));
+        for (TriangleColors& t : scene.colors) {
+            t.c0 = in.vec3();
+            t.c1 = in.vec3();
+            t.c2 = in.vec3();
         }
     }
 
@@ -837,6 +867,7 @@ class SectionEncoder {
         else if (tag == kBvhList) u32s(accel_.bvh->triangles);
         else if (tag == kNormals) normals();
         else if (tag == kTexcoords) texcoords();
+        else if (tag == kColors) colors();
         else if (tag == kTextures) textures();
         else if (tag == kModels) models();
         else if (tag == kPbr) pbr();
@@ -938,6 +969,15 @@ class SectionEncoder {
             out_.vec3(n.n0);
             out_.vec3(n.n1);
             out_.vec3(n.n2);
+        }
+    }
+
+    void colors() {
+        out_.u64(scene_.colors.size());
+        for (const TriangleColors& c : scene_.colors) {
+            out_.vec3(c.c0);
+            out_.vec3(c.c1);
+            out_.vec3(c.c2);
         }
     }
 
@@ -1182,6 +1222,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kNormals)) decoder.normals(*section(kNormals), loaded.scene);
     if (section(kAnimation)) decoder.animation(*section(kAnimation), loaded.scene);
     if (section(kTexcoords)) decoder.texcoords(*section(kTexcoords), loaded.scene);
+    if (section(kColors)) decoder.colors(*section(kColors), loaded.scene);
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
     if (section(kPbr)) decoder.pbr(*section(kPbr), loaded.scene);

@@ -175,6 +175,19 @@ TextureTexels vertexNormalTexels(const Scene& scene) {
     return normals;
 }
 
+TextureTexels vertexColorTexels(const Scene& scene) {
+    const size_t n = scene.colors.size();
+    TextureTexels colors = emptyTexture("vertexColors", n == 0 ? 3 : 3 * GPURT_TRIANGLES_PER_ROW,
+                                        textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
+    for (size_t t = 0; t < n; ++t) {
+        const TriangleColors& v = scene.colors[t];
+        const vec3 corner[3] = {v.c0, v.c1, v.c2};
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) colors.floats[t * 12 + size_t(4 * k + c)] = corner[k][c];
+    }
+    return colors;
+}
+
 TextureTexels texcoordTexels(const Scene& scene) {
     const size_t n = scene.texcoords.size();
     TextureTexels texcoords = emptyTexture("triangleTexcoords", n == 0 ? GPURT_TEXCOORD_TEXELS : GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW,
@@ -255,6 +268,7 @@ std::vector<TextureTexels> integratorTextureTexels(const Scene& scene) {
     all.push_back(textureImageTexels(scene));
     all.push_back(textureTableTexels(scene));
     all.push_back(srgbTableTexels());
+    all.push_back(vertexColorTexels(scene));
     return all;
 }
 

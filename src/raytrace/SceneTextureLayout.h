@@ -61,6 +61,9 @@ TextureTexels vertexNormalTexels(const Scene& scene);
 // RGBA32F, two texels a triangle of scene.texcoords, laid out as the triangles: (t0, t1),
 // (t2, 0, 0); one triangle of zeros when it is empty.
 TextureTexels texcoordTexels(const Scene& scene);
+// RGBA32F, as the vertex normals: (c0, 0), (c1, 0), (c2, 0) per triangle of scene.colors; one
+// triangle of zeros when it is empty.
+TextureTexels vertexColorTexels(const Scene& scene);
 // R32UI, every texture's texels one after another (GPURT_INDEX_WIDTH a row); one texel when
 // the scene has no texture.
 TextureTexels textureImageTexels(const Scene& scene);
@@ -76,7 +79,7 @@ TextureTexels emitterTexels(const EmitterTable& emitters);
 // All of them, in the order SceneTextures binds them: the accelerator's, then the integrators'.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const Bvh& bvh);
-// The integrators' (SceneTextures): the triangles to the sRGB table.
+// The integrators' (SceneTextures): the triangles to the sRGB table, then the vertex colours.
 std::vector<TextureTexels> integratorTextureTexels(const Scene& scene);
 
 }  // namespace gpurt

@@ -69,6 +69,11 @@ GPUFloatArray makeVertexNormals(const Scene& scene) {
     return uploadTexels(vertexNormalTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
+GPUFloatArray makeVertexColors(const Scene& scene) {
+    checkFits("vertex colour", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(scene.colors.size(), GPURT_TRIANGLES_PER_ROW));
+    return uploadTexels(vertexColorTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
+}
+
 GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
     return uploadTexels(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
@@ -139,6 +144,8 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       hasVertexNormals_(!scene.normals.empty()),
       emitterTable_(buildEmitterTable(scene)),
       emitters_(makeEmitters(emitterTable_)),
+      vertexColors_(makeVertexColors(scene)),
+      hasVertexColors_(!scene.colors.empty()),
       texcoords_(makeTexcoords(scene)),
       hasTexcoords_(!scene.texcoords.empty()),
       textureTexels_(makeTextureTexels(scene)),
@@ -163,6 +170,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasNormalMaps_) kernel.addDefine("SCENE_NORMAL_MAPS");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
+    if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .addInput(vertexNormals_, "vertexNormals")
@@ -173,6 +181,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
         .addInput(textureTexels_, "textureTexels")
         .addInput(textureTable_, "textureTable")
         .addInput(srgbTable_, "srgbTable")
+        .addInput(vertexColors_, "vertexColors")
         .setUniform("rayOffset", rayOffset_);
     if (!environmentTable_.empty()) {
         kernel.addDefine("SCENE_ENVIRONMENT");
@@ -188,7 +197,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
     return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
-           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) +
+           size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) + size(vertexColors_) +
            (environmentTable_.empty() ? 0  // the 1 x 1 stand-ins of a scene without an environment
                                       : size(environmentMap_) + size(environmentMarginal_) +
                                             size(environmentConditional_) + size(environmentHarmonics_));

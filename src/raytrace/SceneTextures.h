@@ -1,6 +1,6 @@
 // The scene in textures (Purcell et al. 2002, 3.1; Christen 2005, 5.3) for the integrators'
-// kernels: the triangles, materials, vertex normals, texture coordinates, textures, emitters and
-// the environment light,
+// kernels: the triangles, materials, vertex normals, texture coordinates, textures, emitters,
+// vertex colours and the environment light,
 // laid out as glsl/common/scene_layout.h says. The accelerator uploads its own (accel/). Triangle
 // ids (carried as floats in the hit stream) are checked against 2^24.
 #pragma once
@@ -31,7 +31,8 @@ class SceneTextures {
     SceneTextures(const Scene& scene, float rayOffset);
 
     // Adds the scene textures as inputs of `kernel` (samplers triangles, materials,
-    // vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable, srgbTable), sets
+    // vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable, srgbTable,
+    // vertexColors), sets
     // the emitter uniforms and rayOffset, and defines what the scene has (SCENE_*).
     void bind(GPUKernel& kernel) const;
 
@@ -43,6 +44,7 @@ class SceneTextures {
     const GPUFloatArray& textureTexels() const { return textureTexels_; }
     const GPUFloatArray& textureTable() const { return textureTable_; }
     const GPUFloatArray& srgbTable() const { return srgbTable_; }
+    const GPUFloatArray& vertexColors() const { return vertexColors_; }
     const EmitterTable& emitterTable() const { return emitterTable_; }
     const EnvironmentTable& environmentTable() const { return environmentTable_; }
     size_t bytes() const;
@@ -55,6 +57,8 @@ class SceneTextures {
     bool hasVertexNormals_;
     EmitterTable emitterTable_;
     GPUFloatArray emitters_;
+    GPUFloatArray vertexColors_;  // SCENE_VERTEX_COLORS: the scene has vertex colours
+    bool hasVertexColors_;
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
     bool hasNormalMaps_ = false;  // some material has a normal map (and the scene texture coordinates)

@@ -61,4 +61,10 @@ glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float 
     return m.diffuse * sampleTexture(scene.textures[size_t(m.diffuseTexture)], t);
 }
 
+glm::vec3 vertexColorAt(const Scene& scene, uint32_t prim, float u, float v) {
+    if (scene.colors.empty()) return glm::vec3(1.0f);
+    const TriangleColors& c = scene.colors[prim];
+    return raymath::interpolateVertexColor(c.c0, c.c1, c.c2, u, v);
+}
+
 }  // namespace gpurt

@@ -29,4 +29,8 @@ glm::vec2 texcoordAt(const Scene& scene, uint32_t prim, float u, float v);
 // texture's colour at the interpolated texture coordinates when it has one.
 glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float u, float v);
 
+// The vertex colour of triangle `prim` at barycentrics (u, v) (common/shading.h
+// interpolateVertexColor, as the kernels' fetchVertexColor); white when the scene has none.
+glm::vec3 vertexColorAt(const Scene& scene, uint32_t prim, float u, float v);
+
 }  // namespace gpurt

@@ -250,6 +250,7 @@ class GltfReader {
         const std::vector<glm::vec3> normals = primitiveNormals(prim, at, world, vertices);
         const uint32_t material = materialOf(prim.material, scene);
         const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices, scene);
+        const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
         const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
         auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
@@ -262,6 +263,10 @@ class GltfReader {
                 scene.texcoords.resize(scene.triangles.size() - 1);
                 scene.texcoords.push_back({texcoords[a], texcoords[b], texcoords[c]});
             }
+            if (!colors.empty()) {
+                scene.colors.resize(scene.triangles.size() - 1);  // white for the triangles before
+                scene.colors.push_back({colors[a], colors[b], colors[c]});
+            }
         };
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (index.size() % 3 != 0) fail(at + ": " + std::to_string(index.size()) + " indices, not a multiple of 3");
@@ -273,6 +278,8 @@ class GltfReader {
         }
         // Triangles of primitives without normals keep none (all zero), so that smoothing fills them.
         if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());
+        // And those without colours white.
+        if (!scene.colors.empty() && scene.colors.size() < scene.triangles.size()) scene.colors.resize(scene.triangles.size());
     }
 
     // POSITION in world space, each finite in float.
@@ -340,6 +347,45 @@ class GltfReader {
             texcoords[v] = std::isfinite(c.x) && std::isfinite(c.y) ? c : glm::vec2(0.0f);
         }
         return texcoords;
+    }
+
+    // COLOR_0, linear RGB (the spec's vertex colours, which multiply the base colour): VEC3 or VEC4
+    // of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT, values outside [0, 1] clamped with a
+    // warning. The alpha of VEC4 is not used (a warning when it is not 1 everywhere). None
+    // without, or (with a warning) of another component type.
+    std::vector<glm::vec3> primitiveColors(const tinygltf::Primitive& prim, const std::string& at, size_t vertices) const {
+        std::vector<glm::vec3> colors;
+        const auto attribute = prim.attributes.find("COLOR_0");
+        if (attribute == prim.attributes.end()) return colors;
+        const int index = attribute->second;
+        if (index < 0 || index >= int(m_.accessors.size())) fail(at + ": accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+        const bool known = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                           (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                             a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+        if (!known) {
+            warn(at + ": COLOR_0 of component type " + std::to_string(a.componentType) +
+                 " (not FLOAT or normalized UNSIGNED_BYTE or UNSIGNED_SHORT) is not used");
+            return colors;
+        }
+        int components = 0;
+        const std::vector<double> c = values(index, at + " COLOR_0", components);
+        if ((components != 3 && components != 4) || c.size() != size_t(components) * vertices)
+            fail(at + ": COLOR_0 is not VEC3 or VEC4 of one per vertex");
+        colors.resize(vertices);
+        bool alpha = false, outside = false;
+        for (size_t v = 0; v < vertices; ++v) {
+            const double* e = &c[v * size_t(components)];
+            for (int k = 0; k < 3; ++k) {
+                const bool in = e[k] >= 0.0 && e[k] <= 1.0;
+                outside = outside || !in;
+                colors[v][k] = in ? float(e[k]) : e[k] > 1.0 ? 1.0f : 0.0f;  // NaN: 0
+            }
+            alpha = alpha || (components == 4 && e[3] != 1.0);
+        }
+        if (outside) warn(at + ": COLOR_0 values outside [0, 1] clamped");
+        if (alpha) warn(at + ": the alpha of COLOR_0 is not used (only its RGB multiplies the base colour)");
+        return colors;
     }
 
     // The primitive's indices (unsigned integers below `vertices`), or 0, 1, ... without.

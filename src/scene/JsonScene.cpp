@@ -388,13 +388,15 @@ class SceneReader {
         }
     }
 
-    // The mesh's triangles with their normals and texture coordinates (dropped with an
-    // overriding material): all of material materialBase when `overridden`, else of the file's
+    // The mesh's triangles with their normals, and texture coordinates and vertex colours (both
+    // dropped with an overriding material, which is then shown as it is): all of material materialBase when `overridden`, else of the file's
     // materials, added from materialBase on.
     void addMeshTriangles(const Scene& obj, const std::optional<glm::dmat4>& transform, bool overridden,
                           uint32_t materialBase, const Pointer& transformAt, Scene& scene) const {
         const bool texcoords = !overridden && !obj.texcoords.empty();
         if (texcoords || !scene.texcoords.empty()) scene.texcoords.resize(scene.triangles.size());
+        const bool colors = !overridden && !obj.colors.empty();
+        if (colors || !scene.colors.empty()) scene.colors.resize(scene.triangles.size());
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
         // Vertex normals go through the inverse transpose of the transform's linear part.
@@ -422,6 +424,8 @@ class SceneReader {
             scene.triangles.push_back(triangle);
             if (texcoords) scene.texcoords.push_back(obj.texcoords[k]);
             else if (!scene.texcoords.empty()) scene.texcoords.push_back(TriangleTexcoords{});
+            if (colors) scene.colors.push_back(obj.colors[k]);
+            else if (!scene.colors.empty()) scene.colors.push_back(TriangleColors{});
             scene.materialIds.push_back(overridden ? materialBase : materialBase + obj.materialIds[k]);
         }
     }

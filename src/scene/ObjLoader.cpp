@@ -291,8 +291,15 @@ class ObjScanner {
 
 // Opens material libraries next to the OBJ file and remembers which could not be opened (the
 // stock MaterialFileReader splits its folder at ':' and only reports failures as text).
-// MTL illumination models 4, 6 and 7: glass (refraction).
-bool isDielectric(int illum) { return illum == 4 || illum == 6 || illum == 7; }
+// MTL illumination models 4, 6, 7 and 9 ask for glass (refraction). Maya writes illum 4 with Ni 1
+// and Tf 1 1 1 on opaque materials: only a material that also bends light or lets it through is
+// glass (CONTRACT.md: `Ni` other than 1, or `d` below 1). `indexGiven`: the library gives Ni (else
+// 1.5, common glass).
+bool isGlassIllum(int illum) { return illum == 4 || illum == 6 || illum == 7 || illum == 9; }
+float glassIndex(const tinyobj::material_t& m, bool indexGiven) { return indexGiven ? float(m.ior) : 1.5f; }
+bool isDielectric(const tinyobj::material_t& m, bool indexGiven) {
+    return isGlassIllum(m.illum) && (glassIndex(m, indexGiven) != 1.0f || m.dissolve < 1.0f);
+}
 
 class MtlReader : public tinyobj::MaterialReader {
   public:
@@ -319,7 +326,7 @@ class MtlReader : public tinyobj::MaterialReader {
         std::istringstream library(text.str());
         tinyobj::LoadMtl(matMap, materials, &library, warn, err);
         for (size_t m = first; m < materials->size() && !invalid; ++m)
-            invalid = checkMaterial((*materials)[m], FileLoc{path.string()});
+            invalid = checkMaterial((*materials)[m], givenIndex.count((*materials)[m].name) > 0, FileLoc{path.string()});
         folders.resize(materials->size(), path.parent_path());
         return loaded_[name] = true;
     }
@@ -363,7 +370,7 @@ class MtlReader : public tinyobj::MaterialReader {
         }
     }
 
-    static std::optional<Problem> checkMaterial(const tinyobj::material_t& m, const FileLoc& library) {
+    static std::optional<Problem> checkMaterial(const tinyobj::material_t& m, bool indexGiven, const FileLoc& library) {
         auto bad = [](float x) { return !std::isfinite(x) || x < 0.0f; };
         std::string what;
         if (bad(m.diffuse[0]) || bad(m.diffuse[1]) || bad(m.diffuse[2]))
@@ -376,7 +383,7 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Ke";
         else if (bad(m.transmittance[0]) || bad(m.transmittance[1]) || bad(m.transmittance[2]))
             what = "Tf";
-        else if (bad(m.ior) || (isDielectric(m.illum) && m.ior == 0.0f))
+        else if (bad(m.ior) || (isDielectric(m, indexGiven) && m.ior == 0.0f))
             what = "Ni";
         else if (bad(m.roughness) || bad(m.metallic))
             what = "Pr or Pm";
@@ -505,10 +512,12 @@ Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path
     material.specular = toVec3(m.specular);
     material.shininess = static_cast<float>(m.shininess);
     material.emission = toVec3(m.emission);
-    // MTL illumination models 4, 6 and 7 are glass: refraction with index Ni (1.5, common
-    // glass, when the library gives none) and the filter Tf (1 1 1 when it gives none).
-    if (isDielectric(m.illum)) {
-        material.ior = mtlReader.givenIndex.count(m.name) ? static_cast<float>(m.ior) : 1.5f;
+    // MTL illumination models 4, 6, 7 and 9 are glass where Ni is not 1 or d is below 1
+    // (isDielectric): refraction with index Ni (1.5, common glass, when the library gives none)
+    // and the filter Tf (1 1 1 when it gives none). Otherwise they are opaque: Kd and Ks as usual.
+    const bool indexGiven = mtlReader.givenIndex.count(m.name) > 0;
+    if (isDielectric(m, indexGiven)) {
+        material.ior = glassIndex(m, indexGiven);
         material.transmission = mtlReader.givenFilter.count(m.name) ? toVec3(m.transmittance) : glm::vec3(1.0f);
         if (glm::any(glm::greaterThan(material.transmission, glm::vec3(1.0f)))) {
             material.transmission = glm::min(material.transmission, glm::vec3(1.0f));

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "image/Colour.h"
 #include "image/InputError.h"
 #include "scene/SceneFile.h"
 
@@ -303,16 +304,31 @@ int propertyIndex(const Element& e, std::initializer_list<const char*> names) {
     return -1;
 }
 
-// Where the mesh is in the elements: the vertex element with its x, y, z (and nx, ny, nz)
-// properties, and the face element, if any, with its list of vertex indices.
+// Where the mesh is in the elements: the vertex element with its x, y, z (and nx, ny, nz, and
+// red, green, blue) properties, the face element, if any, with its list of vertex indices, and the
+// tristrips element, if any, with its strips.
 struct MeshLayout {
     const Element* vertex = nullptr;
     const Element* face = nullptr;
+    const Element* strips = nullptr;
     int position[3] = {-1, -1, -1};  // property indices in vertex
     int normal[3] = {-1, -1, -1};    // all -1 without normals
     bool hasNormals = false;
-    int indices = -1;  // property index in face
+    int color[3] = {-1, -1, -1};  // red, green, blue; all -1 unless the vertex has all three
+    bool hasColors = false;
+    int indices = -1;       // property index in face
+    int stripIndices = -1;  // property index in strips
 };
+
+// A list property of integers called vertex_indices (or vertex_index) in e: its index.
+int indexList(const Element& e, const std::string& name) {
+    const int indices = propertyIndex(e, {"vertex_indices", "vertex_index"});
+    if (indices < 0) failAt(FileLoc{name}, "the " + e.name + " element has no vertex_indices list");
+    const Property& p = e.properties[size_t(indices)];
+    if (!p.list || !isInteger(p.type))
+        failAt(FileLoc{name}, "the " + e.name + " property " + p.name + " is not a list of integers");
+    return indices;
+}
 
 MeshLayout meshLayout(const Header& header, const std::string& name) {
     auto fail = [&](const std::string& what) { failAt(FileLoc{name}, what); };
@@ -320,15 +336,17 @@ MeshLayout meshLayout(const Header& header, const std::string& name) {
     for (const Element& e : header.elements) {
         if (e.name == "vertex") layout.vertex = &e;
         if (e.name == "face") layout.face = &e;
+        if (e.name == "tristrips") layout.strips = &e;
     }
     const Element* vertex = layout.vertex;
-    const Element* face = layout.face;
     if (!vertex) fail("no vertex element");
     for (int a = 0; a < 3; ++a) {
         const char* axis[] = {"x", "y", "z"};
         const char* naxis[] = {"nx", "ny", "nz"};
+        const char* channel[] = {"red", "green", "blue"};
         layout.position[a] = propertyIndex(*vertex, {axis[a]});
         layout.normal[a] = propertyIndex(*vertex, {naxis[a]});
+        layout.color[a] = propertyIndex(*vertex, {channel[a]});
         if (layout.position[a] < 0) fail(std::string("line ") + std::to_string(vertex->line) + ": the vertex element has no property " + axis[a]);
         if (vertex->properties[size_t(layout.position[a])].list) fail(std::string("the vertex property ") + axis[a] + " is a list");
     }
@@ -336,25 +354,71 @@ MeshLayout meshLayout(const Header& header, const std::string& name) {
     layout.hasNormals = normal[0] >= 0 || normal[1] >= 0 || normal[2] >= 0;
     if (layout.hasNormals && (normal[0] < 0 || normal[1] < 0 || normal[2] < 0))
         fail("the vertex element has some of nx, ny, nz but not all three");
-    layout.indices = face ? propertyIndex(*face, {"vertex_indices", "vertex_index"}) : -1;
-    const int indices = layout.indices;
-    if (face && indices < 0) fail("the face element has no vertex_indices list");
-    if (face && (!face->properties[size_t(indices)].list || !isInteger(face->properties[size_t(indices)].type)))
-        fail("the face property " + face->properties[size_t(indices)].name + " is not a list of integers");
+    // Colours need all three channels, none a list; otherwise they are reported unused.
+    layout.hasColors = true;
+    for (int c : layout.color) layout.hasColors = layout.hasColors && c >= 0 && !vertex->properties[size_t(c)].list;
+    if (!layout.hasColors) std::fill(layout.color, layout.color + 3, -1);
+    if (layout.face) layout.indices = indexList(*layout.face, name);
+    if (layout.strips) layout.stripIndices = indexList(*layout.strips, name);
     return layout;
 }
 
-// The mesh's values as the data gives them (the face indices not yet checked).
+// The properties and elements gpurt reads past (CONTRACT.md: nothing is dropped silently), for one
+// warning: "vertex confidence, face flags, element edge". The vertex's s, t, u, v and alpha are
+// left out of it, as the brief of the reader says: they are common and carry nothing gpurt shows.
+std::string unusedParts(const Header& header, const MeshLayout& layout) {
+    std::string unused;
+    auto add = [&](const std::string& what) { unused += (unused.empty() ? "" : ", ") + what; };
+    for (const Element& e : header.elements) {
+        if (&e != layout.vertex && &e != layout.face && &e != layout.strips) {
+            add("element " + e.name);
+            continue;
+        }
+        for (size_t k = 0; k < e.properties.size(); ++k) {
+            const int i = int(k);
+            const std::string& n = e.properties[k].name;
+            bool used = false;
+            if (&e == layout.vertex) {
+                for (int a = 0; a < 3; ++a)
+                    used = used || i == layout.position[a] || i == layout.normal[a] || i == layout.color[a];
+                used = used || n == "s" || n == "t" || n == "u" || n == "v" || n == "alpha";
+            }
+            if (&e == layout.face) used = i == layout.indices;
+            if (&e == layout.strips) used = i == layout.stripIndices;
+            if (!used) add(e.name + " " + n);
+        }
+    }
+    return unused;
+}
+
+// The mesh's values as the data gives them (the indices not yet checked).
 struct MeshData {
-    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec3> positions, normals, colors;
     std::vector<uint32_t> faceSizes;
-    std::vector<double> faceIndices;  // every face's, one face after another
+    std::vector<double> faceIndices;   // every face's, one face after another
+    std::vector<double> stripIndices;  // every tristrips element's list, one after another (-1: restart)
 };
 
-// Element i of e: the face's indices and the vertex's coordinates are kept, other values read
-// and dropped.
+// A colour channel of type `type` as an sRGB-encoded value in [0, 1]: integers over the largest of
+// their type, floats as they are (negative values 0).
+float colorChannel(double v, Type type) {
+    double scale = 1.0;
+    switch (type) {
+        case Type::Int8: scale = 127.0; break;
+        case Type::UInt8: scale = 255.0; break;
+        case Type::Int16: scale = 32767.0; break;
+        case Type::UInt16: scale = 65535.0; break;
+        case Type::Int32: scale = 2147483647.0; break;
+        case Type::UInt32: scale = 4294967295.0; break;
+        default: break;
+    }
+    return std::clamp(float(v / scale), 0.0f, 1.0f);
+}
+
+// Element i of e: the face's and strips' indices and the vertex's coordinates, normal and colour
+// are kept, other values read and dropped.
 void readElement(DataReader& in, const Element& e, uint64_t i, const MeshLayout& layout, MeshData& data) {
-    const bool isVertex = &e == layout.vertex, isFace = &e == layout.face;
+    const bool isVertex = &e == layout.vertex, isFace = &e == layout.face, isStrips = &e == layout.strips;
     in.setPlace(e, i);
     for (size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
@@ -365,6 +429,9 @@ void readElement(DataReader& in, const Element& e, uint64_t i, const MeshLayout&
                 if (n < 3) in.fail("a face of " + std::to_string(int64_t(n)) + " vertices; a face needs at least 3");
                 data.faceSizes.push_back(uint32_t(n));
                 for (double j = 0; j < n; ++j) data.faceIndices.push_back(in.value(p.type));
+            } else if (isStrips && int(k) == layout.stripIndices) {
+                data.stripIndices.push_back(-1.0);  // each list starts a strip
+                for (double j = 0; j < n; ++j) data.stripIndices.push_back(in.value(p.type));
             } else {
                 for (double j = 0; j < n; ++j) in.value(p.type);
             }
@@ -381,6 +448,10 @@ void readElement(DataReader& in, const Element& e, uint64_t i, const MeshLayout&
                 if (!std::isfinite(float(v))) in.fail("normal component is not a finite float");
                 data.normals[size_t(i)][a] = float(v);
             }
+            if (int(k) == layout.color[a]) {
+                if (!std::isfinite(float(v))) in.fail("colour component is not a finite float");
+                data.colors[size_t(i)][a] = colorChannel(v, p.type);
+            }
         }
     }
 }
@@ -395,6 +466,7 @@ MeshData readData(const std::string& bytes, const Header& header, const MeshLayo
         if (&e == layout.vertex) {
             data.positions.resize(size_t(e.count));
             if (layout.hasNormals) data.normals.resize(size_t(e.count));
+            if (layout.hasColors) data.colors.resize(size_t(e.count));
         }
         if (e.properties.empty()) continue;  // elements of nothing take no bytes
         for (uint64_t i = 0; i < e.count; ++i) readElement(in, e, i, layout, data);
@@ -403,30 +475,88 @@ MeshData readData(const std::string& bytes, const Header& header, const MeshLayo
     return data;
 }
 
-// The faces as triangle fans around their first vertex, each index checked against the vertices;
-// one default material.
-Scene meshScene(const MeshData& data, bool hasNormals, const std::string& name) {
+// Builds the scene's triangles from vertex indices, each checked against the vertices; the
+// vertex colours are sRGB-decoded to linear once here.
+class TriangleBuilder {
+  public:
+    TriangleBuilder(const MeshData& data, bool hasNormals, bool hasColors, const std::string& name, Scene& scene)
+        : data_(data), hasNormals_(hasNormals), name_(name), scene_(scene) {
+        if (!hasColors) return;
+        linearColors_.resize(data.colors.size());
+        for (size_t v = 0; v < data.colors.size(); ++v)
+            for (int c = 0; c < 3; ++c) linearColors_[v][c] = decodeSrgb(data.colors[v][c]);
+    }
+
+    // Index `index` of `what`, checked: a vertex.
+    size_t vertex(double index, const std::string& what) const {
+        if (index < 0 || index >= double(data_.positions.size()))
+            failAt(FileLoc{name_}, what + ": vertex index " + std::to_string(int64_t(index)) + " is out of range (" +
+                                       std::to_string(data_.positions.size()) + " vertices)");
+        return size_t(index);
+    }
+
+    void add(size_t a, size_t b, size_t c) {
+        const std::vector<glm::vec3>& p = data_.positions;
+        scene_.triangles.push_back({p[a], p[b], p[c]});
+        scene_.materialIds.push_back(0);
+        if (hasNormals_) scene_.normals.push_back({data_.normals[a], data_.normals[b], data_.normals[c]});
+        if (!linearColors_.empty()) scene_.colors.push_back({linearColors_[a], linearColors_[b], linearColors_[c]});
+    }
+
+    // The faces as triangle fans around their first vertex.
+    void faces() {
+        size_t at = 0;
+        for (size_t f = 0; f < data_.faceSizes.size(); ++f) {
+            const size_t n = data_.faceSizes[f];
+            const std::string what = "face " + std::to_string(f);
+            for (size_t j = 0; j < n; ++j) vertex(data_.faceIndices[at + j], what);
+            const auto v = [&](size_t j) { return size_t(data_.faceIndices[at + j]); };
+            for (size_t j = 1; j + 1 < n; ++j) add(v(0), v(j), v(j + 1));
+            at += n;
+        }
+    }
+
+    // The strips (-1 restarts one; each tristrips element's list starts one): triangle k of a strip
+    // is (s_k, s_k+1, s_k+2) for even k and (s_k+1, s_k, s_k+2) for odd k, OpenGL's order, which
+    // keeps the winding. A triangle with a vertex twice (the turns a strip makes to go on) is
+    // skipped, but counts for the alternation.
+    void strips() {
+        const std::vector<double>& s = data_.stripIndices;
+        size_t strip = 0, k = 0;  // k: the triangle's place in its strip
+        for (size_t i = 0; i < s.size(); ++i) {
+            if (s[i] == -1.0) {
+                if (i > 0 && s[i - 1] != -1.0) ++strip;
+                k = 0;
+                continue;
+            }
+            vertex(s[i], "triangle strip " + std::to_string(strip));
+            if (i < 2 || s[i - 1] == -1.0 || s[i - 2] == -1.0) continue;
+            const size_t a = size_t(s[i - 2]), b = size_t(s[i - 1]), c = size_t(s[i]);
+            if (a != b && b != c && a != c) {
+                if (k % 2 == 0) add(a, b, c);
+                else add(b, a, c);
+            }
+            ++k;
+        }
+    }
+
+  private:
+    const MeshData& data_;
+    bool hasNormals_;
+    const std::string& name_;
+    Scene& scene_;
+    std::vector<glm::vec3> linearColors_;
+};
+
+// The faces and strips, in the order of their elements; one default material.
+Scene meshScene(const MeshData& data, const MeshLayout& layout, const std::string& name) {
     Scene scene;
     scene.materials.push_back(Material{});
-    const std::vector<glm::vec3>& positions = data.positions;
-    const std::vector<glm::vec3>& normals = data.normals;
-    size_t at = 0;
-    for (size_t f = 0; f < data.faceSizes.size(); ++f) {
-        const size_t n = data.faceSizes[f];
-        for (size_t j = 0; j < n; ++j) {
-            const double index = data.faceIndices[at + j];
-            if (index < 0 || index >= double(positions.size()))
-                failAt(FileLoc{name}, "face " + std::to_string(f) + ": vertex index " + std::to_string(int64_t(index)) +
-                                          " is out of range (" + std::to_string(positions.size()) + " vertices)");
-        }
-        const auto v = [&](size_t j) { return size_t(data.faceIndices[at + j]); };
-        for (size_t j = 1; j + 1 < n; ++j) {
-            scene.triangles.push_back({positions[v(0)], positions[v(j)], positions[v(j + 1)]});
-            scene.materialIds.push_back(0);
-            if (hasNormals) scene.normals.push_back({normals[v(0)], normals[v(j)], normals[v(j + 1)]});
-        }
-        at += n;
-    }
+    TriangleBuilder build(data, layout.hasNormals, layout.hasColors, name, scene);
+    const bool stripsFirst = layout.strips && (!layout.face || layout.strips < layout.face);
+    if (stripsFirst) build.strips();
+    build.faces();
+    if (!stripsFirst) build.strips();
     return scene;
 }
 
@@ -439,7 +569,15 @@ bool looksLikePly(const std::string& head) {
 Scene parsePly(const std::string& bytes, const std::string& name) {
     const Header header = readHeader(bytes, name);
     const MeshLayout layout = meshLayout(header, name);
-    return meshScene(readData(bytes, header, layout, name), layout.hasNormals, name);
+    Scene scene = meshScene(readData(bytes, header, layout, name), layout, name);
+    if (const std::string unused = unusedParts(header, layout); !unused.empty())
+        warnAt(FileLoc{name}, "not used: " + unused);
+    if (scene.triangles.empty())
+        warnAt(FileLoc{name}, std::string("no triangles (") +
+                                  (layout.face || layout.strips ? "its faces and strips make none"
+                                                                : "no face or tristrips element: a point cloud?") +
+                                  "): nothing to render");
+    return scene;
 }
 
 Scene loadPly(const std::filesystem::path& path) {

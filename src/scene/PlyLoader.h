@@ -15,12 +15,17 @@ namespace gpurt {
 
 // Reads a PLY file: every element the header declares, in order, with every property (those gpurt
 // does not use, like the Stanford scans' confidence and intensity, or whole elements such as edges,
-// are read and skipped). Uses vertex x, y, z (required), nx, ny, nz (all three or none) and the
-// face list vertex_indices (or vertex_index). Every triangle gets the default material.
-// Throws InputError naming the file (and the header line, the ASCII line, or the element and
-// byte offset) for a file that is not PLY, a header that does not match its data (a short file,
-// trailing data, a count the file cannot hold), a face of fewer than 3 vertices, an index out of
-// range and non-finite positions or normals.
+// are read and skipped, and named in one warning; the vertex's s, t, u, v and alpha are not named).
+// Uses vertex x, y, z (required), nx, ny, nz (all three or none), red, green, blue (all three, else
+// unused: sRGB-encoded display colours, integers over their type's largest value, floats in
+// [0, 1], decoded to linear vertex colours), the face list vertex_indices (or vertex_index) and
+// the tristrips list vertex_indices (strips with -1 restarts, OpenGL's alternating order, the
+// triangles with a vertex twice skipped). Faces and strips become triangles in the order of their
+// elements. Every triangle gets the default material. A file that makes no triangle is read with a
+// warning naming it. Throws InputError naming the file (and the header line, the ASCII line, or
+// the element and byte offset) for a file that is not PLY, a header that does not match its data
+// (a short file, trailing data, a count the file cannot hold), a face of fewer than 3 vertices, an
+// index out of range and non-finite positions, normals or colours.
 Scene loadPly(const std::filesystem::path& path);
 
 // loadPly on bytes already in memory; `name` names the file in messages (the fuzz target).

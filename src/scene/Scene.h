@@ -151,6 +151,14 @@ struct TriangleNormals {
     bool given() const { return n0 != glm::vec3(0.0f) || n1 != glm::vec3(0.0f) || n2 != glm::vec3(0.0f); }
 };
 
+// The vertex colours at a triangle's corners, linear RGB in [0, 1] (PLY red/green/blue, glTF
+// COLOR_0): the diffuse colour at a hit is multiplied by their interpolation
+// (glsl/common/shading.h interpolateVertexColor). White (the default) changes nothing: the
+// triangles of a scene that has colours elsewhere but none of their own.
+struct TriangleColors {
+    glm::vec3 c0{1.0f}, c1{1.0f}, c2{1.0f};
+};
+
 // Axis-aligned box; starts empty (min = +inf, max = -inf) so that extend() needs no special case.
 struct Bounds {
     glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -170,6 +178,8 @@ struct Scene {
     std::vector<TriangleNormals> normals;
     // Empty (no textured material), or one per triangle (zeros where a file gave none).
     std::vector<TriangleTexcoords> texcoords;
+    // Empty (no vertex colours), or one per triangle (white where a file gave none).
+    std::vector<TriangleColors> colors;
     // Never empty (index 0 = the default material when the OBJ has none).
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' diffuseTexture indices refer to these

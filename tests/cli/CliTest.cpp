@@ -329,6 +329,55 @@ TEST_F(Cli, PlyModelsRenderAsTheirObj) {
         }
 }
 
+// A PLY whose only geometry is triangle strips renders them (it once gave an empty image and exit
+// 0); one without any triangle says so, naming the file.
+TEST_F(Cli, PlyTriangleStripsRenderAndAFileWithoutTrianglesIsNamed) {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+    write("strips.ply", head + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+                               "-1 -1 0\n1 -1 0\n-1 1 0\n1 1 0\n4 0 1 2 3\n");
+    write("points.ply", head + "end_header\n-1 -1 0\n1 -1 0\n-1 1 0\n1 1 0\n");
+    for (const char* backend : {"gl", "cpu"}) {
+        SCOPED_TRACE(backend);
+        const std::string options = std::string(" --size 32x32 --eye 0,0,3 --target 0,0,0 --backend ") + backend;
+        const Result r = gpurt("render " + path("strips.ply") + options + " -o " + path("strips.png") + " --aov prim=" +
+                               path("strips_prim.pfm"));
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_EQ(r.err, "");
+        const Pfm prim = readPfm(dir / "strips_prim.pfm");
+        size_t hits[2] = {0, 0};
+        for (float id : prim.bottomFirst)
+            if (id == 0.0f || id == 1.0f) ++hits[size_t(id)];
+        EXPECT_GT(hits[0], 100u);  // both triangles of the strip, each about a quarter of the image
+        EXPECT_GT(hits[1], 100u);
+        const Result p = gpurt("render " + path("points.ply") + options + " -o " + path("points.png"));
+        EXPECT_NE(p.err.find(path("points.ply") + ": warning: no triangles"), std::string::npos) << p.err;
+    }
+}
+
+// A PLY's vertex colours go through `gpurt pack` (VCOL): the packed file renders byte for byte as
+// its source on both backends, and differs from the same mesh without colours.
+TEST_F(Cli, PackedPlyKeepsItsVertexColours) {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string colours = "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    write("coloured.ply", head + colours + faces + "-1 -1 0 255 0 0\n1 -1 0 0 255 0\n1 1 0 0 0 255\n-1 1 0 255 255 255\n4 0 1 2 3\n");
+    write("plain.ply", head + faces + "-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n4 0 1 2 3\n");
+    const Result pack = gpurt("pack " + path("coloured.ply") + " -o " + path("coloured.gpscene"));
+    ASSERT_EQ(pack.code, 0) << pack.err;
+    EXPECT_NE(pack.out.find("vertexColors"), std::string::npos) << pack.out;
+    for (const char* backend : {"gl", "cpu"}) {
+        SCOPED_TRACE(backend);
+        const std::string options = std::string(" --size 32x32 --eye 0,0,3 --target 0,0,0 --backend ") + backend;
+        for (const char* scene : {"coloured.ply", "coloured.gpscene", "plain.ply"}) {
+            const Result r = gpurt("render " + path(scene) + options + " -o " + path(std::string(scene) + ".png") + " --aov color=" +
+                                   path(std::string(scene) + ".pfm"));
+            ASSERT_EQ(r.code, 0) << scene << "\n" << r.err;
+        }
+        EXPECT_EQ(slurp(dir / "coloured.ply.pfm"), slurp(dir / "coloured.gpscene.pfm"));
+        EXPECT_NE(slurp(dir / "coloured.ply.pfm"), slurp(dir / "plain.ply.pfm"));
+    }
+}
+
 // glTF files written by another tool (Cesium's obj2gltf, checked by Khronos' glTF-Validator:
 // scripts/make-test-assets.sh; a .gltf with its .bin and a .glb) hit what the OBJ they were made from
 // hits, bit for bit: the same triangle ids, depths and normals at every pixel, on both backends

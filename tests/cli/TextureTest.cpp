@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../common/ImageFiles.h"
 #include "CliRunner.h"
 
 namespace gpurt::test {
@@ -227,6 +228,33 @@ TEST_F(Textures, PackedScenesCarryTheirTextures) {
         render(quoted("globe.gpscene"), "packed", options);
         EXPECT_TRUE(readFile(dir / "obj.pfm") == readFile(dir / "packed.pfm"));
         EXPECT_TRUE(readFile(dir / "obj.png") == readFile(dir / "packed.png"));
+    }
+}
+
+// The Maya-era OBJ files name BMP textures: the quad with its quadrants as a BMP (and as TGA,
+// run-length encoded) renders byte for byte as with the PNG, on both backends.
+TEST_F(Textures, BmpAndTgaTexturesRenderAsThePng) {
+    int w = 0, h = 0;
+    const std::vector<unsigned char> rgb = pngTexels(kAssets + "quadrants.png", w, h);
+    std::vector<unsigned char> rgba;
+    for (size_t k = 0; k < rgb.size(); k += 3) rgba.insert(rgba.end(), {rgb[k], rgb[k + 1], rgb[k + 2], 255});
+    write("quadrants.png", readFile(kAssets + "quadrants.png"));
+    write("quadrants.bmp", bmpOf(w, h, 24, rgba));
+    write("quadrants.tga", tgaOf(w, h, 24, false, true, rgba));
+    const std::string obj = readFile(kAssets + "quad.obj");
+    for (const char* kind : {"png", "bmp", "tga"}) {
+        write(std::string(kind) + ".mtl", std::string("newmtl quadrants\nKd 1 1 1\nmap_Kd quadrants.") + kind + "\n");
+        std::string text = obj;
+        text.replace(text.find("quad.mtl"), 8, std::string(kind) + ".mtl");
+        write(std::string(kind) + ".obj", text);
+    }
+    for (const char* backend : {"gl", "cpu"}) {
+        SCOPED_TRACE(backend);
+        const std::string options = std::string("--size 64x64 --eye 0,0,2.5 --target 0,0,0 --backend ") + backend;
+        for (const char* kind : {"png", "bmp", "tga"}) render(quoted(std::string(kind) + ".obj"), kind, options);
+        EXPECT_TRUE(readFile(dir / "png.pfm") == readFile(dir / "bmp.pfm"));
+        EXPECT_TRUE(readFile(dir / "png.pfm") == readFile(dir / "tga.pfm"));
+        EXPECT_TRUE(readFile(dir / "png.png") == readFile(dir / "bmp.png"));
     }
 }
 

@@ -69,6 +69,11 @@ void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
     for (uint32_t id : original.materialIds) FUZZ_CHECK(id < original.materials.size());
     for (const Triangle& t : original.triangles)
         FUZZ_CHECK(finite(t.v0) && finite(t.v1) && finite(t.v2));
+    // Vertex colours: none, or one record per triangle, linear RGB in [0, 1].
+    FUZZ_CHECK(original.colors.empty() || original.colors.size() == original.triangles.size());
+    for (const TriangleColors& c : original.colors)
+        for (const glm::vec3 v : {c.c0, c.c1, c.c2})
+            FUZZ_CHECK(v.x >= 0.0f && v.x <= 1.0f && v.y >= 0.0f && v.y <= 1.0f && v.z >= 0.0f && v.z <= 1.0f);
 
     // As the render command does: far from unit size, the scene is rescaled (SceneScale.h).
     Scene scene = original;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "../common/ImageFiles.h"
 #include "../common/Refusal.h"
 #include "image/TextureImage.h"
 #include "raytrace/SurfaceTexture.h"
@@ -91,8 +92,8 @@ TEST(TextureImageTest, AJpegDecodesCloseToItsLosslessImage) {
 TEST(TextureImageTest, WhatIsNotAWholeImageIsRefused) {
     const std::string png = bytesOf(kAssets + "quadrants.png");
     const std::string jpeg = bytesOf(kAssets + "checker.jpg");
-    EXPECT_REFUSED("", "not a PNG or JPEG");
-    EXPECT_REFUSED("GIF89a\x01\x00\x01\x00", "not a PNG or JPEG");
+    EXPECT_REFUSED("", "not a PNG, JPEG, BMP or TGA");
+    EXPECT_REFUSED("GIF89a\x01\x00\x01\x00", "not a PNG, JPEG, BMP or TGA");
     EXPECT_REFUSED(png.substr(0, 40), "not a readable PNG");
     EXPECT_REFUSED(png.substr(0, png.find("IDAT") + 10), "not a readable PNG");  // pixel data cut short
     EXPECT_REFUSED(jpeg.substr(0, 100), "not a readable JPEG");
@@ -106,6 +107,68 @@ TEST(TextureImageTest, WhatIsNotAWholeImageIsRefused) {
     huge.replace(29, 4, reinterpret_cast<const char*>(crcBytes), 4);
     EXPECT_REFUSED(huge, "larger than a texture may be");
     EXPECT_THROW(readImage("tests/assets/textures/no-such-image.png"), InputError);
+}
+
+// A 5 x 3 image (odd width: BMP rows are padded) with runs and single pixels, alpha varying.
+std::vector<unsigned char> testRgba() {
+    std::vector<unsigned char> rgba;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) {
+            const bool run = y == 1 && x < 4;  // four equal pixels: a TGA run packet
+            rgba.insert(rgba.end(), {static_cast<unsigned char>(run ? 7 : 40 * x + 3), static_cast<unsigned char>(run ? 99 : 60 * y),
+                                     static_cast<unsigned char>(run ? 250 : 13 * x * y), static_cast<unsigned char>(run ? 255 : 255 - 20 * x)});
+        }
+    return rgba;
+}
+
+// BMP and TGA (stb_image) decode to the texels libpng gives for the same image as a PNG: every
+// layout the writers of ImageFiles.h make (BMP 24 and 32 bits; TGA 24 and 32 bits, top or bottom
+// row first, raw or run-length encoded). 24-bit files have no alpha: 255.
+TEST(TextureImageTest, BmpAndTgaDecodeAsTheSameImageAsPng) {
+    const std::vector<unsigned char> rgba = testRgba();
+    std::vector<unsigned char> opaque = rgba;
+    for (size_t k = 3; k < opaque.size(); k += 4) opaque[k] = 255;
+    const Rgba8Image png = decode(pngOf(5, 3, PNG_FORMAT_RGBA, rgba)), opaquePng = decode(pngOf(5, 3, PNG_FORMAT_RGBA, opaque));
+    ASSERT_EQ(png.texels.size(), 15u);
+    for (int bits : {24, 32}) {
+        SCOPED_TRACE(bits);
+        const std::vector<uint32_t>& expected = bits == 32 ? png.texels : opaquePng.texels;
+        const Rgba8Image bmp = decode(bmpOf(5, 3, bits, rgba));
+        EXPECT_EQ(bmp.width, 5);
+        EXPECT_EQ(bmp.height, 3);
+        EXPECT_EQ(bmp.texels, expected);
+        for (bool top : {false, true})
+            for (bool rle : {false, true}) {
+                SCOPED_TRACE(std::string(top ? "top first" : "bottom first") + (rle ? " rle" : " raw"));
+                const Rgba8Image tga = decode(tgaOf(5, 3, bits, top, rle, rgba));
+                EXPECT_EQ(tga.width, 5);
+                EXPECT_EQ(tga.texels, expected);
+            }
+    }
+}
+
+// A BMP or TGA header is checked against the bytes the file has before stb allocates for the
+// pixels: 400 bytes claiming 16384 x 4096 (2^26 texels, as many as a texture may have) are
+// refused as truncated; so is a file whose pixels (or run-length packets) end early.
+TEST(TextureImageTest, BmpAndTgaThatClaimMoreThanTheyHoldAreRefused) {
+    const std::vector<unsigned char> rgba = testRgba();
+    std::string bmp = bmpOf(5, 3, 24, rgba);
+    std::string huge = bmp;
+    huge.replace(18, 8, std::string("\x00\x40\x00\x00\x00\x10\x00\x00", 8));  // 16384 x 4096
+    huge.resize(400, '\0');
+    EXPECT_REFUSED(huge, "t.img: truncated BMP (a 16384 x 4096 image needs at least");
+    EXPECT_REFUSED(bmp.substr(0, bmp.size() - 20), "truncated BMP");
+    std::string rle = bmp;
+    rle[30] = 1;  // BI_RLE8: stb does not read it
+    EXPECT_REFUSED(rle, "not a readable BMP");
+    std::string tga = tgaOf(5, 3, 32, true, true, rgba);
+    std::string hugeTga = tga;
+    hugeTga.replace(12, 4, std::string("\x00\x40\x00\x10", 4));  // 16384 x 4096
+    hugeTga.resize(400, '\0');
+    EXPECT_REFUSED(hugeTga, "truncated TGA");
+    EXPECT_REFUSED(tga.substr(0, tga.size() - 3), "truncated TGA");
+    const std::string raw = tgaOf(5, 3, 24, false, false, rgba);
+    EXPECT_REFUSED(raw.substr(0, raw.size() - 1), "truncated TGA");
 }
 
 // IEC 61966-2-1 in double.

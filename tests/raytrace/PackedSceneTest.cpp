@@ -173,6 +173,9 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
     ASSERT_EQ(x.texcoords.size(), y.texcoords.size());
     for (size_t t = 0; t < x.texcoords.size(); ++t)
         ASSERT_TRUE(sameBits(x.texcoords[t], y.texcoords[t])) << "texture coordinates " << t;
+    ASSERT_EQ(x.colors.size(), y.colors.size());
+    for (size_t t = 0; t < x.colors.size(); ++t)
+        ASSERT_TRUE(sameBits(x.colors[t], y.colors[t])) << "vertex colours " << t;
     ASSERT_EQ(x.lights.size(), y.lights.size());
     for (size_t l = 0; l < x.lights.size(); ++l) {
         EXPECT_TRUE(sameBits(x.lights[l].position, y.lights[l].position)) << l;
@@ -535,6 +538,45 @@ TEST_F(PackedSceneTest, RefusesTexturesThatLie) {
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, indices - 8, source_.scene.materials.size() + 1); }),
                    "material textures");
     EXPECT_REFUSED(patched([&](Bytes& b) { put64(b, txco.offset, source_.scene.triangles.size() - 1); }), "do not fit");
+}
+
+// Vertex colours (VCOL, nine floats a triangle): written only for a scene that has them, so that
+// other files stay as they were; kept bit for bit through the round trip (with their scene
+// texture); a count that is not the triangles' and colours outside [0, 1] or not finite are
+// refused by the reader, and the writer refuses to write them.
+TEST_F(PackedSceneTest, VertexColoursTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "VCOL")) << "a scene without vertex colours";
+    LoadedScene coloured = source_;
+    const size_t n = coloured.scene.triangles.size();
+    for (size_t t = 0; t < n; ++t)
+        coloured.scene.colors.push_back({glm::vec3(float(t) / float(n), 0.0f, 1.0f),
+                                         glm::vec3(-0.0f, std::numeric_limits<float>::denorm_min(), 0.5f), glm::vec3(1.0f)});
+    const UniformGrid grid = buildGrid(coloured.scene, {});
+    const Bytes b = encodePackedScene(coloured, grid, "coloured");
+    const Entry vcol = section(b, "VCOL");
+    EXPECT_EQ(vcol.size, 8 + 36 * n);
+    EXPECT_EQ(get64(b, vcol.offset), n);
+    float first;  // triangle 1's c0.x, as the layout puts it
+    const uint32_t bits = get32(b, vcol.offset + 8 + 36);
+    std::memcpy(&first, &bits, 4);
+    EXPECT_EQ(first, 1.0f / float(n));
+    expectRoundTrip(coloured);
+    auto withFloat = [&](size_t at, float v) {
+        return patched(b, [&](Bytes& p) { put32(p, at, std::bit_cast<uint32_t>(v)); });
+    };
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, vcol.offset, n - 1); }), "do not fit");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, vcol.offset, uint64_t(1) << 40); }), "vertex colours");
+    EXPECT_REFUSED(withFloat(vcol.offset + 8 + 4, 1.5f), "triangle 0: vertex colours must be finite and in [0, 1]");
+    EXPECT_REFUSED(withFloat(vcol.offset + 8 + 36 * 2 + 32, -0.25f), "triangle 2: vertex colours must be finite");
+    EXPECT_REFUSED(withFloat(vcol.offset + 8 + 12, std::numeric_limits<float>::quiet_NaN()), "triangle 0: vertex colours");
+    // A file shorter by a record: the section's size is not its count's.
+    refusal(patched(b, [&](Bytes& p) { put64(p, vcol.at + 16, vcol.size - 36); }));
+    LoadedScene bad = coloured;
+    bad.scene.colors[3].c1.y = 2.0f;
+    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    bad.scene.colors.pop_back();
+    bad.scene.colors[3].c1.y = 0.0f;
+    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

@@ -187,7 +187,7 @@ TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
     Scene empty;
     empty.materials.push_back(Material{});
     const std::vector<TextureTexels> all = sceneTextureTexels(empty, buildGrid(empty, {}));
-    ASSERT_EQ(all.size(), 10u);
+    ASSERT_EQ(all.size(), 11u);
     for (const TextureTexels& t : all) {
         EXPECT_EQ(t.rows, 1) << t.name;
         EXPECT_EQ(t.isFloat ? t.floats.size() : t.uints.size(), t.texels() * size_t(t.channels))

@@ -300,6 +300,8 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     for (size_t t = 0; t < source.scene.materialIds.size(); t += 2) source.scene.materialIds[t] = 1;
     for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // vertex normals, in the packed file too
         source.scene.normals.push_back({glm::vec3(float(t), 1, 0), glm::vec3(0, float(t), 1), glm::vec3(1, 0, float(t))});
+    for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // vertex colours
+        source.scene.colors.push_back({glm::vec3(float(t % 7) / 7.0f, 1, 0), glm::vec3(0, 0.5f, 1), glm::vec3(1, 0, 0.25f)});
     for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // texture coordinates and two textures
         source.scene.texcoords.push_back({glm::vec2(float(t), 0.5f), glm::vec2(-1.0f, float(t)), glm::vec2(0.25f, 2.0f)});
     for (int k = 0; k < 2; ++k) {
@@ -323,7 +325,7 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     const GPUFloatArray* gpu[] = {&accel.voxelIndex(), &accel.cellTriangles(), &textures.triangles(),
                                   &textures.materials(), &textures.vertexNormals(), &textures.emitters(),
                                   &textures.texcoords(), &textures.textureTexels(), &textures.textureTable(),
-                                  &textures.srgbTable()};
+                                  &textures.srgbTable(), &textures.vertexColors()};
     ASSERT_EQ(cpu.size(), std::size(gpu));
     size_t bytes = 0;
     for (size_t k = 0; k < cpu.size(); ++k) {

@@ -159,6 +159,43 @@ TEST(GltfLoader, SparseNormalizedAccessorsAndNormals) {
     expectNear(scene.normals[1].n0, {0, 0, 1}, "normal");  // scaled along z, renormalised
 }
 
+// COLOR_0 (linear, as the spec says) in each form the spec allows: VEC3 FLOAT, VEC4 normalized
+// UNSIGNED_BYTE (its alpha not used: a warning when it is not 1) and VEC3 normalized
+// UNSIGNED_SHORT; a primitive without colours in a scene with some is white; another component
+// type is a warning and no colours.
+TEST(GltfLoader, VertexColoursFromColor0) {
+    Gltf g;
+    const int position = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int floats = g.accessor(g.view(std::vector<float>{1, 0, 0, 0, 0.5f, 0, 0.25f, 0.75f, 1}), 5126, 3, "VEC3");
+    const int bytes = g.accessor(g.view(std::vector<uint8_t>{255, 0, 51, 255, 0, 255, 0, 128, 0, 0, 255, 255}), 5121, 3,
+                                 "VEC4", ", \"normalized\": true");
+    const int shorts = g.accessor(g.view(std::vector<uint16_t>{65535, 0, 0, 0, 65535, 0, 0, 0, 13107}), 5123, 3, "VEC3",
+                                  ", \"normalized\": true");
+    const int ints = g.accessor(g.view(std::vector<uint8_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 0, 0, 0}), 5121, 3, "VEC3");
+    auto primitive = [&](int colour) {
+        return "{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(position) +
+               (colour >= 0 ? ", \"COLOR_0\": " + std::to_string(colour) : std::string()) + "}}]}";
+    };
+    const std::string rest = "\"scenes\": [{\"nodes\": [0, 1, 2, 3, 4]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 1}, "
+                             "{\"mesh\": 2}, {\"mesh\": 3}, {\"mesh\": 4}], \"meshes\": [" +
+                             primitive(-1) + ", " + primitive(floats) + ", " + primitive(bytes) + ", " + primitive(shorts) +
+                             ", " + primitive(ints) + "]";
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parse(g.json(rest));
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(scene.triangles.size(), 5u);
+    ASSERT_EQ(scene.colors.size(), 5u);
+    for (const glm::vec3 c : {scene.colors[0].c0, scene.colors[0].c2, scene.colors[4].c1}) EXPECT_EQ(c, glm::vec3(1.0f));
+    EXPECT_EQ(scene.colors[1].c0, glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.colors[1].c2, glm::vec3(0.25f, 0.75f, 1));
+    EXPECT_EQ(scene.colors[2].c0, glm::vec3(1.0f, 0.0f, float(51 / 255.0)));
+    EXPECT_EQ(scene.colors[2].c1, glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(scene.colors[2].c2, glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(scene.colors[3].c2, glm::vec3(0.0f, 0.0f, float(13107 / 65535.0)));
+    EXPECT_NE(err.find("mesh 2 primitive 0: the alpha of COLOR_0 is not used"), std::string::npos) << err;
+    EXPECT_NE(err.find("mesh 4 primitive 0: COLOR_0 of component type 5121"), std::string::npos) << err;
+}
+
 TEST(GltfLoader, MaterialsCameraAndPointLights) {
     Gltf g;
     const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});

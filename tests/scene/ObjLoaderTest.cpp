@@ -172,6 +172,33 @@ TEST_F(ObjLoaderTest, MissingMtlIsAWarning) {
     EXPECT_EQ(scene.materials[0].name, "default");
 }
 
+// The glass rule of CONTRACT.md: illum 4, 6, 7 and 9 are glass only where Ni is not 1 or d is
+// below 1. Maya writes illum 4, Ni 1, Tf 1 1 1 on opaque materials: those keep Kd and Ks.
+TEST_F(ObjLoaderTest, GlassIllumModelsAreGlassOnlyWhereLightBendsOrPasses) {
+    write("maya.mtl",
+          "newmtl maya\nillum 4\nKd 0.5 0.4 0.3\nKa 0 0 0\nTf 1 1 1\nNi 1\nKs 0.2 0.2 0.2\n"
+          "newmtl glass\nillum 4\nKd 0 0 0\nNi 1.5\nTf 0.9 1 0.8\n"
+          "newmtl sheet\nillum 9\nKd 0.2 0.2 0.2\nNi 1\nd 0.5\n"
+          "newmtl fresnel\nillum 7\nKd 0.1 0.1 0.1\nKs 0.6 0.6 0.6\nNi 1.0\n"
+          "newmtl classic\nillum 6\nKd 0 0 0\n"
+          "newmtl nine\nillum 9\nNi 1.33\n");
+    std::string faces = "mtllib maya.mtl\n" + kThreeVertices;
+    for (const char* m : {"maya", "glass", "sheet", "fresnel", "classic", "nine"}) faces += "usemtl " + std::string(m) + "\nf 1 2 3\n";
+    const Scene scene = loadObj(write("maya.obj", faces));
+    ASSERT_EQ(scene.triangles.size(), 6u);
+    auto material = [&](size_t t) { return scene.materials[scene.materialIds[t]]; };
+    EXPECT_EQ(material(0).ior, 0.0f) << "Maya's illum 4, Ni 1, Tf 1 1 1 is opaque";
+    EXPECT_EQ(material(0).diffuse, glm::vec3(0.5f, 0.4f, 0.3f));
+    EXPECT_EQ(material(0).specular, glm::vec3(0.2f));
+    EXPECT_EQ(material(1).ior, 1.5f);
+    EXPECT_EQ(material(1).transmission, glm::vec3(0.9f, 1.0f, 0.8f));
+    EXPECT_EQ(material(2).ior, 1.0f) << "d below 1 lets light through";
+    EXPECT_EQ(material(3).ior, 0.0f) << "illum 7 with Ni 1: a Fresnel mirror, not glass";
+    EXPECT_EQ(material(3).reflectivity, glm::vec3(0.6f));
+    EXPECT_EQ(material(4).ior, 1.5f) << "no Ni: common glass, as before";
+    EXPECT_EQ(material(5).ior, 1.33f);
+}
+
 // A reflective material's Ks above 1 is kept as specular colour but clamped to 1 as reflectivity
 // (a mirror cannot add light), with a warning naming the file and the material.
 TEST_F(ObjLoaderTest, ReflectivityAboveOneIsClampedWithAWarning) {

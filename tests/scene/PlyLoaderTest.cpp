@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <bit>
 #include <cstring>
 #include <sstream>
@@ -190,6 +191,118 @@ TEST(PlyLoader, RefusesHeadersThatDoNotMatchTheirData) {
     const std::string floatIndices = replaced(ascii, "uchar int vertex_indices", "uchar float vertex_indices");
     EXPECT_REFUSED(floatIndices, "not a list of integers");
     EXPECT_REFUSED(std::string("ply\nformat ascii 1.0\n\x01\nend_header\n"), "binary data in the header");
+}
+
+// The sRGB transfer function's inverse (IEC 61966-2-1), in double: PLY colours are display colours.
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+TEST(PlyLoader, VertexColoursAreDecodedFromSrgbToLinearPerCorner) {
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "property float z\nproperty TYPE red\nproperty TYPE green\nproperty TYPE blue\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const int bytes[4][3] = {{255, 0, 10}, {128, 64, 200}, {1, 254, 33}, {0, 0, 0}};
+    for (const char* type : {"uchar", "ushort", "float"}) {
+        SCOPED_TRACE(type);
+        const std::string t = type;
+        std::ostringstream text;
+        text << replaced(replaced(replaced(header, "TYPE", type), "TYPE", type), "TYPE", type);
+        text.precision(9);
+        for (int v = 0; v < 4; ++v) {
+            text << v << " " << v % 2 << " 0";
+            for (int c = 0; c < 3; ++c) {  // the same encoded value, byte / 255, in each type
+                if (t == "float") text << " " << bytes[v][c] / 255.0;
+                else text << " " << bytes[v][c] * (t == "ushort" ? 257 : 1);  // 65535 = 255 x 257
+            }
+            text << "\n";
+        }
+        text << "4 0 1 2 3\n";  // a quad: triangles (0, 1, 2) and (0, 2, 3)
+        const Scene scene = parsePly(text.str(), "colours.ply");
+        ASSERT_EQ(scene.triangles.size(), 2u);
+        ASSERT_EQ(scene.colors.size(), 2u);
+        auto expected = [&](int v) {
+            glm::dvec3 e;
+            for (int c = 0; c < 3; ++c) e[c] = srgbToLinear(bytes[v][c] / 255.0);
+            return e;
+        };
+        const int corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        for (int t = 0; t < 2; ++t) {
+            const glm::vec3 got[3] = {scene.colors[size_t(t)].c0, scene.colors[size_t(t)].c1, scene.colors[size_t(t)].c2};
+            for (int k = 0; k < 3; ++k)
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(got[k][c], expected(corners[t][k])[c], 1e-6) << "triangle " << t << " corner " << k;
+        }
+    }
+}
+
+TEST(PlyLoader, PartialColoursAndOtherPropertiesAreNamedInOneWarning) {
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parsePly(binaryPly(false, "float", "uchar", "int"), "red.ply");
+    std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(scene.colors.empty()) << "red without green and blue is no colour";
+    EXPECT_EQ(err, "red.ply: warning: not used: vertex red\n");
+    ::testing::internal::CaptureStderr();
+    parsePly(asciiPly(), "mesh.ply");
+    err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err, "mesh.ply: warning: not used: vertex confidence, face flags, element edge\n");
+    ::testing::internal::CaptureStderr();
+    parsePly("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "property float s\nproperty float t\nproperty uchar alpha\nelement face 1\n"
+             "property list uchar uint vertex_indices\nend_header\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n",
+             "quiet.ply");
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << "s, t and alpha are not named";
+}
+
+// A strip written as tristrips gives the triangles of the same mesh written as faces: OpenGL's
+// alternating order, -1 restarting a strip, the triangles a strip makes to turn (a vertex twice)
+// skipped but counted for the alternation, strips and faces in the order of their elements.
+TEST(PlyLoader, TriangleStripsGiveTheTrianglesOfTheSameMeshWrittenAsFaces) {
+    const std::string vertices =
+        "property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n";
+    std::string points;
+    for (int v = 0; v < 8; ++v)
+        points += std::to_string(v % 4) + " " + std::to_string(v / 4) + " " + std::to_string(v * 0.125) + " 0 " +
+                  std::to_string(v % 3) + " 1\n";
+    // Strip 0 1 4 5 5 2 2 6 3 7 (a jump: (4, 5, 5), (5, 5, 2), (5, 2, 2), (2, 2, 6) are skipped but
+    // counted), -1, then 7 6 5; a second list 0 2 1. The triangles by hand: the strip's k-th
+    // (a, b, c) for even k, (b, a, c) for odd k.
+    const std::string strips = "element tristrips 2\nproperty list int int vertex_indices\n";
+    const std::string stripData = "14 0 1 4 5 5 2 2 6 3 7 -1 7 6 5\n3 0 2 1\n";
+    const std::string faceData = "3 0 1 4\n3 4 1 5\n3 2 6 3\n3 3 6 7\n3 7 6 5\n3 0 2 1\n";
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 8\n" + vertices;
+    // Faces first, then strips: the faces' triangles come first.
+    const std::string both = head + "element face 1\nproperty list uchar int vertex_indices\n" + strips + "end_header\n" +
+                             points + "3 0 1 2\n" + stripData;
+    const std::string asFaces = head + "element face 7\nproperty list uchar int vertex_indices\nend_header\n" + points +
+                                "3 0 1 2\n" + faceData;
+    const Scene a = parsePly(both, "strips.ply"), b = parsePly(asFaces, "faces.ply");
+    ASSERT_EQ(a.triangles.size(), 7u);
+    ASSERT_EQ(b.triangles.size(), 7u);
+    for (size_t t = 0; t < a.triangles.size(); ++t) {
+        EXPECT_EQ(a.triangles[t].v0, b.triangles[t].v0) << t;
+        EXPECT_EQ(a.triangles[t].v1, b.triangles[t].v1) << t;
+        EXPECT_EQ(a.triangles[t].v2, b.triangles[t].v2) << t;
+        EXPECT_EQ(a.normals[t].n1, b.normals[t].n1) << t;
+    }
+    // Only strips: the file has triangles (it once read as none).
+    const std::string only = head + strips + "end_header\n" + points + stripData;
+    EXPECT_EQ(parsePly(only, "only.ply").triangles.size(), 6u);
+    // Winding: every triangle of one strip faces the same way.
+    const Scene flat = parsePly("ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                                "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+                                "0 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n2 1 0\n6 0 1 2 3 4 5\n", "flat.ply");
+    ASSERT_EQ(flat.triangles.size(), 4u);
+    for (const Triangle& t : flat.triangles) EXPECT_LT(glm::cross(t.v1 - t.v0, t.v2 - t.v0).z, 0.0f);
+    EXPECT_REFUSED(replaced(only, "-1 7 6 5", "-2 7 6 5"), "triangle strip 0: vertex index -2 is out of range");
+    EXPECT_REFUSED(replaced(only, "3 0 2 1", "3 0 2 8"), "triangle strip 2: vertex index 8 is out of range");
+}
+
+TEST(PlyLoader, AFileWithoutTrianglesIsAWarningNamingIt) {
+    ::testing::internal::CaptureStderr();
+    const Scene points = parsePly("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                                  "property float z\nend_header\n1 2 3\n4 5 6\n", "points.ply");
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(points.triangles.empty());
+    EXPECT_NE(err.find("points.ply: warning: no triangles"), std::string::npos) << err;
 }
 
 TEST(PlyLoader, LooksLikePly) {

@@ -155,6 +155,13 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         if (path == "integrators/surface.frag")  // the environment on a miss and as Whitted's ambient term
             for (const char* defines : {"#define SCENE_ENVIRONMENT\n", "#define SCENE_ENVIRONMENT\n#define PATH\n"})
                 variants.push_back(library.assemble(path, defines));
+        // The scene's optional attributes (SceneTextures defines them): vertex colours and texture
+        // coordinates in every kernel that fetches a material record.
+        for (const char* fetching : {"integrators/surface.frag", "integrators/light.frag", "integrators/shadowgen.frag",
+                                     "integrators/path/bounce.frag", "integrators/whitted/bounce.frag"})
+            if (path == fetching)
+                variants.push_back(library.assemble(path, "#define SCENE_VERTEX_COLORS\n#define SCENE_TEXTURES\n#define "
+                                                          "SCENE_VERTEX_NORMALS\n#define PATH\n"));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {

@@ -52,7 +52,7 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     vec4 nm = readStream(surfaceNormal);
     vec4 view = readStream(surfaceView);
     vec4 shading = readStream(surfaceShading);
-    MaterialRecord m = fetchMaterialRecord(int(nm.w), vec2(view.w, shading.w));
+    MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
     vec3 d = view.xyz;
     vec3 n = shading.xyz;
     vec3 local = readStream(localColor).xyz;
