@@ -488,6 +488,23 @@ TEST(GltfSkin, SkinnedVerticesAreTheJointsMatricesTimesTheInverseBindMatrices) {
     EXPECT_LT(glm::length(sceneHi - hi), 1e-5f);
 }
 
+// Khronos' SimpleSkin (tests/assets/gltf/skin): its joints' world transforms are their inverse
+// bind matrices' inverses, so at the bind pose every vertex is where POSITION puts it: the
+// bounds are the accessor's min and max, (-0.5, 0, 0) to (0.5, 2, 0); its animation is a warning.
+TEST(GltfSkin, SimpleSkinAtItsBindPose) {
+    ::testing::internal::CaptureStderr();
+    const Scene scene = loadGltf("tests/assets/gltf/skin/SimpleSkin.gltf");
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warnings, "tests/assets/gltf/skin/SimpleSkin.gltf: warning: 1 animation is not used; the scene is drawn at "
+                        "rest (its nodes' own transforms)\n");
+    ASSERT_EQ(scene.triangles.size(), 8u);  // 24 indices
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Triangle& t : scene.triangles)
+        for (const glm::vec3& v : {t.v0, t.v1, t.v2}) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    EXPECT_LT(glm::length(lo - glm::vec3(-0.5f, 0.0f, 0.0f)), 1e-6f);
+    EXPECT_LT(glm::length(hi - glm::vec3(0.5f, 2.0f, 0.0f)), 1e-6f);
+}
+
 // Weights that do not sum to 1 are normalised (a warning), a vertex without weight keeps its
 // node's transform (a warning); JOINTS and WEIGHTS of a node without a skin are a warning.
 TEST(GltfSkin, WeightsAreNormalisedWithAWarning) {
