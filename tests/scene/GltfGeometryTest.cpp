@@ -408,6 +408,62 @@ TEST(GltfDraco, DamagedDracoDataIsAnErrorNamingThePrimitive) {
         std::string::npos);
 }
 
+// A skinned triangle whose POSITION, JOINTS_0 and WEIGHTS_0 are all in the Draco data (as
+// glTF-Draco exports of rigged models have them): joints and weights as unsigned bytes, the
+// weights' accessor normalized, so that 255 is a weight of 1 (no warning of weights that do not
+// sum to 1). One joint, node 1 (translation (0, 0, -1), scale 3), no inverseBindMatrices; the
+// mesh node's own translation (100, 0, 0) is not used: each vertex is 3 p + (0, 0, -1).
+TEST(GltfDraco, DracoCompressedSkin) {
+    const glm::vec3 corners[3] = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0.5f}};
+    draco::TriangleSoupMeshBuilder builder;
+    builder.Start(1);
+    const int position =
+        builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    const int joints = builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_UINT8);
+    const int weights =
+        builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_UINT8, true);
+    const uint8_t joint[4] = {0, 0, 0, 0}, weight[4] = {255, 0, 0, 0};
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(0), &corners[0], &corners[1],
+                                      &corners[2]);
+    builder.SetAttributeValuesForFace(joints, draco::FaceIndex(0), joint, joint, joint);
+    builder.SetAttributeValuesForFace(weights, draco::FaceIndex(0), weight, weight, weight);
+    const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    draco::Encoder encoder;
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 16);
+    encoder.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+    draco::EncoderBuffer out;
+    ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &out).ok());
+    Gltf g;
+    const int view = g.view(std::string(out.data(), out.size()));
+    g.accessor(-1, 5126, 3, "VEC3");
+    g.accessor(-1, 5121, 3, "VEC4");
+    g.accessor(-1, 5121, 3, "VEC4", ", \"normalized\": true");
+    auto id = [&](int attribute) {
+        return std::to_string(mesh->attribute(attribute)->unique_id());
+    };
+    const std::string document = g.json(
+        "\"extensionsUsed\": [\"KHR_draco_mesh_compression\"], \"scenes\": [{\"nodes\": [0, 1]}], "
+        "\"nodes\": [{\"mesh\": 0, \"skin\": 0, \"translation\": [100, 0, 0]}, {\"translation\": "
+        "[0, 0, -1], \"scale\": [3, 3, 3]}], "
+        "\"skins\": [{\"joints\": [1]}], \"meshes\": [{\"primitives\": [{\"attributes\": "
+        "{\"POSITION\": 0, \"JOINTS_0\": 1, "
+        "\"WEIGHTS_0\": 2}, \"extensions\": {\"KHR_draco_mesh_compression\": {\"bufferView\": " +
+        std::to_string(view) + ", \"attributes\": {\"POSITION\": " + id(position) +
+        ", \"JOINTS_0\": " + id(joints) + ", \"WEIGHTS_0\": " + id(weights) + "}}}}]}]");
+    std::string warnings;
+    ASSERT_NO_THROW(warnings = warningsOf(document));
+    EXPECT_EQ(warnings, "");
+    const Scene scene = parse(document);
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    const glm::vec3 got[3] = {scene.triangles[0].v0, scene.triangles[0].v1, scene.triangles[0].v2};
+    const float step =
+        3.0f * 2.0f / 65535.0f;  // 16 bits over the largest extent (2), times the scale
+    for (int k = 0; k < 3; ++k) {
+        const glm::vec3 want = 3.0f * corners[k] + glm::vec3(0, 0, -1);
+        EXPECT_LE(glm::length(got[k] - want), step) << k;
+    }
+}
+
 // A two-joint skin: node 0 holds the mesh (its own translation must be ignored), node 1 is joint 0
 // (translation (0, 1, 0), scale 2) and its child node 2 is joint 1 (translation (1, 0, 0), a
 // quarter turn about z). Joint 0's inverse bind matrix translates by (0, -1, 0), joint 1's is the
@@ -495,8 +551,10 @@ TEST(GltfSkin, SimpleSkinAtItsBindPose) {
     ::testing::internal::CaptureStderr();
     const Scene scene = loadGltf("tests/assets/gltf/skin/SimpleSkin.gltf");
     const std::string warnings = ::testing::internal::GetCapturedStderr();
-    EXPECT_EQ(warnings, "tests/assets/gltf/skin/SimpleSkin.gltf: warning: 1 animation is not used; the scene is drawn at "
-                        "rest (its nodes' own transforms)\n");
+    EXPECT_EQ(warnings,
+              "tests/assets/gltf/skin/SimpleSkin.gltf: warning: 1 animation is not used; the scene "
+              "is drawn at "
+              "rest (its nodes' own transforms)\n");
     ASSERT_EQ(scene.triangles.size(), 8u);  // 24 indices
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const Triangle& t : scene.triangles)
