@@ -10,11 +10,15 @@ get_target_property(_draco_archive draco::draco_static IMPORTED_LOCATION_${_drac
 get_target_property(_draco_includes draco::draco_static INTERFACE_INCLUDE_DIRECTORIES)
 set(GPURT_DRACO_ARCHIVE ${CMAKE_BINARY_DIR}/draco/libdraco-decoder.a)
 file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/draco)
-file(COPY_FILE ${_draco_archive} ${GPURT_DRACO_ARCHIVE})
-execute_process(COMMAND ${CMAKE_AR} d ${GPURT_DRACO_ARCHIVE} tiny_gltf_utils.cc.o RESULT_VARIABLE _draco_ar)
+# Made afresh each configure, replacing the one there only if it differs (ar writes deterministic
+# archives), so that a configure does not relink everything.
+file(COPY_FILE ${_draco_archive} ${GPURT_DRACO_ARCHIVE}.new)
+execute_process(COMMAND ${CMAKE_AR} d ${GPURT_DRACO_ARCHIVE}.new tiny_gltf_utils.cc.o RESULT_VARIABLE _draco_ar)
 if(NOT _draco_ar EQUAL 0)
   message(FATAL_ERROR "could not take tinygltf out of a copy of ${_draco_archive}")
 endif()
+file(COPY_FILE ${GPURT_DRACO_ARCHIVE}.new ${GPURT_DRACO_ARCHIVE} ONLY_IF_DIFFERENT)
+file(REMOVE ${GPURT_DRACO_ARCHIVE}.new)
 add_library(gpurt_draco STATIC IMPORTED)
 set_target_properties(gpurt_draco PROPERTIES IMPORTED_LOCATION ${GPURT_DRACO_ARCHIVE}
                                              INTERFACE_INCLUDE_DIRECTORIES "${_draco_includes}")
