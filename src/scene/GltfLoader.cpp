@@ -519,8 +519,9 @@ class GltfReader {
         }
         std::vector<glm::dmat4> blend(vertices, glm::dmat4(0.0));
         std::vector<double> sums(vertices, 0.0);
-        for (int set = 0; prim.attributes.count("JOINTS_" + std::to_string(set)) &&
-                          prim.attributes.count("WEIGHTS_" + std::to_string(set));
+        int set = 0;
+        for (; prim.attributes.count("JOINTS_" + std::to_string(set)) &&
+               prim.attributes.count("WEIGHTS_" + std::to_string(set));
              ++set) {
             const std::string jointsName = "JOINTS_" + std::to_string(set),
                               weightsName = "WEIGHTS_" + std::to_string(set);
@@ -552,6 +553,20 @@ class GltfReader {
                     blend[v] += weight * skinning.joints[size_t(joint)];
                     sums[v] += weight;
                 }
+        }
+        // Sets past the first incomplete one (JOINTS_n without WEIGHTS_n, or a gap) are not used.
+        for (const auto& attribute : prim.attributes) {
+            const std::string& name = attribute.first;
+            if (name.rfind("JOINTS_", 0) != 0 && name.rfind("WEIGHTS_", 0) != 0) continue;
+            bool used = false;
+            for (int k = 0; k < set; ++k)
+                used = used || name == "JOINTS_" + std::to_string(k) ||
+                       name == "WEIGHTS_" + std::to_string(k);
+            if (!used)
+                warnOnce("attribute " + name,
+                         at + ": " + name +
+                             " is not used (the complete sets of JOINTS_n and WEIGHTS_n are " +
+                             std::to_string(set) + ")");
         }
         size_t unweighted = 0, renormalised = 0;
         for (size_t v = 0; v < vertices; ++v) {

@@ -594,6 +594,19 @@ TEST(GltfSkin, WeightsAreNormalisedWithAWarning) {
     EXPECT_EQ(lines(warnings), 4u) << warnings;
     for (const char* name : {"JOINTS_0", "WEIGHTS_0", "JOINTS_1", "WEIGHTS_1"})
         EXPECT_NE(warnings.find(std::string(name) + " is not used"), std::string::npos) << warnings;
+    // JOINTS_1 without WEIGHTS_1: that set is not used (a warning), so vertex 3 has no weight.
+    const SkinnedTriangles partial;
+    ASSERT_NO_THROW(
+        warnings = warningsOf(partial.document(
+            "", "{\"POSITION\": 0, \"JOINTS_0\": 1, \"WEIGHTS_0\": 2, \"JOINTS_1\": 3}")));
+    EXPECT_EQ(lines(warnings), 2u) << warnings;
+    EXPECT_NE(warnings.find("mesh 0 primitive 0: JOINTS_1 is not used (the complete sets of "
+                            "JOINTS_n and WEIGHTS_n are 1)"),
+              std::string::npos)
+        << warnings;
+    EXPECT_NE(warnings.find("mesh 0 primitive 0: 1 vertices have no joint weight"),
+              std::string::npos)
+        << warnings;
 }
 
 // Broken skins: one line naming the file and the glTF path.
