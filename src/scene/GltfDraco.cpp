@@ -46,7 +46,9 @@ bool rewriteJson(const std::string& text, std::string& out) {
             changed = true;
         }
     }
-    if (changed) out = document.dump();
+    // (replace: a string that is not UTF-8 can never make dump throw; parse has refused those
+    // anyway)
+    if (changed) out = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     return changed;
 }
 
