@@ -91,8 +91,11 @@ CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy
     const float t = tanHalfFovy(spec.fovy);
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     float dist = 1.1f * std::max(half.y / t, half.x / (t * aspect)) + half.z;
-    // A single point has no size to fit; stand back one unit rather than at the point itself.
-    if (!(dist > 0.0f)) dist = 1.0f;
+    // A single point (or a speck too small for float to step back from, fuzz_gltf found one of
+    // 1e-39) has no size to fit; stand back one unit rather than at the point itself, or more where
+    // the point is so far out that one unit is below float's step there.
+    if (!(dist > 0.0f) || center.z + dist == center.z)
+        dist = std::max({1.0f, 1e-3f * std::abs(center.x), 1e-3f * std::abs(center.y), 1e-3f * std::abs(center.z)});
     spec.eye = center + glm::vec3(0.0f, 0.0f, dist);
     spec.target = center;
     return spec;

@@ -4,6 +4,7 @@
 #include "scene/GltfLoader.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include <tiny_gltf.h>
 
 #include "image/InputError.h"
+#include "scene/GltfDraco.h"
 #include "scene/SceneFile.h"
 
 namespace gpurt {
@@ -59,6 +61,34 @@ std::string firstLine(const std::string& text) {
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// The extensions gpurt reads (docs/SCENE_FORMAT.md); any other one a file uses is a warning.
+const std::set<std::string> kExtensionsRead = {
+    "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_emissive_strength",
+    "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
+    "KHR_lights_punctual"};
+
+// A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
+// (the glTF spec, "Skins"); none for a node without a skin.
+struct Skinning {
+    int skin = -1;
+    std::vector<glm::dmat4> joints;
+};
+
+// Where a primitive's vertices go: the node's world transform, or per vertex its skinning matrix
+// (then the node's own transform is not used, as the glTF spec says of skinned meshes).
+struct VertexMatrices {
+    glm::dmat4 world{1.0};
+    std::vector<glm::dmat4> skinned;  // one per vertex, or none
+    const glm::dmat4& of(size_t v) const { return skinned.empty() ? world : skinned[v]; }
+};
+
+// A primitive with KHR_draco_mesh_compression: its decoded mesh and which attribute is which id.
+struct DracoPrimitive {
+    const tinygltf::Primitive* primitive = nullptr;
+    DracoMesh mesh;
+    std::map<std::string, int> ids;  // attribute name -> Draco unique id
+};
+
 class GltfReader {
   public:
     GltfReader(const tinygltf::Model& model, const std::string& name, DecodedImages& images)
@@ -81,7 +111,13 @@ class GltfReader {
             for (size_t n = 0; n < m_.nodes.size(); ++n)
                 if (!child[n]) roots.push_back(int(n));
         }
+        warnUnusedExtensions();
+        if (!m_.animations.empty())
+            warn(std::to_string(m_.animations.size()) + " animation" +
+                 (m_.animations.size() == 1 ? " is" : "s are") +
+                 " not used; the scene is drawn at rest (its nodes' own transforms)");
         for (int n : roots) visit(n, glm::dmat4(1.0), scene);
+        warnLeftOutPrimitives();
         if (scene.textures.empty()) scene.texcoords.clear();
         else scene.texcoords.resize(scene.triangles.size());
         return scene;
@@ -124,9 +160,16 @@ class GltfReader {
         if (node.mesh >= 0) {
             if (node.mesh >= int(m_.meshes.size())) fail(at + ": mesh " + std::to_string(node.mesh) + " does not exist");
             const tinygltf::Mesh& mesh = m_.meshes[size_t(node.mesh)];
+            if (std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
+                            [](const tinygltf::Primitive& p) { return !p.targets.empty(); }))
+                warnOnce("targets",
+                         "mesh " + std::to_string(node.mesh) +
+                             ": morph targets are not used; meshes are drawn in their base shape");
+            const Skinning skinning = skinningOf(node, at);
             for (size_t p = 0; p < mesh.primitives.size(); ++p)
-                primitive(mesh.primitives[p], "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p), world,
-                          scene);
+                primitive(mesh.primitives[p],
+                          "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
+                          world, skinning, scene);
         }
         if (node.camera >= 0) camera(node.camera, world, at, scene);
         const auto light = node.extensions.find("KHR_lights_punctual");
@@ -135,37 +178,61 @@ class GltfReader {
         onPath_.erase(index);
     }
 
+    // glTF's normalisation of an integer component (the glTF 2.0 spec's formulas: c / 127 clamped
+    // to -1 for bytes, c / 255 for unsigned bytes, and so on); other types as they are.
+    static double normalizedComponent(double c, int type) {
+        switch (type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE:
+                return std::max(c / 127.0, -1.0);
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                return c / 255.0;
+            case TINYGLTF_COMPONENT_TYPE_SHORT:
+                return std::max(c / 32767.0, -1.0);
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                return c / 65535.0;
+        }
+        return c;
+    }
+
     // One component of an element, as a double (normalized integers mapped to [0, 1] or [-1, 1]).
     static double component(const unsigned char* p, int type, bool normalized) {
+        double v = 0.0;
         switch (type) {
             case TINYGLTF_COMPONENT_TYPE_BYTE: {
-                int8_t v;
-                std::memcpy(&v, p, 1);
-                return normalized ? std::max(v / 127.0, -1.0) : v;
+                int8_t c;
+                std::memcpy(&c, p, 1);
+                v = c;
+                break;
             }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                v = p[0];
+                break;
             case TINYGLTF_COMPONENT_TYPE_SHORT: {
-                int16_t v;
-                std::memcpy(&v, p, 2);
-                return normalized ? std::max(v / 32767.0, -1.0) : v;
+                int16_t c;
+                std::memcpy(&c, p, 2);
+                v = c;
+                break;
             }
             case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-                uint16_t v;
-                std::memcpy(&v, p, 2);
-                return normalized ? v / 65535.0 : v;
+                uint16_t c;
+                std::memcpy(&c, p, 2);
+                v = c;
+                break;
             }
             case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-                uint32_t v;
-                std::memcpy(&v, p, 4);
-                return v;
+                uint32_t c;
+                std::memcpy(&c, p, 4);
+                return c;
             }
             case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-                float v;
-                std::memcpy(&v, p, 4);
-                return v;
+                float c;
+                std::memcpy(&c, p, 4);
+                return c;
             }
+            default:
+                return 0.0;
         }
-        return 0.0;
+        return normalized ? normalizedComponent(v, type) : v;
     }
 
     // `count` elements of `components` values from a buffer view, each checked to lie inside the
@@ -239,15 +306,318 @@ class GltfReader {
         return out;
     }
 
-    // One primitive's triangles in world space (from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN),
-    // with its vertex normals, and texture coordinates when its material has a texture.
-    void primitive(const tinygltf::Primitive& prim, const std::string& at, const glm::dmat4& world, Scene& scene) {
-        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
-            fail(at + ": mode " + std::to_string(mode) + " (points or lines) is not triangles");
-        const std::vector<glm::vec3> positions = primitivePositions(prim, at, world);
-        const size_t vertices = positions.size();
-        const std::vector<glm::vec3> normals = primitiveNormals(prim, at, world, vertices);
+    // A JSON number that is a whole number in int's range (tinygltf's GetNumberAsInt would cast any
+    // double); false for anything else.
+    static bool wholeNumber(const tinygltf::Value& v, int& out) {
+        if (!v.IsNumber()) return false;
+        const double d = v.GetNumberAsDouble();
+        if (!(d >= double(INT_MIN) && d <= double(INT_MAX)) || d != std::floor(d)) return false;
+        out = int(d);
+        return true;
+    }
+
+    // The decoded Draco mesh of a primitive with KHR_draco_mesh_compression (decoded once, kept
+    // while the next primitives are the same one); null without the extension.
+    const DracoPrimitive* dracoOf(const tinygltf::Primitive& prim, const std::string& at) const {
+        const auto extension = prim.extensions.find("KHR_draco_mesh_compression");
+        if (extension == prim.extensions.end()) return nullptr;
+        if (draco_.primitive == &prim) return &draco_;
+        const tinygltf::Value& e = extension->second;
+        const std::string where = at + " KHR_draco_mesh_compression";
+        int viewIndex = -1;
+        if (!e.IsObject() || !wholeNumber(e.Get("bufferView"), viewIndex))
+            fail(where + ": no bufferView");
+        if (viewIndex < 0 || viewIndex >= int(m_.bufferViews.size()))
+            fail(where + ": buffer view " + std::to_string(viewIndex) + " does not exist");
+        const tinygltf::BufferView& view = m_.bufferViews[size_t(viewIndex)];
+        if (view.buffer < 0 || view.buffer >= int(m_.buffers.size()))
+            fail(where + ": buffer " + std::to_string(view.buffer) + " does not exist");
+        const std::vector<unsigned char>& data = m_.buffers[size_t(view.buffer)].data;
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(where + ": buffer view " + std::to_string(viewIndex) + " (" +
+                 std::to_string(view.byteLength) + " bytes at " + std::to_string(view.byteOffset) +
+                 ") runs past its buffer of " + std::to_string(data.size()) + " bytes");
+        DracoPrimitive decoded;
+        const tinygltf::Value& attributes = e.Get("attributes");
+        if (!attributes.IsObject()) fail(where + ": no attributes");
+        for (const std::string& name : attributes.Keys()) {
+            int id = -1;
+            if (!wholeNumber(attributes.Get(name), id) || id < 0)
+                fail(where + ": attribute " + name + " is no attribute id");
+            decoded.ids[name] = id;
+        }
+        decoded.mesh = decodeDracoMesh(data.data() + view.byteOffset, view.byteLength,
+                                       kMaxAccessorCount, FileLoc{name_}, at);
+        decoded.primitive = &prim;
+        draco_ = std::move(decoded);
+        return &draco_;
+    }
+
+    // The values of attribute `name` of a primitive (count x components): from its Draco data
+    // when KHR_draco_mesh_compression names it, else from its accessor (with every component type
+    // and `normalized` flag glTF and KHR_mesh_quantization allow).
+    std::vector<double> attributeValues(const tinygltf::Primitive& prim, const std::string& name,
+                                        const std::string& at, int& components) const {
+        const auto attribute = prim.attributes.find(name);
+        if (attribute == prim.attributes.end()) fail(at + ": no " + name);
+        const DracoPrimitive* draco = dracoOf(prim, at);
+        const auto id =
+            draco ? draco->ids.find(name) : std::map<std::string, int>::const_iterator();
+        if (!draco || id == draco->ids.end())
+            return values(attribute->second, at + " " + name, components);
+        const auto decoded = draco->mesh.attributes.find(id->second);
+        if (decoded == draco->mesh.attributes.end())
+            fail(at + ": Draco data has no attribute " + std::to_string(id->second) + " (" + name +
+                 ")");
+        if (attribute->second < 0 || attribute->second >= int(m_.accessors.size()))
+            fail(at + " " + name + ": accessor " + std::to_string(attribute->second) +
+                 " does not exist");
+        const tinygltf::Accessor& a = m_.accessors[size_t(attribute->second)];
+        components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+        if (components != decoded->second.components)
+            fail(at + ": Draco attribute " + std::to_string(id->second) + " (" + name + ") has " +
+                 std::to_string(decoded->second.components) + " components, its accessor " +
+                 std::to_string(components));
+        std::vector<double> out = decoded->second.values;
+        if (a.normalized && decoded->second.integer)
+            for (double& c : out) c = normalizedComponent(c, a.componentType);
+        return out;
+    }
+
+    void warnOnce(const std::string& key, const std::string& what) {
+        if (warned_.insert(key).second) warn(what);
+    }
+
+    // Every extension the file uses or requires that gpurt does not read: one warning each.
+    void warnUnusedExtensions() {
+        std::vector<std::string> named = m_.extensionsUsed;
+        named.insert(named.end(), m_.extensionsRequired.begin(), m_.extensionsRequired.end());
+        for (const std::string& extension : named) {
+            if (kExtensionsRead.count(extension)) continue;
+            const bool required =
+                std::find(m_.extensionsRequired.begin(), m_.extensionsRequired.end(), extension) !=
+                m_.extensionsRequired.end();
+            warnOnce("extension " + extension,
+                     "extension " + extension + " is not used" +
+                         (required ? " (the file requires it: the picture may be wrong)" : ""));
+        }
+    }
+
+    // Primitive attributes gpurt does not use, each named once: JOINTS_n and WEIGHTS_n of a node
+    // without a skin, and names glTF does not define. (TANGENT, COLOR_n and TEXCOORD_n belong to
+    // the materials.)
+    void warnUnusedAttributes(const tinygltf::Primitive& prim, const std::string& at,
+                              const Skinning& skinning) {
+        for (const auto& attribute : prim.attributes) {
+            const std::string& name = attribute.first;
+            auto is = [&](const char* prefix) { return name.rfind(prefix, 0) == 0; };
+            if (name == "POSITION" || name == "NORMAL" || name == "TANGENT" || is("TEXCOORD_") ||
+                is("COLOR_"))
+                continue;
+            if (is("JOINTS_") || is("WEIGHTS_")) {
+                if (skinning.skin < 0)
+                    warnOnce(
+                        "attribute " + name,
+                        at + ": " + name + " is not used (no node with a skin draws this mesh)");
+                continue;
+            }
+            warnOnce("attribute " + name, at + ": attribute " + name + " is not used");
+        }
+    }
+
+    // Points and lines (left out): one warning per mode, naming the first primitive.
+    void warnLeftOutPrimitives() {
+        static const char* const kModes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+        for (const auto& [mode, leftOut] : leftOut_)
+            warn(leftOut.first + ": mode " + kModes[mode] +
+                 " is not triangles and is left out (gpurt draws triangles)" +
+                 (leftOut.count == 2  ? std::string("; so is 1 more primitive of that mode")
+                  : leftOut.count > 2 ? "; so are " + std::to_string(leftOut.count - 1) +
+                                            " more primitives of that mode"
+                                      : std::string()));
+    }
+
+    // The world transform of any node (a joint need not be in the default scene): its ancestors'
+    // transforms and its own.
+    glm::dmat4 worldOf(int index, const std::string& at) {
+        if (parents_.empty()) {
+            parents_.assign(m_.nodes.size(), -1);
+            for (size_t n = 0; n < m_.nodes.size(); ++n)
+                for (int c : m_.nodes[n].children)
+                    if (c >= 0 && c < int(m_.nodes.size()) && parents_[size_t(c)] < 0 &&
+                        c != int(n))
+                        parents_[size_t(c)] = int(n);
+        }
+        glm::dmat4 world(1.0);
+        size_t steps = 0;
+        for (int n = index; n >= 0; n = parents_[size_t(n)]) {
+            if (++steps > m_.nodes.size())
+                fail(at + ": node " + std::to_string(index) + " is its own ancestor");
+            world = localTransform(m_.nodes[size_t(n)], "node " + std::to_string(n)) * world;
+        }
+        return world;
+    }
+
+    // The joint matrices of a node's skin (computed once per skin). Joints that are no node,
+    // an inverseBindMatrices accessor that does not exist or whose count is not the joints',
+    // and matrices that are not finite are errors naming the skin.
+    Skinning skinningOf(const tinygltf::Node& node, const std::string& at) {
+        Skinning skinning;
+        if (node.skin < 0 || node.mesh < 0) return skinning;
+        if (node.skin >= int(m_.skins.size()))
+            fail(at + ": skin " + std::to_string(node.skin) + " does not exist");
+        skinning.skin = node.skin;
+        if (auto seen = skins_.find(node.skin); seen != skins_.end()) {
+            skinning.joints = seen->second;
+            return skinning;
+        }
+        const tinygltf::Skin& skin = m_.skins[size_t(node.skin)];
+        const std::string where = "skin " + std::to_string(node.skin);
+        if (skin.joints.empty()) fail(where + ": no joints");
+        std::vector<double> inverseBind;
+        if (skin.inverseBindMatrices >= 0) {
+            int components = 0;
+            inverseBind =
+                values(skin.inverseBindMatrices, where + " inverseBindMatrices", components);
+            if (components != 16) fail(where + ": inverseBindMatrices is not MAT4");
+            if (inverseBind.size() != 16 * skin.joints.size())
+                fail(where + ": " + std::to_string(inverseBind.size() / 16) +
+                     " inverseBindMatrices for " + std::to_string(skin.joints.size()) + " joints");
+        }
+        for (size_t j = 0; j < skin.joints.size(); ++j) {
+            const int joint = skin.joints[j];
+            if (joint < 0 || joint >= int(m_.nodes.size()))
+                fail(where + ": joint " + std::to_string(j) + " is node " + std::to_string(joint) +
+                     ", which does not exist");
+            glm::dmat4 matrix = worldOf(joint, where + " joint " + std::to_string(j));
+            if (!inverseBind.empty())
+                matrix = matrix * glm::make_mat4(inverseBind.data() + 16 * j);  // column-major
+            for (int k = 0; k < 16; ++k)
+                if (!std::isfinite(glm::value_ptr(matrix)[k]))
+                    fail(where + ": joint " + std::to_string(j) + "'s matrix is not finite");
+            skinning.joints.push_back(matrix);
+        }
+        skins_[node.skin] = skinning.joints;
+        return skinning;
+    }
+
+    // Per vertex, the matrix that takes POSITION to the scene: the node's world transform, or on a
+    // skinned node the blend of its joints' matrices by JOINTS_n / WEIGHTS_n (every set given).
+    // Weights that do not sum to 1 are normalised (a warning when they are off by more than 1%);
+    // a vertex with no weight at all keeps the node's transform (a warning).
+    VertexMatrices vertexMatrices(const tinygltf::Primitive& prim, const std::string& at,
+                                  const glm::dmat4& world, const Skinning& skinning,
+                                  size_t vertices) {
+        VertexMatrices matrices;
+        matrices.world = world;
+        if (skinning.skin < 0) return matrices;
+        if (!prim.attributes.count("JOINTS_0") || !prim.attributes.count("WEIGHTS_0")) {
+            warnOnce("unskinned " + at,
+                     at + ": its node has skin " + std::to_string(skinning.skin) +
+                         " but it has no JOINTS_0 and WEIGHTS_0; drawn with its node's transform");
+            return matrices;
+        }
+        std::vector<glm::dmat4> blend(vertices, glm::dmat4(0.0));
+        std::vector<double> sums(vertices, 0.0);
+        int set = 0;
+        for (; prim.attributes.count("JOINTS_" + std::to_string(set)) &&
+               prim.attributes.count("WEIGHTS_" + std::to_string(set));
+             ++set) {
+            const std::string jointsName = "JOINTS_" + std::to_string(set),
+                              weightsName = "WEIGHTS_" + std::to_string(set);
+            int jointComponents = 0, weightComponents = 0;
+            const std::vector<double> joints =
+                attributeValues(prim, jointsName, at, jointComponents);
+            const std::vector<double> weights =
+                attributeValues(prim, weightsName, at, weightComponents);
+            if (jointComponents != 4 || joints.size() != 4 * vertices)
+                fail(at + ": " + jointsName + " is not VEC4 of one per vertex");
+            if (weightComponents != 4 || weights.size() != 4 * vertices)
+                fail(at + ": " + weightsName + " is not VEC4 of one per vertex");
+            for (size_t v = 0; v < vertices; ++v)
+                for (size_t k = 0; k < 4; ++k) {
+                    const double joint = joints[4 * v + k], weight = weights[4 * v + k];
+                    if (!(joint >= 0.0 && joint < double(skinning.joints.size())) ||
+                        joint != std::floor(joint))
+                        fail(at + ": " + jointsName + " of vertex " + std::to_string(v) +
+                             " names joint " +
+                             (std::isfinite(joint)
+                                  ? std::to_string(int64_t(std::clamp(joint, -1e18, 1e18)))
+                                  : std::string("?")) +
+                             "; skin " + std::to_string(skinning.skin) + " has " +
+                             std::to_string(skinning.joints.size()) + " joints");
+                    if (!(weight >= 0.0) || !std::isfinite(weight))
+                        fail(at + ": " + weightsName + " of vertex " + std::to_string(v) +
+                             " is negative or not a number");
+                    if (weight == 0.0) continue;
+                    blend[v] += weight * skinning.joints[size_t(joint)];
+                    sums[v] += weight;
+                }
+        }
+        // Sets past the first incomplete one (JOINTS_n without WEIGHTS_n, or a gap) are not used.
+        for (const auto& attribute : prim.attributes) {
+            const std::string& name = attribute.first;
+            if (name.rfind("JOINTS_", 0) != 0 && name.rfind("WEIGHTS_", 0) != 0) continue;
+            bool used = false;
+            for (int k = 0; k < set; ++k)
+                used = used || name == "JOINTS_" + std::to_string(k) ||
+                       name == "WEIGHTS_" + std::to_string(k);
+            if (!used)
+                warnOnce("attribute " + name,
+                         at + ": " + name +
+                             " is not used (the complete sets of JOINTS_n and WEIGHTS_n are " +
+                             std::to_string(set) + ")");
+        }
+        size_t unweighted = 0, renormalised = 0;
+        for (size_t v = 0; v < vertices; ++v) {
+            if (!(sums[v] > 0.0)) {
+                blend[v] = world;
+                ++unweighted;
+                continue;
+            }
+            if (std::abs(sums[v] - 1.0) > 0.01) ++renormalised;
+            if (sums[v] != 1.0) blend[v] /= sums[v];
+        }
+        if (unweighted)
+            warn(at + ": " + std::to_string(unweighted) +
+                 " vertices have no joint weight; they keep their node's transform");
+        if (renormalised)
+            warn(at + ": the joint weights of " + std::to_string(renormalised) +
+                 " vertices do not sum to 1; normalised");
+        matrices.skinned = std::move(blend);
+        return matrices;
+    }
+
+    // One primitive's triangles in world space (from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN; a
+    // Draco-compressed one from its decoded faces), with its vertex normals, and texture
+    // coordinates when its material has a texture. A skinned node's primitive is posed by its
+    // joints (vertexMatrices). Points and lines are left out, with a warning at the end.
+    void primitive(const tinygltf::Primitive& prim, const std::string& at, const glm::dmat4& world,
+                   const Skinning& skinning, Scene& scene) {
+        int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
+            fail(at + ": mode " + std::to_string(mode) + " is no glTF primitive mode");
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            LeftOut& leftOut = leftOut_[mode];
+            if (leftOut.count++ == 0) leftOut.first = at;
+            return;
+        }
+        warnUnusedAttributes(prim, at, skinning);
+        if (dracoOf(prim, at)) {
+            // The extension allows TRIANGLES and TRIANGLE_STRIP; Draco's faces are triangles either
+            // way.
+            if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
+                fail(at +
+                     ": KHR_draco_mesh_compression with mode TRIANGLE_FAN (it allows TRIANGLES and "
+                     "TRIANGLE_STRIP)");
+            mode = TINYGLTF_MODE_TRIANGLES;
+        }
+        const std::vector<double> position = positionValues(prim, at);
+        const size_t vertices = position.size() / 3;
+        const VertexMatrices matrices = vertexMatrices(prim, at, world, skinning, vertices);
+        const std::vector<glm::vec3> positions = primitivePositions(position, at, matrices);
+        const std::vector<glm::vec3> normals = primitiveNormals(prim, at, matrices, vertices);
         const uint32_t material = materialOf(prim.material, scene);
         const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices, scene);
         const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
@@ -282,18 +652,24 @@ class GltfReader {
         if (!scene.colors.empty() && scene.colors.size() < scene.triangles.size()) scene.colors.resize(scene.triangles.size());
     }
 
-    // POSITION in world space, each finite in float.
-    std::vector<glm::vec3> primitivePositions(const tinygltf::Primitive& prim, const std::string& at,
-                                              const glm::dmat4& world) const {
-        const auto position = prim.attributes.find("POSITION");
-        if (position == prim.attributes.end()) fail(at + ": no POSITION");
+    // POSITION's values (three per vertex).
+    std::vector<double> positionValues(const tinygltf::Primitive& prim,
+                                       const std::string& at) const {
+        if (!prim.attributes.count("POSITION")) fail(at + ": no POSITION");
         int components = 0;
-        const std::vector<double> p = values(position->second, at + " POSITION", components);
+        std::vector<double> p = attributeValues(prim, "POSITION", at, components);
         if (components != 3) fail(at + ": POSITION is not VEC3");
+        return p;
+    }
+
+    // POSITION in world space, each finite in float.
+    std::vector<glm::vec3> primitivePositions(const std::vector<double>& p, const std::string& at,
+                                              const VertexMatrices& matrices) const {
         const size_t vertices = p.size() / 3;
         std::vector<glm::vec3> positions(vertices);
         for (size_t v = 0; v < vertices; ++v) {
-            const glm::dvec4 w = world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0);
+            const glm::dvec4 w =
+                matrices.of(v) * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0);
             positions[v] = glm::vec3(w);
             if (!finite(positions[v])) fail(at + ": vertex " + std::to_string(v) + " is not finite (in float)");
         }
@@ -302,16 +678,19 @@ class GltfReader {
 
     // NORMAL in world space (through the inverse transpose), unit length or 0; none without.
     std::vector<glm::vec3> primitiveNormals(const tinygltf::Primitive& prim, const std::string& at,
-                                            const glm::dmat4& world, size_t vertices) const {
+                                            const VertexMatrices& matrices, size_t vertices) const {
         std::vector<glm::vec3> normals;
-        const auto normal = prim.attributes.find("NORMAL");
-        if (normal == prim.attributes.end()) return normals;
+        if (!prim.attributes.count("NORMAL")) return normals;
         int components = 0;
-        const std::vector<double> n = values(normal->second, at + " NORMAL", components);
+        const std::vector<double> n = attributeValues(prim, "NORMAL", at, components);
         if (components != 3 || n.size() != 3 * vertices) fail(at + ": NORMAL is not VEC3 of one per vertex");
-        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+        const glm::dmat3 worldNormals = glm::transpose(glm::inverse(glm::dmat3(matrices.world)));
         normals.resize(vertices);
         for (size_t v = 0; v < vertices; ++v) {
+            const glm::dmat3 normalMatrix =
+                matrices.skinned.empty()
+                    ? worldNormals
+                    : glm::transpose(glm::inverse(glm::dmat3(matrices.skinned[v])));
             const glm::dvec3 w = normalMatrix * glm::dvec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
             const double length = glm::length(w);
             normals[v] = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
@@ -332,13 +711,12 @@ class GltfReader {
         if (material >= uvs_.size() || uvs_[material].set < 0) return texcoords;
         const MaterialUv& uv = uvs_[material];
         const std::string set = "TEXCOORD_" + std::to_string(uv.set);
-        const auto attribute = prim.attributes.find(set);
-        if (attribute == prim.attributes.end()) {
+        if (!prim.attributes.count(set)) {
             warn(at + ": no " + set + " for its material's texture; it is sampled at (0, 0)");
             return texcoords;
         }
         int components = 0;
-        const std::vector<double> t = values(attribute->second, at + " " + set, components);
+        const std::vector<double> t = attributeValues(prim, set, at, components);
         if (components != 2 || t.size() != 2 * vertices) fail(at + ": " + set + " is not VEC2 of one per vertex");
         texcoords.resize(vertices);
         for (size_t v = 0; v < vertices; ++v) {
@@ -391,6 +769,13 @@ class GltfReader {
     // The primitive's indices (unsigned integers below `vertices`), or 0, 1, ... without.
     std::vector<uint32_t> primitiveIndices(const tinygltf::Primitive& prim, const std::string& at, size_t vertices) const {
         std::vector<uint32_t> index;
+        if (const DracoPrimitive* draco = dracoOf(prim, at)) {
+            for (uint32_t i : draco->mesh.indices)
+                if (i >= vertices)
+                    fail(at + ": Draco face index " + std::to_string(i) + " out of range (" +
+                         std::to_string(vertices) + " vertices)");
+            return draco->mesh.indices;
+        }
         if (prim.indices < 0) {
             index.resize(vertices);
             for (size_t v = 0; v < vertices; ++v) index[v] = uint32_t(v);
@@ -501,10 +886,8 @@ class GltfReader {
                     (std::strcmp(unused, "emissiveTexture") == 0 && g.emissiveTexture.index >= 0))
                     warn(named + ": " + unused + " of a transmissive material is not used");
         }
-        for (const auto& extension : g.extensions)
-            if (extension.first != "KHR_materials_emissive_strength" && extension.first != "KHR_materials_transmission" &&
-                extension.first != "KHR_materials_ior")
-                warn(named + ": " + extension.first + " is not used");
+        // Material extensions gpurt does not read are warned about once per file with the
+        // other unread extensions (kExtensionsRead).
         if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
             warn(named + ": alphaMode " + g.alphaMode + " is not used yet; the material is opaque");
         uvs_.resize(scene.materials.size() + 1);
@@ -671,6 +1054,15 @@ class GltfReader {
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;
+    mutable DracoPrimitive draco_;                  // the last primitive decoded (dracoOf)
+    std::map<int, std::vector<glm::dmat4>> skins_;  // skin -> its joint matrices
+    std::vector<int> parents_;                      // node -> its parent, or -1 (worldOf)
+    std::set<std::string> warned_;                  // warnOnce's keys
+    struct LeftOut {
+        size_t count = 0;
+        std::string first;
+    };
+    std::map<int, LeftOut> leftOut_;  // mode -> the primitives of points and lines left out
 };
 
 }  // namespace
@@ -687,13 +1079,17 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     loader.SetImageLoader(decodeGltfImage, &images);
     std::string err, warn;
     const bool glb = looksLikeGlb(bytes);
+    const std::string readable = withoutDracoIndices(bytes);
+    if (readable.size() > UINT32_MAX) failAt(file, "larger than a glTF file can be (4 GiB)");
     if (!glb && name.size() >= 4 && name.compare(name.size() - 4, 4, ".glb") == 0)
         failAt(file, "not a binary glTF file (it does not start with 'glTF')");
     bool ok = false;
     try {
-        ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                               unsigned(bytes.size()), folder.string())
-                 : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), folder.string());
+        ok = glb ? loader.LoadBinaryFromMemory(
+                       &model, &err, &warn, reinterpret_cast<const unsigned char*>(readable.data()),
+                       unsigned(readable.size()), folder.string())
+                 : loader.LoadASCIIFromString(&model, &err, &warn, readable.data(),
+                                              unsigned(readable.size()), folder.string());
     } catch (const std::exception& e) {
         failAt(file, std::string("not a glTF file (") + e.what() + ")");
     }

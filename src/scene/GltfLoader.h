@@ -1,8 +1,9 @@
 // glTF 2.0 scenes (.gltf with its buffers, .glb) through tinygltf (Debian libtinygltf-dev) into a
 // Scene. What is used (docs/SCENE_FORMAT.md): every node of the default scene with its transform
 // (matrix or TRS, through the hierarchy); triangle primitives (TRIANGLES, TRIANGLE_STRIP,
-// TRIANGLE_FAN; indexed or not, every index and component type the spec allows, byte strides,
-// normalized integers, sparse accessors), POSITION and NORMAL; materials (pbrMetallicRoughness
+// TRIANGLE_FAN; indexed or not, every index and component type the spec and KHR_mesh_quantization
+// allow, byte strides, normalized integers, sparse accessors, KHR_draco_mesh_compression),
+// POSITION and NORMAL; skins at their bind pose (JOINTS_n / WEIGHTS_n); materials (pbrMetallicRoughness
 // base colour factor as the diffuse colour, metallic as mirror reflectivity tinted by the base
 // colour, KHR_materials_transmission with KHR_materials_ior as glass, emissiveFactor with
 // KHR_materials_emissive_strength as emission); the first perspective camera met in the node order
@@ -23,8 +24,10 @@ bool looksLikeGlb(const std::string& head);
 
 // Reads a .gltf (JSON) or .glb (binary, by its magic) file; external buffers are read relative to
 // its folder. Throws InputError naming the file for a file that is not glTF, missing or short
-// buffers, accessors outside their buffers, indices out of range, non-finite positions, points
-// and lines (other primitive modes), node cycles. Textures are not used yet: a textured
+// buffers, accessors outside their buffers, indices out of range, non-finite positions, damaged
+// Draco data, broken skins (joints that are no node, joint indices out of range, a wrong count of
+// inverseBindMatrices), node cycles. Points and lines, morph targets, animations, and extensions
+// and attributes gpurt does not use are warnings naming them. Textures are not used yet: a textured
 // material is a warning, and keeps its colour factor; a missing image file is a warning.
 Scene loadGltf(const std::filesystem::path& path);
 

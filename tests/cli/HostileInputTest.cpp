@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
+
+#include "../scene/GltfDocument.h"
 
 namespace gpurt::test {
 namespace {
@@ -189,6 +192,58 @@ TEST_F(ObjWarnings, UnknownStatementsAreWarningsWithTheirLines) {
     ASSERT_EQ(flood.code, 0) << flood.err;
     EXPECT_EQ(std::count(flood.err.begin(), flood.err.end(), '\n'), 6) << flood.err;  // 5, then how many more
     EXPECT_NE(flood.err.find("4 more unknown statements ignored"), std::string::npos) << flood.err;
+}
+
+// glTF geometry that cannot be used: damaged Draco data, a skin whose joint index is out of range
+// or whose inverseBindMatrices accessor does not exist. One line naming the file and the glTF path.
+using GltfErrors = HostileInput;
+
+TEST_F(GltfErrors, BrokenDracoDataAndSkinsNameTheFileAndThePath) {
+    {
+        Gltf g;
+        const int view = g.view(std::string("DRACO") + std::string(60, '\x5a'));
+        g.accessor(-1, 5123, 3, "SCALAR");
+        g.accessor(-1, 5126, 3, "VEC3");
+        write(
+            "draco.gltf",
+            g.json("\"extensionsUsed\": [\"KHR_draco_mesh_compression\"], \"extensionsRequired\": "
+                   "[\"KHR_draco_mesh_compression\"], \"nodes\": [{\"mesh\": 0}], \"meshes\": "
+                   "[{\"primitives\": [{"
+                   "\"attributes\": {\"POSITION\": 1}, \"indices\": 0, \"extensions\": "
+                   "{\"KHR_draco_mesh_compression\": "
+                   "{\"bufferView\": " +
+                   std::to_string(view) + ", \"attributes\": {\"POSITION\": 0}}}}]}]"));
+        expectRefused(render("draco.gltf"),
+                      {path("draco.gltf") + ": mesh 0 primitive 0: Draco data"});
+    }
+    // A triangle skinned by one joint (node 1); JOINTS_0 names joint `joint`.
+    auto skinned = [&](int joint, int inverseBindMatrices) {
+        Gltf g;
+        g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        g.accessor(g.view(std::vector<uint8_t>{0, 0, 0, 0, uint8_t(joint), 0, 0, 0, 0, 0, 0, 0}),
+                   5121, 3, "VEC4");
+        g.accessor(g.view(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}), 5126, 3, "VEC4");
+        g.accessor(g.view(std::vector<float>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}), 5126,
+                   1, "MAT4");
+        return g.json(
+            "\"nodes\": [{\"mesh\": 0, \"skin\": 0}, {\"translation\": [0, 0, -1]}], \"skins\": "
+            "[{\"joints\": [1], "
+            "\"inverseBindMatrices\": " +
+            std::to_string(inverseBindMatrices) +
+            "}], \"meshes\": [{\"primitives\": [{"
+            "\"attributes\": {\"POSITION\": 0, \"JOINTS_0\": 1, \"WEIGHTS_0\": 2}}]}]");
+    };
+    write("skinned.gltf", skinned(0, 3));
+    const GpurtRun fine = gpurt(render("skinned.gltf"));
+    EXPECT_EQ(fine.code, 0) << fine.err;
+    write("joint.gltf", skinned(3, 3));
+    expectRefused(
+        render("joint.gltf"),
+        {path("joint.gltf") +
+         ": mesh 0 primitive 0: JOINTS_0 of vertex 1 names joint 3; skin 0 has 1 joints"});
+    write("bind.gltf", skinned(0, 8));
+    expectRefused(render("bind.gltf"),
+                  {path("bind.gltf") + ": skin 0 inverseBindMatrices: accessor 8 does not exist"});
 }
 
 TEST_F(JsonErrors, SyntaxErrorsNameLineAndColumn) {

@@ -105,6 +105,14 @@ TEST(CameraTest, DefaultCameraFitsTheBoxFrontFace) {
     Bounds point;
     point.extend({1, 1, 1});
     EXPECT_NO_THROW(makeCamera(defaultCamera(point, 64, 64), 64, 64));
+    // A speck: extents of a denormal, which float cannot add to z = 1 (fuzz_gltf found it).
+    Bounds speck;
+    speck.extend({0, 0, 1});
+    speck.extend({1.5e-39f, 1.7e-41f, 1});
+    EXPECT_NO_THROW(makeCamera(defaultCamera(speck, 64, 64), 64, 64));
+    Bounds far;  // one unit is below float's step at 1e30
+    far.extend({0, 0, 1e30f});
+    EXPECT_NO_THROW(makeCamera(defaultCamera(far, 64, 64), 64, 64));
 }
 
 void expectOptionError(const CameraSpec& spec, int w, int h, const std::string& option) {

@@ -16,63 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "GltfDocument.h"
 #include "image/InputError.h"
 
 namespace gpurt {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string base64(const std::string& bytes) {
-    static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-        if (i + 2 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 2]));
-        out += kDigits[(v >> 18) & 63];
-        out += kDigits[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
-    }
-    return out;
-}
-
-// A glTF document under construction: one buffer, its views and accessors.
-struct Gltf {
-    std::string bin;
-    std::vector<std::string> views, accessors;
-
-    template <typename T>
-    int view(const std::vector<T>& values, int stride = 0) {
-        while (bin.size() % 4) bin += '\0';
-        const size_t offset = bin.size();
-        bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-        views.push_back("{\"buffer\": 0, \"byteOffset\": " + std::to_string(offset) + ", \"byteLength\": " +
-                        std::to_string(values.size() * sizeof(T)) + (stride ? ", \"byteStride\": " + std::to_string(stride) : "") + "}");
-        return int(views.size() - 1);
-    }
-    int accessor(int view, int componentType, size_t count, const char* type, const std::string& extra = "") {
-        accessors.push_back("{\"bufferView\": " + std::to_string(view) + ", \"componentType\": " + std::to_string(componentType) +
-                            ", \"count\": " + std::to_string(count) + ", \"type\": \"" + type + "\"" + extra + "}");
-        return int(accessors.size() - 1);
-    }
-    int positions(const std::vector<float>& xyz) { return accessor(view(xyz), 5126, xyz.size() / 3, "VEC3"); }
-    template <typename T>
-    int indices(const std::vector<T>& i, int componentType) { return accessor(view(i), componentType, i.size(), "SCALAR"); }
-
-    // The document: `rest` holds the other top-level members ("nodes", "meshes", ...).
-    std::string json(const std::string& rest) const {
-        auto list = [](const std::vector<std::string>& items) {
-            std::string out;
-            for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
-            return "[" + out + "]";
-        };
-        return "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"byteLength\": " + std::to_string(bin.size()) +
-               ", \"uri\": \"data:application/octet-stream;base64," + base64(bin) + "\"}], \"bufferViews\": " + list(views) +
-               ", \"accessors\": " + list(accessors) + ", " + rest + "}";
-    }
-};
+using test::Gltf;
 
 Scene parse(const std::string& text) { return parseGltf(text, "scene.gltf", fs::temp_directory_path()); }
 
@@ -264,7 +215,8 @@ TEST(GltfLoader, RefusesWhatIsNotAUsableGltf) {
     EXPECT_REFUSED("{\"meshes\": []}", "bad.gltf: ");  // JSON, no asset
     EXPECT_REFUSED("glTF\x02\0\0\0\x10\0\0\0", "bad.gltf: ");  // a GLB header that lies
     EXPECT_REFUSED("not json at all", "bad.gltf: ");
-    EXPECT_REFUSED(triangle(", \"mode\": 1", ""), "mode 1 (points or lines) is not triangles");
+    EXPECT_REFUSED(triangle(", \"mode\": 9", ""),
+                   "mode 9 is no glTF primitive mode");  // points and lines: a warning
     EXPECT_REFUSED(triangle("", ", \"indices\": 7"), "indices accessor");
     // Indices out of range, a view past its buffer, elements past their view.
     {
