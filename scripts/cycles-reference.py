@@ -2,6 +2,9 @@
 """Reference images from Blender's Cycles (Debian `blender`, its bundled glTF importer) for a glTF
 scene seen by gpurt's camera (CONTRACT.md), and the comparison of gpurt's image with it.
 
+Needs Blender (not installed by scripts/install-deps.sh: no test uses it): apt-get install blender
+python3-numpy.
+
 Render (inside Blender):
   blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
       render SCENE.glb --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fovy DEG] --size WxH --spp N \\
