@@ -747,7 +747,7 @@ class GltfReader {
             return colors;
         }
         int components = 0;
-        const std::vector<double> c = values(index, at + " COLOR_0", components);
+        const std::vector<double> c = attributeValues(prim, "COLOR_0", at, components);  // Draco or the accessor
         if ((components != 3 && components != 4) || c.size() != size_t(components) * vertices)
             fail(at + ": COLOR_0 is not VEC3 or VEC4 of one per vertex");
         colors.resize(vertices);

@@ -263,5 +263,32 @@ TEST(GltfLoader, RefusesWhatIsNotAUsableGltf) {
     fs::remove_all(folder);
 }
 
+// Hostile material values (issue 22): texCoord indices no file can have, transforms that are not
+// numbers, scales and strengths out of range: exit 1 naming the material and the slot.
+TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
+    auto withMaterial = [](const std::string& material) {
+        Gltf g;
+        const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        return g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{"
+                      "\"attributes\": {\"POSITION\": " + std::to_string(p) + "}, \"material\": 0}]}], "
+                      "\"images\": [{\"uri\": \"missing.png\"}], \"textures\": [{\"source\": 0}], "
+                      "\"materials\": [" + material + "]");
+    };
+    EXPECT_NE(refusal(withMaterial("{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"texCoord\": 100000}}}"))
+                  .find("material 0"),
+              std::string::npos);
+    EXPECT_NE(refusal(withMaterial("{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"texCoord\": 100000}}}"))
+                  .find("texCoord 100000 out of range"),
+              std::string::npos);
+    EXPECT_NE(refusal(withMaterial("{\"normalTexture\": {\"index\": 0, \"extensions\": {\"KHR_texture_transform\": "
+                                   "{\"scale\": [1, \"x\"]}}}}"))
+                  .find("normalTexture KHR_texture_transform scale is not 2 numbers"),
+              std::string::npos);
+    EXPECT_NE(refusal(withMaterial("{\"occlusionTexture\": {\"index\": 0, \"strength\": 2}}")).find("strength must be in [0, 1]"),
+              std::string::npos);
+    EXPECT_NE(refusal(withMaterial("{\"pbrMetallicRoughness\": {\"roughnessFactor\": 1.5}}")).find("roughnessFactor"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpurt
