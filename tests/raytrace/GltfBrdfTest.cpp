@@ -80,7 +80,9 @@ TEST(GltfBrdf, AlbedoIsAtMostOneAndTheSamplerEstimatesIt) {
         const glm::dvec3 e = gltfReferenceAlbedo(p, mu, 300), headOn = gltfReferenceAlbedo(p, 1.0, 300);
         for (int c = 0; c < 3; ++c) {
             EXPECT_LE(headOn[c], 1.0 + 1e-3) << k;
-            if (p.metallic == 1.0) EXPECT_LE(e[c], 1.0 + 1e-3) << k;
+            if (p.metallic == 1.0) {
+                EXPECT_LE(e[c], 1.0 + 1e-3) << k;
+            }
         }
         // Sampling: the mean of the throughput factor is the albedo.
         const MaterialRecord m = record(p);
