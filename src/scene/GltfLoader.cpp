@@ -957,7 +957,7 @@ class GltfReader {
         if (auto seen = textures_.find(key); seen != textures_.end()) return seen->second;
         int& made = textures_[key] = -1;
         if (t.source < 0 || t.source >= int(m_.images.size())) {
-            warn(material + ": texture " + std::to_string(index) + " has no image gpurt reads (PNG or JPEG); the material keeps its colour");
+            warn(material + ": texture " + std::to_string(index) + " has no image gpurt reads (PNG, JPEG, BMP or TGA); the material keeps its colour");
             return -1;
         }
         const tinygltf::Image& stored = m_.images[size_t(t.source)];
