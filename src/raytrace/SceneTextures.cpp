@@ -159,6 +159,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
+        if (m.hasAlpha()) hasAlpha_ = true;
     }
 }
 
@@ -192,6 +193,18 @@ void SceneTextures::bind(GPUKernel& kernel) const {
             .setUniform("environmentRotation", environmentTable_.rotation)
             .setUniform("environmentSize", glm::ivec2(environmentTable_.width, environmentTable_.height));
     }
+}
+
+void SceneTextures::bindCoverage(GPUKernel& kernel) const {
+    if (!hasAlpha_) return;
+    kernel.addDefine("SCENE_ALPHA");
+    if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
+    kernel.addInput(triangles_, "triangles")
+        .addInput(materials_, "materials")
+        .addInput(texcoords_, "triangleTexcoords")
+        .addInput(textureTexels_, "textureTexels")
+        .addInput(textureTable_, "textureTable")
+        .addInput(srgbTable_, "srgbTable");
 }
 
 size_t SceneTextures::bytes() const {

@@ -18,6 +18,13 @@ uniform int maxNodeSteps;            // more nodes than a ray can visit: RAY_OVE
 #define GPURT_BVH_TRI(i) texelFetch(bvhTriangles, i)
 #define GPURT_BVH_BOX_MIN bvhBoxMin
 #define GPURT_BVH_BOX_STEP bvhBoxStep
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage (scene/alpha.glsl)
+#include "scene/alpha.glsl"
+uint rayCoverageKey;
+#define GPURT_BVH_COVERED(id, u, v) hitCovered(id, u, v, rayCoverageKey)
+#else
+#define GPURT_BVH_COVERED(id, u, v) true
+#endif
 #include "common/bvh.h"
 
 #ifndef CAMERA
@@ -45,6 +52,9 @@ void main() {
     bool anyHit = true;
 #else
     bool anyHit = false;
+#endif
+#ifdef SCENE_ALPHA
+    rayCoverageKey = elementCoverageKey();
 #endif
     float t, u, v;
     int steps, tests, state;  // tests: unused here (the cpu's cost estimate)

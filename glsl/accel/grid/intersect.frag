@@ -4,6 +4,9 @@
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
 #include "grid.glsl"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+#include "scene/alpha.glsl"
+#endif
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
@@ -27,6 +30,9 @@ void main() {
     vec3 tMax = dda.xyz;
     float tExit = ddaCellExit(tMax);
 
+#ifdef SCENE_ALPHA
+    uint coverage = elementCoverageKey();
+#endif
     uvec2 range = cellRange(cell);
     float bestT = tLimit;
     int bestId = -1;
@@ -36,7 +42,11 @@ void main() {
         int id = fetchListTriangle(i, v0, e1, e2);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance) {
+            t <= tExit + cellTolerance
+#ifdef SCENE_ALPHA
+            && hitCovered(id, u, w, coverage)
+#endif
+        ) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -9,6 +9,9 @@
 // With CAMERA (and FROM_START) the kernel generates the camera's primary rays itself, as
 // raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
 #include "grid.glsl"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+#include "scene/alpha.glsl"
+#endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
 #endif
@@ -74,6 +77,9 @@ void main() {
     vec3 tMax = dda.xyz;
 #endif
 
+#ifdef SCENE_ALPHA
+    uint coverage = elementCoverageKey();
+#endif
     int state = RAY_ACTIVE;
     float bestT = tLimit;
     int bestId = -1;
@@ -93,6 +99,9 @@ void main() {
             if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT
 #ifndef ANY_HIT
                 && t <= tExit + cellTolerance
+#endif
+#ifdef SCENE_ALPHA
+                && hitCovered(id, u, w, coverage)
 #endif
             ) {
                 bestT = t;
