@@ -2,8 +2,8 @@
 // accelerators' kernels include this file only then): whether a candidate hit counts
 // (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). GpuTracer binds the scene
 // textures it reads and sets the sample's uniforms.
-#include "shading.glsl"
 #include "../common/sampling.h"
+#include "shading.glsl"
 #include "../common/alpha.h"
 
 uniform uint coverageSample;  // the sample index and seed of the rays traced (GpuTracer::setSample)

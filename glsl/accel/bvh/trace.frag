@@ -3,6 +3,15 @@
 // hit before its limit, in one pass: no ray state between passes. With CAMERA the kernel generates
 // the camera's primary rays itself (as the grid's trace.frag does) and reads no ray stream.
 #include "scene/pixel.glsl"
+// Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
+#include "common/sampling.h"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage (scene/alpha.glsl)
+#include "scene/alpha.glsl"
+uint rayCoverageKey;
+#define GPURT_BVH_COVERED(id, u, v) hitCovered(id, u, v, rayCoverageKey)
+#else
+#define GPURT_BVH_COVERED(id, u, v) true
+#endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
 #endif
@@ -18,13 +27,6 @@ uniform int maxNodeSteps;            // more nodes than a ray can visit: RAY_OVE
 #define GPURT_BVH_TRI(i) texelFetch(bvhTriangles, i)
 #define GPURT_BVH_BOX_MIN bvhBoxMin
 #define GPURT_BVH_BOX_STEP bvhBoxStep
-#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage (scene/alpha.glsl)
-#include "scene/alpha.glsl"
-uint rayCoverageKey;
-#define GPURT_BVH_COVERED(id, u, v) hitCovered(id, u, v, rayCoverageKey)
-#else
-#define GPURT_BVH_COVERED(id, u, v) true
-#endif
 #include "common/bvh.h"
 
 #ifndef CAMERA

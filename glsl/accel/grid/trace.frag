@@ -9,6 +9,8 @@
 // With CAMERA (and FROM_START) the kernel generates the camera's primary rays itself, as
 // raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
 #include "grid.glsl"
+// Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
+#include "common/sampling.h"
 #ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
 #include "scene/alpha.glsl"
 #endif
