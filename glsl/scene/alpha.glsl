@@ -8,10 +8,15 @@
 
 uniform uint coverageSample;  // the sample index and seed of the rays traced (GpuTracer::setSample)
 uniform uint coverageSeed;
+// 1 where an element's ray need not be its pixel's (the path integrator's packed paths after its
+// first round): the pixel is then (y, z) of coveragePixels, the pathState stream (shading.glsl
+// pathPixel); 0: the element's own pixel.
+uniform int coverageFromStream;
+uniform sampler2D coveragePixels;
 
 // The coverage key of this element's ray: its pixel's sample.
 uint elementCoverageKey() {
-    uvec2 pixel = imagePixel();
+    uvec2 pixel = coverageFromStream != 0 ? uvec2(readStream(coveragePixels).yz) : imagePixel();
     return coverageKey(pixel.x, pixel.y, coverageSample, coverageSeed);
 }
 

@@ -66,7 +66,11 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
         whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
         path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
-        for (GPUKernel* k : accel_->kernels()) textures_.bindCoverage(*k);
+        if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
+            for (GPUKernel* k : accel_->kernels()) {
+                textures_.bindCoverage(*k);
+                k->addInput(pipeline_->pathState, "coveragePixels");
+            }
     }
     return *pipeline_;
 }
@@ -92,7 +96,8 @@ void GpuTracer::setCamera(const CameraBasis& camera) {
 
 void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
     if (!textures_.hasAlpha()) return;
-    for (GPUKernel* k : accel_->kernels()) k->setUniform("coverageSample", s).setUniform("coverageSeed", seed);
+    for (GPUKernel* k : accel_->kernels())
+        k->setUniform("coverageSample", s).setUniform("coverageSeed", seed).setUniform("coverageFromStream", 0);
 }
 
 void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {

@@ -234,6 +234,29 @@ TEST_F(AlphaCoverageGL, BlendCoverageIsTheAlphaOnAverage) {
     }
 }
 
+// The path integrator packs its paths after the first round: a ray's coverage key is still its
+// pixel's sample, so both backends make the same choices at every depth and give the same
+// picture (a BLEND quad over a floor, seen obliquely, under a uniform sky).
+TEST_F(AlphaCoverageGL, BlendPathsAgreeOnBothBackends) {
+    Scene scene = checkerScene(true);
+    scene.background = glm::vec3(1.0f);
+    Material& quad = scene.materials[1];
+    quad.alphaMode = 2;  // GPURT_ALPHA_BLEND, alpha 0.5 times the checkerboard
+    quad.alphaFactor = 0.5f;
+    CameraSpec spec;
+    spec.eye = {2.5f, 2.5f, 3.0f};
+    spec.target = {0.0f, 0.3f, 0.0f};
+    spec.fovy = 45.0f;
+    constexpr int kSize = 40;
+    for (const Variant& v : {kVariants[1], kVariants[4]}) {
+        SCOPED_TRACE(v.name);
+        const Variant cpu{v.accel, Backend::Cpu, v.kernel, "cpu"};
+        const RenderOutput gl = render(scene, spec, kSize, v, Integrator::Path, 4);
+        const RenderOutput reference = render(scene, spec, kSize, cpu, Integrator::Path, 4);
+        expectSamePictures(gl, reference, v.name);
+    }
+}
+
 // MTL d 0.5 without map_d: BLEND coverage of one half.
 TEST_F(AlphaCoverageGL, MtlDissolveIsBlendCoverage) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gpurt-alpha-" + std::to_string(::getpid()));
