@@ -257,6 +257,41 @@ TEST_F(AlphaCoverageGL, BlendPathsAgreeOnBothBackends) {
     }
 }
 
+// Tiles (--tile): BLEND's choices depend on the image pixel, not on the stream element, so a
+// tile's rows are exactly those rows of the whole image on both backends and integrators.
+TEST_F(AlphaCoverageGL, BlendTilesAreTheirRowsOfTheWholeImage) {
+    Scene scene = checkerScene(true);
+    scene.background = glm::vec3(1.0f);
+    scene.materials[1].alphaMode = 2;
+    scene.materials[1].alphaFactor = 0.5f;
+    CameraSpec spec;
+    spec.eye = {2.5f, 2.5f, 3.0f};
+    spec.target = {0.0f, 0.3f, 0.0f};
+    spec.fovy = 45.0f;
+    const int width = 20, height = 23;
+    const UniformGrid grid = buildGrid(scene, GridOptions{});
+    const CameraBasis whole = makeCamera(spec, width, height);
+    for (Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
+        RenderSettings settings;
+        settings.integrator = integrator;
+        settings.samples = 3;
+        CpuTracer cpu(scene, grid);
+        GpuTracer gl(scene, grid);
+        const RenderOutput fullCpu = cpu.render(whole, settings), fullGl = gl.render(whole, settings);
+        CameraBasis tile = whole;
+        tile.rowBegin = 9;
+        tile.rowCount = 7;
+        for (bool onGl : {false, true}) {
+            SCOPED_TRACE(std::string(onGl ? "gl" : "cpu") + (integrator == Integrator::Path ? " path" : " whitted"));
+            const RenderOutput& full = onGl ? fullGl : fullCpu;
+            const RenderOutput part = onGl ? gl.render(tile, settings) : cpu.render(tile, settings);
+            ASSERT_EQ(part.color.size(), size_t(width) * size_t(tile.rowCount));
+            for (size_t k = 0; k < part.color.size(); ++k)
+                ASSERT_EQ(part.color[k], full.color[size_t(tile.rowBegin) * size_t(width) + k]) << "element " << k;
+        }
+    }
+}
+
 // MTL d 0.5 without map_d: BLEND coverage of one half.
 TEST_F(AlphaCoverageGL, MtlDissolveIsBlendCoverage) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gpurt-alpha-" + std::to_string(::getpid()));
