@@ -233,6 +233,21 @@ TEST(GltfLoader, AlphaModesAndCutoff) {
     }
 }
 
+// With a baseColorTexture, alpha is baseColorFactor[3] times the texture's A.
+TEST(GltfLoader, AlphaTextureIsTheBaseColourTexturesA) {
+    std::ifstream in("tests/assets/textures/quad_separate.gltf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find("\"alphaMode\": \"OPAQUE\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::strlen("\"alphaMode\": \"OPAQUE\""), "\"alphaMode\": \"BLEND\"");
+    const Scene scene = parseGltf(text, "quad_separate.gltf", "tests/assets/textures");
+    const Material& m = scene.materials[scene.materialIds[0]];
+    EXPECT_EQ(m.alphaMode, 2);
+    ASSERT_GE(m.diffuseTexture, 0);
+    EXPECT_EQ(m.alphaTexture.texture, m.diffuseTexture);
+    EXPECT_EQ(m.alphaTexture.channel, 3);
+}
+
 // The message of the InputError parsing `text` throws (Refusal.h).
 std::string refusal(const std::string& text, const fs::path& folder = fs::temp_directory_path()) {
     return test::refusalOf([&] { parseGltf(text, "bad.gltf", folder); }, "bad.gltf: ");
