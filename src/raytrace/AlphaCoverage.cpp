@@ -18,7 +18,8 @@ bool AlphaCoverage::covers(int prim, float u, float v, uint32_t key) const {
     float alpha = m.alphaFactor;
     if (m.alphaTexture.given() && !scene_.texcoords.empty()) {
         const glm::vec2 t = texcoordAt(scene_, uint32_t(prim), u, v);
-        alpha = alpha * sampleChannel(scene_.textures[size_t(m.alphaTexture.texture)], t, m.alphaTexture.channel);
+        alpha = alpha * sampleChannel(scene_.textures[size_t(m.alphaTexture.texture)], t,
+                                      m.alphaTexture.channel);
     }
     return raymath::alphaCovers(m.alphaMode, alpha, m.alphaCutoff, key, prim);
 }

@@ -27,8 +27,8 @@ namespace {
 
 class AlphaCoverageGL : public GLTest {};
 
-constexpr int kCells = 4;             // the checkerboard's texels a side
-constexpr double kQuadHeight = 1.0;   // the quad: y = 1, x and z in [-1, 1]
+constexpr int kCells = 4;            // the checkerboard's texels a side
+constexpr double kQuadHeight = 1.0;  // the quad: y = 1, x and z in [-1, 1]
 const glm::vec3 kBackground(0.2f, 0.5f, 0.9f);
 
 // Scene: an optional floor (triangles 0, 1; y = 0, x and z in [-3, 3]), then the quad with the
@@ -55,13 +55,15 @@ Scene checkerScene(bool floor) {
     checker.image.width = checker.image.height = kCells;
     for (int row = 0; row < kCells; ++row)
         for (int column = 0; column < kCells; ++column)
-            checker.image.texels.push_back(0x00c8c8c8u | ((row + column) % 2 == 0 ? 0xff000000u : 0u));
+            checker.image.texels.push_back(0x00c8c8c8u |
+                                           ((row + column) % 2 == 0 ? 0xff000000u : 0u));
     scene.textures.push_back(checker);
     // Image coordinates ((x + 1) / 2, (z + 1) / 2) on the quad; zeros on the floor.
     auto uv = [](glm::vec3 p) { return glm::vec2((p.x + 1.0f) / 2.0f, (p.z + 1.0f) / 2.0f); };
     for (const Triangle& t : scene.triangles)
-        scene.texcoords.push_back(scene.materialIds[scene.texcoords.size()] == q ? TriangleTexcoords{uv(t.v0), uv(t.v1), uv(t.v2)}
-                                                                                 : TriangleTexcoords{});
+        scene.texcoords.push_back(scene.materialIds[scene.texcoords.size()] == q
+                                      ? TriangleTexcoords{uv(t.v0), uv(t.v1), uv(t.v2)}
+                                      : TriangleTexcoords{});
     return scene;
 }
 
@@ -80,7 +82,8 @@ glm::dvec3 centreRay(const CameraSpec& spec, int size, int i, int j) {
     const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(spec.up)));
     const glm::dvec3 up = glm::cross(right, forward);
     const double tanHalf = std::tan(double(spec.fovy) * 3.14159265358979323846 / 360.0);
-    const double u = ((i + 0.5) / size * 2.0 - 1.0) * tanHalf, v = (1.0 - (j + 0.5) / size * 2.0) * tanHalf;
+    const double u = ((i + 0.5) / size * 2.0 - 1.0) * tanHalf,
+                 v = (1.0 - (j + 0.5) / size * 2.0) * tanHalf;
     return forward + u * right + v * up;
 }
 
@@ -99,7 +102,8 @@ const Variant kVariants[] = {{AccelChoice::Grid, Backend::Cpu, TraceKernel::Fuse
 RenderOutput render(const Scene& scene, const CameraSpec& spec, int size, const Variant& v,
                     Integrator integrator = Integrator::Whitted, uint32_t samples = 1) {
     const CameraBasis camera = makeCamera(spec, size, size);
-    const Acceleration accel = chooseAcceleration(scene, v.accel, std::nullopt, std::nullopt, {}, camera);
+    const Acceleration accel =
+        chooseAcceleration(scene, v.accel, std::nullopt, std::nullopt, {}, camera);
     RenderSettings settings;
     settings.width = settings.height = size;
     settings.samples = samples;
@@ -107,7 +111,8 @@ RenderOutput render(const Scene& scene, const CameraSpec& spec, int size, const 
     settings.maxBounces = 3;
     GpuTracerOptions options;
     options.kernel = v.kernel;
-    return makeRenderer(RendererConfig{v.backend, integrator, options}, scene, accel)->render(camera, settings);
+    return makeRenderer(RendererConfig{v.backend, integrator, options}, scene, accel)
+        ->render(camera, settings);
 }
 
 TEST_F(AlphaCoverageGL, MaskShowsTheBackgroundWhereAlphaIsBelowTheCutoff) {
@@ -120,7 +125,8 @@ TEST_F(AlphaCoverageGL, MaskShowsTheBackgroundWhereAlphaIsBelowTheCutoff) {
     constexpr int kSize = 48;
     for (const Variant& v : kVariants)
         for (Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
-            SCOPED_TRACE(std::string(v.name) + (integrator == Integrator::Path ? " path" : " whitted"));
+            SCOPED_TRACE(std::string(v.name) +
+                         (integrator == Integrator::Path ? " path" : " whitted"));
             const RenderOutput out = render(scene, spec, kSize, v, integrator);
             size_t covered = 0, holes = 0;
             for (int j = 0; j < kSize; ++j)
@@ -128,8 +134,8 @@ TEST_F(AlphaCoverageGL, MaskShowsTheBackgroundWhereAlphaIsBelowTheCutoff) {
                     const glm::dvec3 d = centreRay(spec, kSize, i, j);
                     const double t = (kQuadHeight - double(spec.eye.y)) / d.y;
                     bool clear = false;
-                    const bool expectCovered =
-                        coveredAt(double(spec.eye.x) + t * d.x, double(spec.eye.z) + t * d.z, 0.05, clear);
+                    const bool expectCovered = coveredAt(double(spec.eye.x) + t * d.x,
+                                                         double(spec.eye.z) + t * d.z, 0.05, clear);
                     if (!clear) continue;
                     const size_t at = size_t(j) * kSize + size_t(i);
                     if (expectCovered) {
@@ -137,7 +143,8 @@ TEST_F(AlphaCoverageGL, MaskShowsTheBackgroundWhereAlphaIsBelowTheCutoff) {
                         ++covered;
                     } else {
                         ASSERT_EQ(out.prim[at], -1.0f) << "pixel " << i << ", " << j;
-                        if (integrator == Integrator::Whitted) ASSERT_EQ(out.color[at], kBackground) << "pixel " << i << ", " << j;
+                        if (integrator == Integrator::Whitted)
+                            ASSERT_EQ(out.color[at], kBackground) << "pixel " << i << ", " << j;
                         ++holes;
                     }
                 }
@@ -168,14 +175,16 @@ TEST_F(AlphaCoverageGL, MaskShadowHasHolesWhereAlphaIsBelowTheCutoff) {
         for (int j = 0; j < kSize; ++j)
             for (int i = 0; i < kSize; ++i) {
                 const glm::dvec3 d = centreRay(spec, kSize, i, j);
-                const glm::dvec3 p = glm::dvec3(spec.eye) + (-double(spec.eye.y) / d.y) * d;  // on the floor
+                const glm::dvec3 p =
+                    glm::dvec3(spec.eye) + (-double(spec.eye.y) / d.y) * d;  // on the floor
                 // The shadow ray from p to the light crosses y = 1 at p + (light - p) / 50.
                 const double f = kQuadHeight / 50.0;
                 bool clearCell = false;
                 const bool blocked = coveredAt(p.x * (1.0 - f), p.z * (1.0 - f), 0.05, clearCell);
                 if (!clearCell) continue;
                 const size_t at = size_t(j) * kSize + size_t(i);
-                ASSERT_TRUE(out.prim[at] == 0.0f || out.prim[at] == 1.0f) << "the floor, pixel " << i << ", " << j;
+                ASSERT_TRUE(out.prim[at] == 0.0f || out.prim[at] == 1.0f)
+                    << "the floor, pixel " << i << ", " << j;
                 ASSERT_GT(lit.color[at].x, dark.color[at].x * 1.5f) << "pixel " << i << ", " << j;
                 const glm::vec3 expected = blocked ? dark.color[at] : lit.color[at];
                 for (int c = 0; c < 3; ++c)
@@ -277,27 +286,32 @@ TEST_F(AlphaCoverageGL, BlendTilesAreTheirRowsOfTheWholeImage) {
         settings.samples = 3;
         CpuTracer cpu(scene, grid);
         GpuTracer gl(scene, grid);
-        const RenderOutput fullCpu = cpu.render(whole, settings), fullGl = gl.render(whole, settings);
+        const RenderOutput fullCpu = cpu.render(whole, settings),
+                           fullGl = gl.render(whole, settings);
         CameraBasis tile = whole;
         tile.rowBegin = 9;
         tile.rowCount = 7;
         for (bool onGl : {false, true}) {
-            SCOPED_TRACE(std::string(onGl ? "gl" : "cpu") + (integrator == Integrator::Path ? " path" : " whitted"));
+            SCOPED_TRACE(std::string(onGl ? "gl" : "cpu") +
+                         (integrator == Integrator::Path ? " path" : " whitted"));
             const RenderOutput& full = onGl ? fullGl : fullCpu;
             const RenderOutput part = onGl ? gl.render(tile, settings) : cpu.render(tile, settings);
             ASSERT_EQ(part.color.size(), size_t(width) * size_t(tile.rowCount));
             for (size_t k = 0; k < part.color.size(); ++k)
-                ASSERT_EQ(part.color[k], full.color[size_t(tile.rowBegin) * size_t(width) + k]) << "element " << k;
+                ASSERT_EQ(part.color[k], full.color[size_t(tile.rowBegin) * size_t(width) + k])
+                    << "element " << k;
         }
     }
 }
 
 // MTL d 0.5 without map_d: BLEND coverage of one half.
 TEST_F(AlphaCoverageGL, MtlDissolveIsBlendCoverage) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gpurt-alpha-" + std::to_string(::getpid()));
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("gpurt-alpha-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "half.mtl") << "newmtl half\nKd 0 0 0\nKe 1 1 1\nd 0.5\n";
-    std::ofstream(dir / "half.obj") << "mtllib half.mtl\nv -1 1 -1\nv 1 1 -1\nv 1 1 1\nv -1 1 1\nusemtl half\nf 1 2 3 4\n";
+    std::ofstream(dir / "half.obj")
+        << "mtllib half.mtl\nv -1 1 -1\nv 1 1 -1\nv 1 1 1\nv -1 1 1\nusemtl half\nf 1 2 3 4\n";
     Scene scene = loadObj(dir / "half.obj");
     std::filesystem::remove_all(dir);
     scene.background = glm::vec3(0.0f);

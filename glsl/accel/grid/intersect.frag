@@ -6,6 +6,9 @@
 #include "grid.glsl"
 #ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
 #include "scene/alpha.glsl"
+#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#else
+#define GRID_COVERED(id, u, v) true
 #endif
 
 uniform sampler2D rayOrigin;
@@ -30,9 +33,6 @@ void main() {
     vec3 tMax = dda.xyz;
     float tExit = ddaCellExit(tMax);
 
-#ifdef SCENE_ALPHA
-    uint coverage = elementCoverageKey();
-#endif
     uvec2 range = cellRange(cell);
     float bestT = tLimit;
     int bestId = -1;
@@ -42,11 +42,7 @@ void main() {
         int id = fetchListTriangle(i, v0, e1, e2);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance
-#ifdef SCENE_ALPHA
-            && hitCovered(id, u, w, coverage)
-#endif
-        ) {
+            t <= tExit + cellTolerance && GRID_COVERED(id, u, w)) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -13,6 +13,9 @@
 #include "common/sampling.h"
 #ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
 #include "scene/alpha.glsl"
+#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#else
+#define GRID_COVERED(id, u, v) true
 #endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
@@ -79,9 +82,6 @@ void main() {
     vec3 tMax = dda.xyz;
 #endif
 
-#ifdef SCENE_ALPHA
-    uint coverage = elementCoverageKey();
-#endif
     int state = RAY_ACTIVE;
     float bestT = tLimit;
     int bestId = -1;
@@ -98,12 +98,9 @@ void main() {
             vec3 v0, e1, e2;
             int id = fetchListTriangle(k, v0, e1, e2);
             float t, u, w;
-            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT
+            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, u, w)
 #ifndef ANY_HIT
                 && t <= tExit + cellTolerance
-#endif
-#ifdef SCENE_ALPHA
-                && hitCovered(id, u, w, coverage)
 #endif
             ) {
                 bestT = t;
