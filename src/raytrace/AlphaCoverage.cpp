@@ -3,12 +3,23 @@
 #include "raytrace/RayMath.h"
 #include "raytrace/SurfaceTexture.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace gpurt {
 
+bool sceneUsesAlpha(const Scene& scene) {
+    std::vector<bool> alpha(scene.materials.size());
+    bool any = false;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        alpha[m] = scene.materials[m].hasAlpha();
+        any = any || alpha[m];
+    }
+    return any && std::any_of(scene.materialIds.begin(), scene.materialIds.end(), [&](uint32_t m) { return alpha[m]; });
+}
+
 std::unique_ptr<const AlphaCoverage> AlphaCoverage::of(const Scene& scene) {
-    for (const Material& m : scene.materials)
-        if (m.hasAlpha()) return std::make_unique<const AlphaCoverage>(scene);
-    return nullptr;
+    return sceneUsesAlpha(scene) ? std::make_unique<const AlphaCoverage>(scene) : nullptr;
 }
 
 // glsl/scene/alpha.glsl hitCovered.

@@ -10,6 +10,10 @@
 
 namespace gpurt {
 
+// Whether a triangle of the scene has a material with alpha (a library's unused materials do not
+// count): only then do the traversals test coverage (SCENE_ALPHA in the kernels).
+bool sceneUsesAlpha(const Scene& scene);
+
 class AlphaCoverage {
   public:
     // Null when no material of the scene has alpha (every hit counts). Keeps a reference to the

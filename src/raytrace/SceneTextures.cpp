@@ -1,5 +1,6 @@
 #include "raytrace/SceneTextures.h"
 
+#include "raytrace/AlphaCoverage.h"
 #include "raytrace/SceneTextureLayout.h"
 #include "stream/StreamErrors.h"
 
@@ -159,8 +160,8 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
-        if (m.hasAlpha()) hasAlpha_ = true;
     }
+    hasAlpha_ = sceneUsesAlpha(scene);
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {

@@ -35,7 +35,7 @@ class SceneTextures {
     // vertexColors), sets
     // the emitter uniforms and rayOffset, and defines what the scene has (SCENE_*).
     void bind(GPUKernel& kernel) const;
-    // Whether some material has alpha (Material::hasAlpha): the accelerators' kernels then test
+    // Whether some triangle's material has alpha (sceneUsesAlpha): the accelerators' kernels then test
     // candidate hits for coverage (glsl/scene/alpha.glsl).
     bool hasAlpha() const { return hasAlpha_; }
     // Defines SCENE_ALPHA in an accelerator's kernel and adds what its coverage test reads (the

@@ -11,6 +11,7 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
+#include "raytrace/AlphaCoverage.h"
 #include "raytrace/Renderer.h"
 #include "raytrace/accel/Acceleration.h"
 #include "scene/ObjLoader.h"
@@ -302,6 +303,22 @@ TEST_F(AlphaCoverageGL, BlendTilesAreTheirRowsOfTheWholeImage) {
                     << "element " << k;
         }
     }
+}
+
+// Only materials that triangles use turn the coverage test on (an MTL library's unused ones do not).
+TEST(AlphaCoverage, OnlyMaterialsInUseCount) {
+    Scene scene = emittingQuad(0.5f);  // material 0, BLEND, on both triangles
+    EXPECT_TRUE(sceneUsesAlpha(scene));
+    EXPECT_NE(AlphaCoverage::of(scene), nullptr);
+    const uint32_t plain = addMaterial(scene, glm::vec3(0.5f));
+    Material late;  // a second alpha material after an opaque one
+    late.alphaMode = 1;
+    scene.materials.push_back(late);
+    scene.materialIds.assign(scene.triangles.size(), plain);
+    EXPECT_FALSE(sceneUsesAlpha(scene));
+    EXPECT_EQ(AlphaCoverage::of(scene), nullptr);
+    scene.materialIds[1] = uint32_t(scene.materials.size() - 1);
+    EXPECT_TRUE(sceneUsesAlpha(scene));
 }
 
 // MTL d 0.5 without map_d: BLEND coverage of one half.
