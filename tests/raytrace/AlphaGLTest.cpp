@@ -246,8 +246,9 @@ TEST_F(AlphaCoverageGL, BlendCoverageIsTheAlphaOnAverage) {
 
 // The path integrator packs its paths after the first round: a ray's coverage key is still its
 // pixel's sample, so both backends make the same choices at every depth and give the same
-// picture (a BLEND quad over a floor, seen obliquely, under a uniform sky).
-TEST_F(AlphaCoverageGL, BlendPathsAgreeOnBothBackends) {
+// picture (a BLEND quad over a floor, seen obliquely, under a uniform sky); so do Whitted's
+// reflected rays off a mirror floor.
+TEST_F(AlphaCoverageGL, BlendPathsAndRayTreesAgreeOnBothBackends) {
     Scene scene = checkerScene(true);
     scene.background = glm::vec3(1.0f);
     Material& quad = scene.materials[1];
@@ -264,6 +265,16 @@ TEST_F(AlphaCoverageGL, BlendPathsAgreeOnBothBackends) {
         const RenderOutput gl = render(scene, spec, kSize, v, Integrator::Path, 4);
         const RenderOutput reference = render(scene, spec, kSize, cpu, Integrator::Path, 4);
         expectSamePictures(gl, reference, v.name);
+    }
+    // Whitted's secondary rays: a mirror floor sees the quad's reflection through its holes.
+    scene.materials[0].reflectivity = glm::vec3(0.6f);
+    for (const Variant& v : {kVariants[1], kVariants[4]}) {
+        SCOPED_TRACE(std::string(v.name) + " whitted");
+        const Variant cpu{v.accel, Backend::Cpu, v.kernel, "cpu"};
+        const RenderOutput gl = render(scene, spec, kSize, v, Integrator::Whitted, 4);
+        const RenderOutput reference = render(scene, spec, kSize, cpu, Integrator::Whitted, 4);
+        expectSamePictures(gl, reference, v.name);
+        EXPECT_GT(reference.stats.secondaryRays, 0u);
     }
 }
 
