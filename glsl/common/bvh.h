@@ -90,7 +90,8 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
             float t;
             float u;
             float v;
-            if (intersectTriangle(o, d, vec3(tri), e1, e2, t, u, v) && t > 0.0f && t < bestT) {
+            if (intersectTriangle(o, d, vec3(tri), e1, e2, t, u, v) && t > 0.0f && t < bestT &&
+                GPURT_BVH_COVERED(int(tri.w), u, v)) {
                 bestT = t;
                 bestU = u;
                 bestV = v;

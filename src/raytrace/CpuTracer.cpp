@@ -32,9 +32,13 @@ CpuTracer::CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, 
         triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
 }
 
-TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit) const { return accel_->closestHit(o, d, tLimit); }
+TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->closestHit(o, d, tLimit, coverageKey);
+}
 
-TraceHit CpuTracer::traceAny(glm::vec3 o, glm::vec3 d, float tLimit) const { return accel_->anyHit(o, d, tLimit); }
+TraceHit CpuTracer::traceAny(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->anyHit(o, d, tLimit, coverageKey);
+}
 
 uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
                                std::vector<glm::vec4>& hits) const {
@@ -43,27 +47,29 @@ uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
     parallelChunks(n, std::max<size_t>(8, size_t(rays.width)), threads, [&](size_t begin, size_t end, size_t) {
         for (size_t i = begin; i < end; ++i) {
             if (rays.tLimit[i] < 0.0f) continue;
-            const TraceHit h = anyHit ? traceAny(rays.origin[i], rays.direction[i], rays.tLimit[i])
-                                      : trace(rays.origin[i], rays.direction[i], rays.tLimit[i]);
+            // Element (x, y) as pixel (x, y) of sample 0, seed 0 (the gl trace kernels' default uniforms).
+            const uint32_t key = coverageKey(uint32_t(i % size_t(rays.width)), uint32_t(i / size_t(rays.width)), 0u, 0u);
+            const TraceHit h = anyHit ? traceAny(rays.origin[i], rays.direction[i], rays.tLimit[i], key)
+                                      : trace(rays.origin[i], rays.direction[i], rays.tLimit[i], key);
             if (h.prim >= 0) hits[i] = glm::vec4(h.t, h.u, h.v, float(h.prim));
         }
     });
     return rays.rays();
 }
 
-bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const {
-    const TraceHit blocker = traceAny(origin, dir, limit);
+bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const {
+    const TraceHit blocker = traceAny(origin, dir, limit, coverageKey);
     ++stats.shadowRays;
     if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
     return blocker.prim < 0;
 }
 
-bool CpuTracer::lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, RenderStats& stats) const {
+bool CpuTracer::lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint32_t coverageKey, RenderStats& stats) const {
     if (!lightInFront(p, n, lightPos)) return false;
     glm::vec3 origin, dir;
     float limit;
     shadowRay(p, n, rayOffset_, lightPos, origin, dir, limit);
-    return unblocked(origin, dir, limit, stats);
+    return unblocked(origin, dir, limit, coverageKey, stats);
 }
 
 bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
@@ -78,7 +84,7 @@ bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, 
     glm::vec3 origin, dir;
     float limit;
     emitterShadowRay(p, n, rayOffset_, q, origin, dir, limit);
-    return unblocked(origin, dir, limit, stats);
+    return unblocked(origin, dir, limit, coverageKey(uint32_t(i), uint32_t(j), sample, seed), stats);
 }
 
 bool CpuTracer::environmentVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
@@ -86,7 +92,7 @@ bool CpuTracer::environmentVisible(int i, int j, uint32_t sample, uint32_t sampl
     if (!environment_.sampled) return false;
     const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), seed, GPURT_DIM_ENVIRONMENT + uint32_t(depth)));
     if (!environment_.sample(u, l, pdf) || !(dot(n, l) > 0.0f)) return false;
-    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, stats);
+    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, coverageKey(uint32_t(i), uint32_t(j), sample, seed), stats);
 }
 
 CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {

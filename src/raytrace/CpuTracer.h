@@ -26,11 +26,12 @@ class CpuTracer {
     // Over any accelerator of the scene; rayOffset: how far secondary rays start off a surface.
     CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset);
 
-    // First hit of o + t d with 0 < t < tLimit; d must be normalised.
-    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit) const;
+    // First hit of o + t d with 0 < t < tLimit; d must be normalised. coverageKey: the ray's
+    // sample (PixelSample::coverageKey) for surfaces with alpha (CpuAccelerator::closestHit).
+    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey = 0u) const;
     // Any hit with 0 < t < tLimit (shadow rays): the traversal ends at the first triangle hit, so
     // prim is some blocker, not necessarily the nearest. Blocked exactly when trace() hits.
-    TraceHit traceAny(glm::vec3 o, glm::vec3 d, float tLimit) const;
+    TraceHit traceAny(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey = 0u) const;
 
     // Traces every ray of `rays` (elements with tLimit < 0 are skipped) on `threads` threads
     // (0: all cores), closest or any hit, into hits[i] = (t, u, v, triangle | -1); returns the
@@ -60,7 +61,7 @@ class CpuTracer {
     Surface surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const;
     // Whether the point light at lightPos lights the hit p (facing normal n): in front of it and
     // its shadow ray unblocked (shadowgen.frag, the trace, light.frag), counted in stats.
-    bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, RenderStats& stats) const;
+    bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint32_t coverageKey, RenderStats& stats) const;
     // The emitter point q (on triangle id) that sample `sample` of `samples` of pixel (i, j) takes
     // at hit depth `depth` (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in
     // front and unblocked (shadowgen.frag EMITTER). False without emitters.
@@ -76,7 +77,7 @@ class CpuTracer {
 
   private:
     // Traces one shadow ray (counted in stats); true when nothing blocks it.
-    bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, RenderStats& stats) const;
+    bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const;
 
     const Scene& scene_;
     std::unique_ptr<CpuAccelerator> accel_;

@@ -66,6 +66,11 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
         whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
         path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
+        if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
+            for (GPUKernel* k : accel_->kernels()) {
+                textures_.bindCoverage(*k);
+                k->addInput(pipeline_->pathState, "coveragePixels");
+            }
     }
     return *pipeline_;
 }
@@ -89,7 +94,14 @@ void GpuTracer::setCamera(const CameraBasis& camera) {
     pipeline_->setCamera(camera, integrators);
 }
 
+void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
+    if (!textures_.hasAlpha()) return;
+    for (GPUKernel* k : accel_->kernels())
+        k->setUniform("coverageSample", s).setUniform("coverageSeed", seed).setUniform("coverageFromStream", 0);
+}
+
 void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
+    setCoverageSample(s, seed);
     pipeline_->setSample(s, n, seed);
     whitted_->setSample(s, n, seed);
     path_->setSample(s, n, seed);
@@ -113,6 +125,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, paths);
     for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
     setCamera(camera);
+    setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)
     if (samples > 1) whitted_->sample(lights, -1, &out, out.stats);  // pixel centres: the AOVs only
     const int bounces = std::max(0, settings.maxBounces);
     if (samples == 1) {  // the sample is the image: no sum to accumulate into
@@ -150,6 +163,7 @@ void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
     for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
     setCamera(camera);
+    setCoverageSample(0, settings.seed);
     whitted_->sample(progressive_.lights, -1, nullptr, progressive_.output.stats);  // pixel centres
     p.aovHit.copyFrom(p.hit);
     p.aovCells.copyFrom(accel_->steps());
@@ -180,6 +194,7 @@ std::set<std::string> GpuTracer::accelerationPasses() {
 uint64_t GpuTracer::tracePrimary(const CameraBasis& camera) {
     GpuPipeline& p = pipeline(camera.width, camera.rows());
     setCamera(camera);
+    setCoverageSample(0, 0);  // as CpuTracer::traceStream
     std::optional<uint64_t> rays = accel_->traceCamera();
     if (!rays) {
         p.primaryRays().dispatch();
@@ -206,6 +221,7 @@ void GpuTracer::setRays(const RayStream& rays) {
 
 uint64_t GpuTracer::traceRays(bool anyHit) {
     if (!pipeline_) throw UsageError("GpuTracer::traceRays before setRays");
+    setCoverageSample(0, 0);  // as CpuTracer::traceStream
     const uint64_t rays = accel_->trace(anyHit);
     glFinish();
     return rays;

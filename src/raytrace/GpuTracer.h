@@ -76,6 +76,8 @@ class GpuTracer {
     // Sets the camera on the pipeline and every integrator's kernels (the tile's first row).
     void setCamera(const CameraBasis& camera);
     void setSample(uint32_t s, uint32_t n, uint32_t seed);
+    // The accelerators' coverage keys (scene/alpha.glsl): sample s of --seed `seed`.
+    void setCoverageSample(uint32_t s, uint32_t seed);
     // Rays a pixel's stack holds for Whitted's ray tree (0 without glass, where nothing splits,
     // and for the path integrator, which takes one direction a hit).
     int stackSlots(const RenderSettings& settings) const;

@@ -51,18 +51,19 @@ constexpr char kEnvironment[] = "ENVM";
 constexpr char kBvhNodes[] = "BVHN";
 constexpr char kBvhList[] = "BVHL";
 constexpr char kColors[] = "VCOL";
+constexpr char kAlpha[] = "ALPH";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
-// and the vertex colours are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// the vertex colours and the alpha coverage are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors};
+                                         kColors,    kAlpha};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || gridSection(tag) ||
+           tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || gridSection(tag) ||
            bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
@@ -95,6 +96,10 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kPbr)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return m.model == GPURT_MODEL_GLTF; });
+    // Only when some material has alpha: other files stay as they were before the section existed.
+    if (tag == kAlpha)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return m.hasAlpha(); });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
@@ -107,6 +112,8 @@ constexpr size_t kModelBytes = 4;
 // roughness, metallic and occlusion channels (texture, channel) and the normal and emissive
 // textures (i32, -1: none).
 constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
+// ALPH per material: alpha mode (u32), factor, cutoff (f32), the alpha channel (texture, channel).
+constexpr size_t kAlphaBytes = 5 * 4;
 constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
 // The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
 constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
@@ -280,15 +287,19 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         for (int texture : {mat.diffuseTexture, mat.roughnessTexture.texture, mat.metallicTexture.texture, mat.normalTexture,
-                            mat.emissiveTexture, mat.occlusionTexture.texture})
+                            mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
-        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture})
+        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture})
             if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
         if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
             !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": metallic, roughness and occlusion strength must be in [0, 1], the normal scale finite");
+        if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
+            !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
+            failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +
+                             " (0 to 2), alpha factor and cutoff must be in [0, 1]");
     }
 }
 
@@ -669,6 +680,22 @@ class SectionDecoder {
         }
     }
 
+    // Each material's alpha coverage (count = the materials', then kAlphaBytes each). Read after
+    // the materials.
+    void alpha(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kAlphaBytes, "materials' alpha", kMaxTextureMaterials, scene.materials.size(),
+                                   "materials");
+        for (uint64_t k = 0; k < n; ++k) {
+            Material& m = scene.materials[size_t(k)];
+            m.alphaMode = int(int32_t(in.u32()));
+            m.alphaFactor = in.f32();
+            m.alphaCutoff = in.f32();
+            m.alphaTexture.texture = int(int32_t(in.u32()));
+            m.alphaTexture.channel = int(int32_t(in.u32()));
+        }
+    }
+
     void environment(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
         if (s.size < 4) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
@@ -871,6 +898,7 @@ class SectionEncoder {
         else if (tag == kTextures) textures();
         else if (tag == kModels) models();
         else if (tag == kPbr) pbr();
+        else if (tag == kAlpha) alpha();
         else if (tag == kEnvironment) environment();
     }
 
@@ -1022,6 +1050,17 @@ class SectionEncoder {
             }
             out_.u32(uint32_t(int32_t(m.normalTexture)));
             out_.u32(uint32_t(int32_t(m.emissiveTexture)));
+        }
+    }
+
+    void alpha() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) {
+            out_.u32(uint32_t(m.alphaMode));
+            out_.f32(m.alphaFactor);
+            out_.f32(m.alphaCutoff);
+            out_.u32(uint32_t(int32_t(m.alphaTexture.texture)));
+            out_.u32(uint32_t(int32_t(m.alphaTexture.channel)));
         }
     }
 
@@ -1226,6 +1265,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kTextures)) decoder.textures(*section(kTextures), loaded.scene);
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
     if (section(kPbr)) decoder.pbr(*section(kPbr), loaded.scene);
+    if (section(kAlpha)) decoder.alpha(*section(kAlpha), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {

@@ -8,6 +8,7 @@ namespace gpurt::raymath {
 using namespace glm;
 #include "../../glsl/common/raymath.h"
 #include "../../glsl/common/sampling.h"
+#include "../../glsl/common/alpha.h"
 #include "../../glsl/common/shading.h"
 #include "../../glsl/common/material.h"
 #include "../../glsl/common/path.h"

@@ -1,5 +1,6 @@
 #include "raytrace/SceneTextures.h"
 
+#include "raytrace/AlphaCoverage.h"
 #include "raytrace/SceneTextureLayout.h"
 #include "stream/StreamErrors.h"
 
@@ -160,6 +161,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
     }
+    hasAlpha_ = sceneUsesAlpha(scene);
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -192,6 +194,18 @@ void SceneTextures::bind(GPUKernel& kernel) const {
             .setUniform("environmentRotation", environmentTable_.rotation)
             .setUniform("environmentSize", glm::ivec2(environmentTable_.width, environmentTable_.height));
     }
+}
+
+void SceneTextures::bindCoverage(GPUKernel& kernel) const {
+    if (!hasAlpha_) return;
+    kernel.addDefine("SCENE_ALPHA");
+    if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
+    kernel.addInput(triangles_, "triangles")
+        .addInput(materials_, "materials")
+        .addInput(texcoords_, "triangleTexcoords")
+        .addInput(textureTexels_, "textureTexels")
+        .addInput(textureTable_, "textureTable")
+        .addInput(srgbTable_, "srgbTable");
 }
 
 size_t SceneTextures::bytes() const {

@@ -35,6 +35,12 @@ class SceneTextures {
     // vertexColors), sets
     // the emitter uniforms and rayOffset, and defines what the scene has (SCENE_*).
     void bind(GPUKernel& kernel) const;
+    // Whether some triangle's material has alpha (sceneUsesAlpha): the accelerators' kernels then test
+    // candidate hits for coverage (glsl/scene/alpha.glsl).
+    bool hasAlpha() const { return hasAlpha_; }
+    // Defines SCENE_ALPHA in an accelerator's kernel and adds what its coverage test reads (the
+    // triangles, materials, texture coordinates and textures); nothing without alpha.
+    void bindCoverage(GPUKernel& kernel) const;
 
     const GPUFloatArray& triangles() const { return triangles_; }
     const GPUFloatArray& materials() const { return materials_; }
@@ -61,7 +67,8 @@ class SceneTextures {
     bool hasVertexColors_;
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
-    bool hasNormalMaps_ = false;  // some material has a normal map (and the scene texture coordinates)
+    bool hasNormalMaps_ = false;
+    bool hasAlpha_ = false;  // SCENE_ALPHA in the accelerators' kernels  // some material has a normal map (and the scene texture coordinates)
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;

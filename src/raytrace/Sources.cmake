@@ -2,6 +2,7 @@
 # both lists and tests/fuzz instruments the GL-free one for libFuzzer. A source that includes
 # nothing of src/stream goes in the first.
 set(GPURT_RAYTRACE_CPU_SOURCES
+  AlphaCoverage.cpp
   BenchRays.cpp
   Camera.cpp
   CpuTracer.cpp

@@ -888,8 +888,7 @@ class GltfReader {
         }
         // Material extensions gpurt does not read are warned about once per file with the
         // other unread extensions (kExtensionsRead).
-        if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-            warn(named + ": alphaMode " + g.alphaMode + " is not used yet; the material is opaque");
+        readAlpha(g, baseTexture, named, m, uv, scene);
         uvs_.resize(scene.materials.size() + 1);
         uvs_.back() = uv;
         scene.materials.push_back(m);
@@ -904,6 +903,30 @@ class GltfReader {
         glm::dmat3 transform{1.0};
         std::string slot;  // the slot that chose them
     };
+
+    // alphaMode MASK / BLEND: alpha is baseColorFactor[3] times baseColorTexture's A (the base
+    // colour's texture slot when the material has one), MASK's alphaCutoff in [0, 1].
+    void readAlpha(const tinygltf::Material& g, const tinygltf::TextureInfo& baseTexture, const std::string& named,
+                   Material& m, MaterialUv& uv, Scene& scene) {
+        if (g.alphaMode.empty() || g.alphaMode == "OPAQUE") return;
+        if (g.alphaMode != "MASK" && g.alphaMode != "BLEND") {
+            warn(named + ": alphaMode " + g.alphaMode + " is not OPAQUE, MASK or BLEND; the material is opaque");
+            return;
+        }
+        const double alpha = g.pbrMetallicRoughness.baseColorFactor[3];
+        if (!(alpha >= 0.0 && alpha <= 1.0)) fail(named + ": baseColorFactor's alpha must be in [0, 1]");
+        m.alphaMode = g.alphaMode == "MASK" ? 1 : 2;  // glsl/common/alpha.h GPURT_ALPHA_MASK, _BLEND
+        m.alphaFactor = float(alpha);
+        if (m.alphaMode == 1) {
+            if (!(g.alphaCutoff >= 0.0 && g.alphaCutoff <= 1.0))
+                fail(named + ": alphaCutoff " + std::to_string(g.alphaCutoff) + " must be in [0, 1]");
+            m.alphaCutoff = float(g.alphaCutoff);
+        }
+        int tex = m.diffuseTexture;
+        if (tex < 0 && baseTexture.index >= 0)
+            tex = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
+        if (tex >= 0) m.alphaTexture = {tex, 3};  // A
+    }
 
     // The scene texture of one texture slot of a material (-1 with a warning when its image could
     // not be read); the first slot fixes the material's texture coordinates (uv).

@@ -387,6 +387,8 @@ class MtlReader : public tinyobj::MaterialReader {
             what = "Ni";
         else if (bad(m.roughness) || bad(m.metallic))
             what = "Pr or Pm";
+        else if (bad(m.dissolve))
+            what = "d (or Tr)";
         if (what.empty()) return std::nullopt;
         return Problem{library, "material " + quote(m.name) + ": " + what + " must be finite and not negative"};
     }
@@ -500,6 +502,33 @@ void checkAgainstPreScan(const ObjFile& obj, const ObjPreScan& scan, const std::
                                   std::to_string(scan.faceSizes.size()) + " 'f' lines");
 }
 
+// d (1 - Tr) and map_d of a material that is not glass: alpha coverage, BLEND (rays pass with
+// probability 1 - d times map_d). map_d is a scalar texture: the channel its -imfchan names (r, g,
+// b; m, the matte channel, is A), else (tinyobjloader's default 'm', or l, luminance) A where the
+// image has any alpha below 1 (an RGBA cut-out) and R where it has none (a grey mask).
+void alphaCoverage(const tinyobj::material_t& m, const std::filesystem::path& folder, const std::string& name,
+                   std::map<std::string, int>& textureFiles, Scene& scene, Material& material) {
+    float d = static_cast<float>(m.dissolve);
+    if (d > 1.0f) {
+        warnAt(FileLoc{name}, "material " + quote(m.name) + ": d above 1 (or Tr below 0), clamped to 1");
+        d = 1.0f;
+    }
+    int texture = -1;
+    if (!m.alpha_texname.empty()) texture = textureOf(m.alpha_texname, folder, name, m.name, textureFiles, scene);
+    if (d >= 1.0f && texture < 0) return;
+    material.alphaMode = 2;  // glsl/common/alpha.h GPURT_ALPHA_BLEND
+    material.alphaFactor = d;
+    if (texture < 0) return;
+    const char channel = m.alpha_texopt.imfchan;
+    int c = channel == 'r' ? 0 : channel == 'g' ? 1 : channel == 'b' ? 2 : -1;
+    if (c < 0) {
+        const std::vector<uint32_t>& texels = scene.textures[size_t(texture)].image.texels;
+        const bool cutOut = std::any_of(texels.begin(), texels.end(), [](uint32_t t) { return (t >> 24) != 255u; });
+        c = cutOut ? 3 : 0;
+    }
+    material.alphaTexture = {texture, c};
+}
+
 // The scene material of an MTL material (its map_Kd added to the scene's textures).
 Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path& folder,
                        const MtlReader& mtlReader, const std::string& name,
@@ -524,6 +553,7 @@ Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path
             warnAt(FileLoc{name}, "material " + quote(m.name) + ": Tf above 1, clamped to 1");
         }
     }
+    if (!isDielectric(m, indexGiven)) alphaCoverage(m, folder, name, textureFiles, scene, material);
     // The MTL PBR extension (Pr roughness, Pm metallic, their maps' first channel, norm, map_Ke):
     // glTF's metallic-roughness model with Kd the base colour (glsl/common/materials/gltf.h).
     if (mtlReader.givenPbr.count(m.name) && material.ior == 0.0f) {

@@ -62,7 +62,16 @@ struct Material {
     // 1 + strength (texel - 1).
     TextureChannel occlusionTexture;
     float occlusionStrength = 1.0f;
+    // Alpha coverage (glsl/common/alpha.h GPURT_ALPHA_*): 0 opaque; 1 MASK, the surface is there
+    // where alpha >= alphaCutoff; 2 BLEND, rays pass it with probability 1 - alpha. alpha is
+    // alphaFactor times alphaTexture's channel where it has one (glTF baseColorFactor[3] times
+    // baseColorTexture's A; MTL d times map_d's R).
+    int alphaMode = 0;
+    float alphaFactor = 1.0f;
+    float alphaCutoff = 0.5f;
+    TextureChannel alphaTexture;
 
+    bool hasAlpha() const { return alphaMode != 0; }
     bool emits() const { return emission != glm::vec3(0.0f); }
 };
 

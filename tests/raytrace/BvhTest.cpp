@@ -172,9 +172,9 @@ TEST(BvhTest, ClosestAndAnyHitAgreeWithBruteForceAndTheGrid) {
         const glm::vec3 d = raymath::contractNormalize(target - o);
         const float tLimit = k % 3 == 0 ? 0.5f * glm::length(target - o) : 1e30f;
         const auto [t, id] = bruteForce(scene, o, d, tLimit);
-        const TraceHit hit = tracer.closestHit(o, d, tLimit);
-        const TraceHit gridHit = gridTracer.closestHit(o, d, tLimit);
-        const TraceHit any = tracer.anyHit(o, d, tLimit);
+        const TraceHit hit = tracer.closestHit(o, d, tLimit, 0u);
+        const TraceHit gridHit = gridTracer.closestHit(o, d, tLimit, 0u);
+        const TraceHit any = tracer.anyHit(o, d, tLimit, 0u);
         ++rays;
         hits += id >= 0;
         // The same t (the same triangle, or another at exactly the same distance: a shared edge).

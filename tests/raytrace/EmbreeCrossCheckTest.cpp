@@ -220,7 +220,7 @@ TEST(EmbreeCrossCheckTest, BothAcceleratorsOnTheBenchViewsOfEveryScene) {
             const std::unique_ptr<CpuAccelerator> tracer = makeCpuAccelerator(scene, accel);
             int bothHit = 0, same = 0, hitMissSame = 0;
             for (size_t k = 0; k < primary.tLimit.size(); ++k) {
-                const TraceHit hit = tracer->closestHit(primary.origin[k], primary.direction[k], primary.tLimit[k]);
+                const TraceHit hit = tracer->closestHit(primary.origin[k], primary.direction[k], primary.tLimit[k], 0u);
                 const int prim = int(embreeHits[k].w);
                 hitMissSame += (hit.prim >= 0) == (prim >= 0);
                 if (hit.prim < 0 || prim < 0) continue;
@@ -233,7 +233,7 @@ TEST(EmbreeCrossCheckTest, BothAcceleratorsOnTheBenchViewsOfEveryScene) {
             for (size_t k = 0; k < shadow.tLimit.size(); ++k) {
                 if (shadow.tLimit[k] < 0.0f) continue;
                 ++shadowRays;
-                const bool ours = tracer->anyHit(shadow.origin[k], shadow.direction[k], shadow.tLimit[k]).prim >= 0;
+                const bool ours = tracer->anyHit(shadow.origin[k], shadow.direction[k], shadow.tLimit[k], 0u).prim >= 0;
                 occlusionSame += ours == embree.occluded(shadow.origin[k], shadow.direction[k], shadow.tLimit[k]);
             }
             std::printf("[ embree   ] %s, %s: prim %.4f%% of %d hits, hit/miss %.4f%%, occlusion %d of %d shadow rays\n",

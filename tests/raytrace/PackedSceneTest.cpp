@@ -159,6 +159,11 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.materials[m].reflectivity, y.materials[m].reflectivity)) << m;
         EXPECT_EQ(x.materials[m].name, y.materials[m].name) << m;
         EXPECT_EQ(x.materials[m].diffuseTexture, y.materials[m].diffuseTexture) << m;
+        EXPECT_EQ(x.materials[m].alphaMode, y.materials[m].alphaMode) << m;
+        EXPECT_TRUE(sameBits(x.materials[m].alphaFactor, y.materials[m].alphaFactor)) << m;
+        EXPECT_TRUE(sameBits(x.materials[m].alphaCutoff, y.materials[m].alphaCutoff)) << m;
+        EXPECT_EQ(x.materials[m].alphaTexture.texture, y.materials[m].alphaTexture.texture) << m;
+        EXPECT_EQ(x.materials[m].alphaTexture.channel, y.materials[m].alphaTexture.channel) << m;
     }
     ASSERT_EQ(x.textures.size(), y.textures.size());
     for (size_t k = 0; k < x.textures.size(); ++k) {
@@ -577,6 +582,37 @@ TEST_F(PackedSceneTest, VertexColoursTravelInTheirOwnSection) {
     bad.scene.colors.pop_back();
     bad.scene.colors[3].c1.y = 0.0f;
     EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+}
+
+// Alpha coverage (ALPH, five words a material): written only when some material has alpha, so
+// that other files stay as they were; kept through the round trip; a mode, factor or cutoff out
+// of range is refused by reader and writer.
+TEST_F(PackedSceneTest, AlphaCoverageTravelsInItsOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "ALPH")) << "a scene without alpha";
+    LoadedScene alpha = source_;
+    alpha.scene.materials[1].alphaMode = 1;  // MASK
+    alpha.scene.materials[1].alphaCutoff = 0.25f;
+    alpha.scene.materials[2].alphaMode = 2;  // BLEND
+    alpha.scene.materials[2].alphaFactor = 0.3f;
+    const size_t materials = alpha.scene.materials.size();
+    const Bytes b = encodePackedScene(alpha, grid_, "alpha");
+    const Entry alph = section(b, "ALPH");
+    EXPECT_EQ(alph.size, 8 + 20 * materials);
+    EXPECT_EQ(get64(b, alph.offset), materials);
+    EXPECT_EQ(get32(b, alph.offset + 8 + 20 * 2), 2u);
+    const LoadedScene packed = decodePackedScene(b, "alpha.gpscene");
+    expectSameScene(alpha, packed);
+    EXPECT_EQ(packed.scene.materials[2].alphaFactor, 0.3f);
+    auto withFloat = [&](size_t at, float v) {
+        return patched(b, [&](Bytes& p) { put32(p, at, std::bit_cast<uint32_t>(v)); });
+    };
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, alph.offset + 8, 3); }), "alpha mode 3");
+    EXPECT_REFUSED(withFloat(alph.offset + 8 + 20 + 8, 1.5f), "material 1: alpha mode");
+    EXPECT_REFUSED(withFloat(alph.offset + 8 + 4, std::numeric_limits<float>::quiet_NaN()), "material 0: alpha mode");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, alph.offset + 8 + 12, 7); }), "texture 7 out of range");
+    LoadedScene bad = alpha;
+    bad.scene.materials[1].alphaCutoff = -1.0f;
+    EXPECT_THROW(encodePackedScene(bad, grid_, "bad"), InputError);
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

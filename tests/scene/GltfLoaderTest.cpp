@@ -197,6 +197,57 @@ TEST(GltfLoader, MaterialsCameraAndPointLights) {
     EXPECT_EQ(scene.lights[0].intensity, 40.0f);
 }
 
+// alphaMode: MASK with its alphaCutoff (default 0.5), BLEND; alpha is baseColorFactor[3] (no
+// texture here); OPAQUE and no mode are opaque. A cutoff outside [0, 1] is refused naming the
+// material.
+std::string alphaTriangle(const std::string& material) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    return g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"materials\": [" + material +
+                  "], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) +
+                  "}, \"material\": 0}]}]");
+}
+
+TEST(GltfLoader, AlphaModesAndCutoff) {
+    const std::string base = "\"pbrMetallicRoughness\": {\"baseColorFactor\": [1, 1, 1, 0.25]}";
+    const Scene mask = parse(alphaTriangle("{" + base + ", \"alphaMode\": \"MASK\", \"alphaCutoff\": 0.3}"));
+    EXPECT_EQ(mask.materials[1].alphaMode, 1);  // GPURT_ALPHA_MASK
+    EXPECT_EQ(mask.materials[1].alphaFactor, 0.25f);
+    EXPECT_EQ(mask.materials[1].alphaCutoff, 0.3f);
+    EXPECT_FALSE(mask.materials[1].alphaTexture.given());
+    const Scene defaultCutoff = parse(alphaTriangle("{" + base + ", \"alphaMode\": \"MASK\"}"));
+    EXPECT_EQ(defaultCutoff.materials[1].alphaCutoff, 0.5f);
+    const Scene blend = parse(alphaTriangle("{" + base + ", \"alphaMode\": \"BLEND\"}"));
+    EXPECT_EQ(blend.materials[1].alphaMode, 2);  // GPURT_ALPHA_BLEND
+    EXPECT_EQ(blend.materials[1].alphaFactor, 0.25f);
+    EXPECT_EQ(parse(alphaTriangle("{" + base + ", \"alphaMode\": \"OPAQUE\"}")).materials[1].alphaMode, 0);
+    EXPECT_EQ(parse(alphaTriangle("{" + base + "}")).materials[1].alphaMode, 0);
+    for (const char* cutoff : {"-0.5", "1.5", "1e38"}) {
+        const std::string message =
+            test::refusalOf([&] { parseGltf(alphaTriangle("{\"name\": \"leaves\", " + base +
+                                                          ", \"alphaMode\": \"MASK\", \"alphaCutoff\": " + cutoff + "}"),
+                                            "bad.gltf", fs::temp_directory_path()); },
+                            "bad.gltf: ");
+        EXPECT_NE(message.find("'leaves'"), std::string::npos) << cutoff << ": " << message;
+        EXPECT_NE(message.find("alphaCutoff"), std::string::npos) << cutoff << ": " << message;
+    }
+}
+
+// With a baseColorTexture, alpha is baseColorFactor[3] times the texture's A.
+TEST(GltfLoader, AlphaTextureIsTheBaseColourTexturesA) {
+    std::ifstream in("tests/assets/textures/quad_separate.gltf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find("\"alphaMode\": \"OPAQUE\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::strlen("\"alphaMode\": \"OPAQUE\""), "\"alphaMode\": \"BLEND\"");
+    const Scene scene = parseGltf(text, "quad_separate.gltf", "tests/assets/textures");
+    const Material& m = scene.materials[scene.materialIds[0]];
+    EXPECT_EQ(m.alphaMode, 2);
+    ASSERT_GE(m.diffuseTexture, 0);
+    EXPECT_EQ(m.alphaTexture.texture, m.diffuseTexture);
+    EXPECT_EQ(m.alphaTexture.channel, 3);
+}
+
 // The message of the InputError parsing `text` throws (Refusal.h).
 std::string refusal(const std::string& text, const fs::path& folder = fs::temp_directory_path()) {
     return test::refusalOf([&] { parseGltf(text, "bad.gltf", folder); }, "bad.gltf: ");

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "image/ImageIO.h"
 #include "image/InputError.h"
 
 namespace gpurt {
@@ -197,6 +198,44 @@ TEST_F(ObjLoaderTest, GlassIllumModelsAreGlassOnlyWhereLightBendsOrPasses) {
     EXPECT_EQ(material(3).reflectivity, glm::vec3(0.6f));
     EXPECT_EQ(material(4).ior, 1.5f) << "no Ni: common glass, as before";
     EXPECT_EQ(material(5).ior, 1.33f);
+}
+
+// d and map_d are alpha coverage (BLEND: rays pass with probability 1 - alpha), Tr is 1 - d; glass
+// (illum 4 with Ni other than 1) stays glass. map_d is a scalar texture: R of a grey mask, A of an
+// image with alpha.
+TEST_F(ObjLoaderTest, DissolveTrAndMapDAreAlphaCoverage) {
+    writePngRgb8(dir_ / "grey.png", 2, 1, std::vector<unsigned char>{0, 0, 0, 255, 255, 255});
+    // A 2 x 1 RGBA TGA (uncompressed true colour, 32 bits, top-left origin): alpha 0 and 255.
+    const unsigned char tga[18 + 8] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 1, 0, 32, 0x28,
+                                       10, 20, 30, 0, 40, 50, 60, 255};
+    std::ofstream(dir_ / "cut.tga", std::ios::binary).write(reinterpret_cast<const char*>(tga), sizeof(tga));
+    write("alpha.mtl",
+          "newmtl half\nKd 0.5 0.5 0.5\nd 0.5\n"
+          "newmtl tr\nKd 0.5 0.5 0.5\nTr 0.25\n"
+          "newmtl opaque\nKd 0.5 0.5 0.5\nd 1\n"
+          "newmtl mask\nKd 0.5 0.5 0.5\nmap_d grey.png\n"
+          "newmtl cut\nKd 0.5 0.5 0.5\nd 0.8\nmap_d cut.tga\n"
+          "newmtl glass\nillum 4\nNi 1.5\nd 0.5\n");
+    std::string faces = "mtllib alpha.mtl\n" + kThreeVertices + "vt 0 0\nvt 1 0\nvt 0 1\n";
+    for (const char* m : {"half", "tr", "opaque", "mask", "cut", "glass"}) faces += "usemtl " + std::string(m) + "\nf 1/1 2/2 3/3\n";
+    const Scene scene = loadObj(write("alpha.obj", faces));
+    ASSERT_EQ(scene.triangles.size(), 6u);
+    auto material = [&](size_t t) { return scene.materials[scene.materialIds[t]]; };
+    EXPECT_EQ(material(0).alphaMode, 2);  // GPURT_ALPHA_BLEND
+    EXPECT_EQ(material(0).alphaFactor, 0.5f);
+    EXPECT_FALSE(material(0).alphaTexture.given());
+    EXPECT_EQ(material(1).alphaMode, 2);
+    EXPECT_EQ(material(1).alphaFactor, 0.75f);
+    EXPECT_EQ(material(2).alphaMode, 0);
+    EXPECT_EQ(material(3).alphaMode, 2);
+    EXPECT_EQ(material(3).alphaFactor, 1.0f);
+    ASSERT_TRUE(material(3).alphaTexture.given());
+    EXPECT_EQ(material(3).alphaTexture.channel, 0) << "a grey mask: its R";
+    EXPECT_EQ(material(4).alphaFactor, 0.8f);
+    ASSERT_TRUE(material(4).alphaTexture.given());
+    EXPECT_EQ(material(4).alphaTexture.channel, 3) << "an image with alpha: its A";
+    EXPECT_EQ(material(5).alphaMode, 0) << "glass is not alpha";
+    EXPECT_EQ(material(5).ior, 1.5f);
 }
 
 // A reflective material's Ks above 1 is kept as specular colour but clamped to 1 as reflectivity

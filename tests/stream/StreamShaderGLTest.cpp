@@ -146,6 +146,13 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
                                         "#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
                 variants.push_back(library.assemble(path, defines));
         if (path == "accel/grid/traverse.frag") variants.push_back(library.assemble(path, "#define TRAVERSE_STEPS 16\n"));
+        // Alpha coverage in the accelerators' kernels (SceneTextures::bindCoverage defines SCENE_ALPHA).
+        if (path == "accel/grid/trace.frag" || path == "accel/bvh/trace.frag")
+            for (const char* defines : {"#define SCENE_ALPHA\n#define SCENE_TEXTURES\n#define FROM_START\n#define TRACE_STEPS (1 << 30)\n",
+                                        "#define SCENE_ALPHA\n#define ANY_HIT\n#define TRACE_STEPS 16\n",
+                                        "#define SCENE_ALPHA\n#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
+                variants.push_back(library.assemble(path, defines));
+        if (path == "accel/grid/intersect.frag") variants.push_back(library.assemble(path, "#define SCENE_ALPHA\n#define SCENE_TEXTURES\n"));
         if (path == "integrators/whitted/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
         if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag") {
             variants.push_back(library.assemble(path, "#define EMITTER\n"));

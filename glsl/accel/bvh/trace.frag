@@ -3,6 +3,15 @@
 // hit before its limit, in one pass: no ray state between passes. With CAMERA the kernel generates
 // the camera's primary rays itself (as the grid's trace.frag does) and reads no ray stream.
 #include "scene/pixel.glsl"
+// Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
+#include "common/sampling.h"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage (scene/alpha.glsl)
+#include "scene/alpha.glsl"
+uint rayCoverageKey;
+#define GPURT_BVH_COVERED(id, u, v) hitCovered(id, u, v, rayCoverageKey)
+#else
+#define GPURT_BVH_COVERED(id, u, v) true
+#endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
 #endif
@@ -45,6 +54,9 @@ void main() {
     bool anyHit = true;
 #else
     bool anyHit = false;
+#endif
+#ifdef SCENE_ALPHA
+    rayCoverageKey = elementCoverageKey();
 #endif
     float t, u, v;
     int steps, tests, state;  // tests: unused here (the cpu's cost estimate)

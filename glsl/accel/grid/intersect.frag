@@ -4,6 +4,12 @@
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
 #include "grid.glsl"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+#include "scene/alpha.glsl"
+#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#else
+#define GRID_COVERED(id, u, v) true
+#endif
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
@@ -36,7 +42,7 @@ void main() {
         int id = fetchListTriangle(i, v0, e1, e2);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance) {
+            t <= tExit + cellTolerance && GRID_COVERED(id, u, w)) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -9,6 +9,14 @@
 // With CAMERA (and FROM_START) the kernel generates the camera's primary rays itself, as
 // raygen.frag does, and reads no ray stream: the primary trace when only the hits are wanted.
 #include "grid.glsl"
+// Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
+#include "common/sampling.h"
+#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+#include "scene/alpha.glsl"
+#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#else
+#define GRID_COVERED(id, u, v) true
+#endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
 #endif
@@ -90,7 +98,7 @@ void main() {
             vec3 v0, e1, e2;
             int id = fetchListTriangle(k, v0, e1, e2);
             float t, u, w;
-            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT
+            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, u, w)
 #ifndef ANY_HIT
                 && t <= tExit + cellTolerance
 #endif

@@ -46,8 +46,8 @@ AccelEstimate estimateAccelerators(const Scene& scene, const UniformGrid& grid, 
     for (int j = 0; j < kEstimateSize; ++j)
         for (int i = 0; i < kEstimateSize; ++i) {
             const glm::vec3 d = primaryDirection(camera, i, j);
-            const TraceHit g = gridTracer.closestHit(camera.eye, d, 1e30f);
-            const TraceHit b = bvhTracer.closestHit(camera.eye, d, 1e30f);
+            const TraceHit g = gridTracer.closestHit(camera.eye, d, 1e30f, 0u);
+            const TraceHit b = bvhTracer.closestHit(camera.eye, d, 1e30f, 0u);
             cells += g.steps;
             gridTests += g.tests;
             nodes += b.steps;

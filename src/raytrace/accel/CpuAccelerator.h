@@ -30,11 +30,13 @@ struct TraceHit {
 class CpuAccelerator {
   public:
     virtual ~CpuAccelerator() = default;
-    // First hit of o + t d with 0 < t < tLimit; d must be normalised.
-    virtual TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit) const = 0;
+    // First hit of o + t d with 0 < t < tLimit; d must be normalised. A hit on a surface with
+    // alpha counts only where it covers the ray of coverage key `coverageKey` (the ray's sample:
+    // glsl/common/alpha.h coverageKey; AlphaCoverage).
+    virtual TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const = 0;
     // Any hit with 0 < t < tLimit (shadow rays): prim is some blocker, not necessarily the
     // nearest. Blocked exactly when closestHit hits.
-    virtual TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit) const = 0;
+    virtual TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const = 0;
 };
 
 }  // namespace gpurt

@@ -15,6 +15,9 @@ namespace gpurt {
 struct PixelSample {
     int i, j;
     uint32_t index, count, seed;
+
+    // The coverage key of its rays (common/alpha.h): the accelerators' alpha coverage.
+    uint32_t coverageKey() const { return raymath::coverageKey(uint32_t(i), uint32_t(j), index, seed); }
 };
 
 // Where a sample writes its pixel's primary AOVs: element `pixel` of `out` (nullptr: nowhere).

@@ -17,6 +17,8 @@ struct BvhTexels {
     const uvec4* nodes;
     const vec4* triangles;
     vec3 boxMin, boxStep;
+    const AlphaCoverage* coverage;
+    uint32_t coverageKey;
 };
 
 #define GPURT_BVH_PARAMS const BvhTexels &bvh,
@@ -24,6 +26,7 @@ struct BvhTexels {
 #define GPURT_BVH_TRI(i) bvh.triangles[i]
 #define GPURT_BVH_BOX_MIN bvh.boxMin
 #define GPURT_BVH_BOX_STEP bvh.boxStep
+#define GPURT_BVH_COVERED(id, u, v) hitCovered(bvh.coverage, id, u, v, bvh.coverageKey)
 #include "../../../../glsl/common/bvh.h"
 
 std::vector<vec4> asVectors(const TextureTexels& texels) {
@@ -41,14 +44,15 @@ std::vector<uvec4> asUintVectors(const TextureTexels& texels) {
 }  // namespace
 
 BvhCpu::BvhCpu(const Scene& scene, const Bvh& bvh)
-    : nodes_(asUintVectors(bvhNodeTexels(bvh))),
+    : coverage_(AlphaCoverage::of(scene)),
+      nodes_(asUintVectors(bvhNodeTexels(bvh))),
       triangles_(asVectors(bvhTriangleTexels(scene, bvh))),
       maxSteps_(bvh.maxNodeSteps()) {
     bvh.quantisation(boxMin_, boxStep_);
 }
 
-TraceHit BvhCpu::trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit) const {
-    const BvhTexels texels{nodes_.data(), triangles_.data(), boxMin_, boxStep_};
+TraceHit BvhCpu::trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit, uint32_t coverageKey) const {
+    const BvhTexels texels{nodes_.data(), triangles_.data(), boxMin_, boxStep_, coverage_.get(), coverageKey};
     TraceHit hit{};
     hit.prim = bvhTrace(texels, o, d, tLimit, anyHit, maxSteps_, hit.t, hit.u, hit.v, hit.steps, hit.tests, hit.state);
     if (hit.prim < 0) hit.t = std::numeric_limits<float>::infinity();

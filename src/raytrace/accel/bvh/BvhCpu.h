@@ -2,10 +2,12 @@
 // texels the kernel reads (SceneTextureLayout's bvhNodeTexels and bvhTriangleTexels).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "raytrace/AlphaCoverage.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/accel/bvh/Bvh.h"
 #include "scene/Scene.h"
@@ -16,11 +18,17 @@ class BvhCpu final : public CpuAccelerator {
   public:
     BvhCpu(const Scene& scene, const Bvh& bvh);
 
-    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return trace(o, d, tLimit, false); }
-    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return trace(o, d, tLimit, true); }
+    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
+        return trace(o, d, tLimit, false, coverageKey);
+    }
+    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
+        return trace(o, d, tLimit, true, coverageKey);
+    }
 
   private:
-    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit) const;
+    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit, uint32_t coverageKey) const;
+
+    std::unique_ptr<const AlphaCoverage> coverage_;  // null: the scene has no alpha
 
     std::vector<glm::uvec4> nodes_;
     std::vector<glm::vec4> triangles_;

@@ -15,14 +15,15 @@ namespace gpurt {
 using namespace raymath;
 
 GridCpu::GridCpu(const Scene& scene, const UniformGrid& grid)
-    : grid_(grid), hitTolerance_(grid.hitTolerance()), maxSteps_(grid.maxCellSteps()) {
+    : grid_(grid), hitTolerance_(grid.hitTolerance()), maxSteps_(grid.maxCellSteps()),
+      coverage_(AlphaCoverage::of(scene)) {
     triangles_.reserve(scene.triangles.size());
     for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
 }
 
 // glsl/accel/grid/trace.frag is this function as one kernel.
 template <bool AnyHit>
-TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
+TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
     TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, 0, RAY_INACTIVE};
 
     // Ray generation: clip against the grid's box.
@@ -54,7 +55,8 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
                 const PreparedTriangle& tri = triangles_[id];
                 float t, u, v;
                 if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;
-                if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t) {
+                if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t &&
+                    hitCovered(coverage_.get(), int(id), u, v, coverageKey)) {
                     hit.t = t;
                     hit.prim = static_cast<int>(id);
                     hit.u = u;
@@ -78,7 +80,7 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const {
     }
 }
 
-template TraceHit GridCpu::traceRay<false>(glm::vec3, glm::vec3, float) const;
-template TraceHit GridCpu::traceRay<true>(glm::vec3, glm::vec3, float) const;
+template TraceHit GridCpu::traceRay<false>(glm::vec3, glm::vec3, float, uint32_t) const;
+template TraceHit GridCpu::traceRay<true>(glm::vec3, glm::vec3, float, uint32_t) const;
 
 }  // namespace gpurt

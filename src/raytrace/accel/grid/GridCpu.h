@@ -2,8 +2,10 @@
 // (glsl/accel/grid/) run as passes, with the same float operations (glsl/common/raymath.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "raytrace/AlphaCoverage.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/Scene.h"
@@ -15,12 +17,16 @@ class GridCpu final : public CpuAccelerator {
     // Keeps a reference to the grid: it must outlive the accelerator.
     GridCpu(const Scene& scene, const UniformGrid& grid);
 
-    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return traceRay<false>(o, d, tLimit); }
-    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit) const override { return traceRay<true>(o, d, tLimit); }
+    TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
+        return traceRay<false>(o, d, tLimit, coverageKey);
+    }
+    TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
+        return traceRay<true>(o, d, tLimit, coverageKey);
+    }
 
   private:
     template <bool AnyHit>
-    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit) const;
+    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const;
 
     struct PreparedTriangle {
         glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
@@ -30,6 +36,7 @@ class GridCpu final : public CpuAccelerator {
     std::vector<PreparedTriangle> triangles_;
     float hitTolerance_;
     int maxSteps_;
+    std::unique_ptr<const AlphaCoverage> coverage_;  // null: the scene has no alpha
 };
 
 }  // namespace gpurt

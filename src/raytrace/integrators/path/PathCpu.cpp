@@ -13,7 +13,7 @@ glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer
                       const std::vector<PointLight>& lights, int depth, RenderStats& stats) {
     glm::vec3 local(0.0f);
     for (const PointLight& light : lights)
-        if (t.lightVisible(s.p, s.n, light.position, stats))
+        if (t.lightVisible(s.p, s.n, light.position, px.coverageKey(), stats))
             local += pathLightContribution(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
     vec3 l;
     float pdf;
@@ -38,7 +38,7 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
     glm::vec3 o = eye, color(0.0f), weight(1.0f);
     float prevPdf = 0.0f;  // the camera ray: its emission counts in full
     for (int b = 0;; ++b) {
-        const TraceHit hit = t.trace(o, d, GPURT_FAR);
+        const TraceHit hit = t.trace(o, d, GPURT_FAR, px.coverageKey());
         stats.addLivePaths(size_t(b), 1);
         ++(b == 0 ? stats.primaryRays : stats.secondaryRays);
         if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;

@@ -101,6 +101,9 @@ void PathGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderO
     startPaths();
     for (int b = 0; b <= maxDepth; ++b) {
         if (masked_) aliveMask_.update();
+        // From the second round on the paths are packed: the accelerators' alpha coverage reads
+        // each ray's pixel from pathState (scene/alpha.glsl).
+        for (GPUKernel* k : p_.accel.kernels()) k->setUniform("coverageFromStream", b > 0 ? 1 : 0);
         const uint64_t rays = traceRays(false);
         if (b > 0 && rays == 0) break;  // every path has ended
         stats.addLivePaths(size_t(b), rays);

@@ -14,7 +14,7 @@ glm::vec3 whittedLocal(const CpuTracer& t, const PixelSample& px, const CpuTrace
     glm::vec3 local = t.environment().empty() ? materialAmbient(s.material)
                                               : materialEnvironmentAmbient(s.material, t.environment().irradiance(s.ns));
     for (const PointLight& light : lights)
-        if (t.lightVisible(s.p, s.n, light.position, stats))
+        if (t.lightVisible(s.p, s.n, light.position, px.coverageKey(), stats))
             local += materialLight(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
     vec3 q;
     uint32_t id;
@@ -39,7 +39,7 @@ glm::vec3 whittedSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye
     glm::vec3 o = eye, color(0.0f), weight(1.0f);
     int height = 0, depth = 0, rays = 1;
     for (int round = 0;; ++round) {  // the ray's place in the tree's order: its GL round
-        const TraceHit hit = t.trace(o, d, GPURT_FAR);
+        const TraceHit hit = t.trace(o, d, GPURT_FAR, px.coverageKey());
         ++(round == 0 ? stats.primaryRays : stats.secondaryRays);
         if (round == 0 && aovs.out) aovs.out->steps[aovs.pixel] = static_cast<float>(hit.steps);
         if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;

@@ -1,0 +1,33 @@
+// Alpha coverage inside the accelerators' traversals (SCENE_ALPHA: some material has alpha; the
+// accelerators' kernels include this file only then): whether a candidate hit counts
+// (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). GpuTracer binds the scene
+// textures it reads and sets the sample's uniforms.
+#include "../common/sampling.h"
+#include "shading.glsl"
+#include "../common/alpha.h"
+
+uniform uint coverageSample;  // the sample index and seed of the rays traced (GpuTracer::setSample)
+uniform uint coverageSeed;
+// 1 where an element's ray need not be its pixel's (the path integrator's packed paths after its
+// first round): the pixel is then (y, z) of coveragePixels, the pathState stream (shading.glsl
+// pathPixel); 0: the element's own pixel.
+uniform int coverageFromStream;
+uniform sampler2D coveragePixels;
+
+// The coverage key of this element's ray: its pixel's sample.
+uint elementCoverageKey() {
+    uvec2 pixel = coverageFromStream != 0 ? uvec2(readStream(coveragePixels).yz) : imagePixel();
+    return coverageKey(pixel.x, pixel.y, coverageSample, coverageSeed);
+}
+
+// Whether triangle `id` covers the ray of key `key` at barycentrics (u, v): its material's texel
+// 7 (alpha mode, factor, cutoff, channel), the channel at the hit's texture coordinates.
+bool hitCovered(int id, float u, float v, uint key) {
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    int m = int(texelFetch(triangles, at, 0).w);
+    vec4 alpha = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 7, 0), 0);
+    int mode = int(alpha.x);
+    if (mode == GPURT_ALPHA_OPAQUE) return true;
+    float a = alpha.y * textureChannel(int(alpha.w), fetchTexcoord(id, u, v));
+    return alphaCovers(mode, a, alpha.z, key, id);
+}
