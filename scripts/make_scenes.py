@@ -12,6 +12,8 @@ from geometry generated here, so that every shipped asset can be regenerated and
   F  metal_rough_spheres.json  glTF's metallic-roughness model in the spirit of Khronos'
                    MetalRoughSpheres: 5 x 5 spheres, metallic 0..1 down, roughness 0..1 across,
                    under the sky of sky.json
+  G  rough_glass.json  KHR_materials_transmission's rough dielectric (JSON transmission, ior):
+                   five glass spheres, roughness 0..0.5, one tinted, on a slab under the sky
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -476,13 +478,34 @@ def scene_f():
     return obj.triangles * 25
 
 
+def scene_g():
+    """Glass of glTF's model (JSON metallic, roughness, transmission, ior): sphere.obj five times
+    (scene F writes it) on a slab (slab.obj, a thin box)."""
+    obj = ObjWriter("A slab 24 x 0.2 x 14, its top at y = -1")
+    add_box(obj, (0.0, -1.1, 0.0), (12.0, 0.1, 7.0), 0.0)
+    obj.save("slab.obj")
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
+    for k, (roughness, tint) in enumerate(((0.0, [1.0, 1.0, 1.0]), (0.1, [1.0, 1.0, 1.0]), (0.25, [1.0, 1.0, 1.0]),
+                                           (0.5, [1.0, 1.0, 1.0]), (0.1, [0.55, 0.85, 0.65]))):
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2), 0.0, 0.0]},
+                       "material": {"name": "glass r%g" % roughness, "diffuse": tint, "metallic": 0,
+                                    "roughness": roughness, "transmission": 1, "ior": 1.5}})
+    write("rough_glass.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 2.2, 9.5], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 45.0},
+        "render": {"size": [640, 320], "max_bounces": 8},
+    }) + "\n")
+    return obj.triangles + 5 * 64 * 32 * 2
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
         return 0
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
-                       ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f)):
+                       ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

@@ -56,6 +56,16 @@ struct MaterialRecord {
 #include "materials/gltf.h"
 #endif
 
+// The record as the ray meets the surface, on the front side (`entering`: frontFace) or the back:
+// the glTF model's index of refraction becomes relative across the boundary in the ray's
+// direction. Every integrator applies it to a hit's record before asking the record anything.
+GPURT_FN MaterialRecord materialFacing(MaterialRecord m, bool entering) {
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return gltfFacing(m, entering);
+#endif
+    return m;
+}
+
 // The radiance the surface sends along the ray by itself at shading normal ns (emission).
 GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
@@ -113,7 +123,7 @@ GPURT_FN bool materialSplits(MaterialRecord m) {
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
 #endif
 #ifdef GPURT_WITH_GLTF
-    if (m.model == GPURT_MODEL_GLTF) return false;
+    if (m.model == GPURT_MODEL_GLTF) return gltfSplits(m);
 #endif
     return classicSplits(m);
 }

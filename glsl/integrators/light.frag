@@ -53,6 +53,12 @@ void main() {
     vec3 n = shading.xyz;
     vec3 d = view.xyz;
     MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
+#ifdef SCENE_TRANSMISSION  // a transmissive glTF material: its index as seen from the ray's side
+    vec3 sv0, se1, se2;
+    int surfaceMaterial;
+    fetchTriangle(int(s.w), sv0, se1, se2, surfaceMaterial);
+    m = materialFacing(m, frontFace(se1, se2, d));
+#endif
 #ifdef ENVIRONMENT
     vec3 add = pathEnvironmentContribution(m, n, d, q.xyz, environmentRadiance(q.xyz), q.w);
 #elif defined(PATH)

@@ -98,7 +98,7 @@ bool CpuTracer::environmentVisible(int i, int j, uint32_t sample, uint32_t sampl
 CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
     const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
     Surface s;
-    s.material = materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v);
+    s.material = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), frontFace(tri.e1, tri.e2, d));
     s.p = o + hit.t * d;
     s.n = facingNormal(tri.e1, tri.e2, d);
     s.ns = s.n;  // the shading normal (surface.frag)

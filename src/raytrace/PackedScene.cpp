@@ -93,9 +93,12 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kModels)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return m.model != 0; });
+    // PBRM also carries the maps a classic material may have (MTL `norm`, `map_Ke`).
     if (tag == kPbr)
-        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
-                           [](const Material& m) { return m.model == GPURT_MODEL_GLTF; });
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(), [](const Material& m) {
+            return m.model == GPURT_MODEL_GLTF || m.normalTexture >= 0 || m.emissiveTexture >= 0 ||
+                   m.occlusionTexture.given() || m.roughnessTexture.given() || m.metallicTexture.given();
+        });
     // Only when some material has alpha: other files stay as they were before the section existed.
     if (tag == kAlpha)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),

@@ -160,6 +160,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
+        if (m.model == 2 && m.ior > 0.0f && m.transmission.x > 0.0f) hasTransmission_ = true;  // GPURT_MODEL_GLTF
     }
     hasAlpha_ = sceneUsesAlpha(scene);
 }
@@ -170,6 +171,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasVertexNormals_) kernel.addDefine("SCENE_VERTEX_NORMALS");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     if (hasNormalMaps_) kernel.addDefine("SCENE_NORMAL_MAPS");
+    if (hasTransmission_) kernel.addDefine("SCENE_TRANSMISSION");  // integrators/light.frag
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");

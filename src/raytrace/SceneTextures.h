@@ -68,6 +68,7 @@ class SceneTextures {
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
     bool hasNormalMaps_ = false;
+    bool hasTransmission_ = false;  // a glTF material with KHR_materials_transmission
     bool hasAlpha_ = false;  // SCENE_ALPHA in the accelerators' kernels  // some material has a normal map (and the scene texture coordinates)
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;

@@ -830,18 +830,31 @@ class GltfReader {
         const auto strength = g.extensions.find("KHR_materials_emissive_strength");
         if (strength != g.extensions.end()) emissive *= number(strength->second, "emissiveStrength", 1.0);
         m.emission = glm::vec3(emissive);
+        // KHR_materials_ior: the dielectric's F0; KHR_materials_transmission: a rough dielectric
+        // solid (glsl/common/materials/gltf.h; record ior > 0 with transmission t in all channels).
+        m.transmission = glm::vec3(0.0f);
+        const auto ior = g.extensions.find("KHR_materials_ior");
+        if (ior != g.extensions.end()) {
+            const double eta = number(ior->second, "ior", 1.5);
+            if (eta == 0.0) {
+                warn(at + ": KHR_materials_ior 0 (F0 = 1) is not supported; ior 1.5 is used");
+            } else {
+                if (!std::isfinite(eta) || eta < 1.0 || eta > 1e3) fail(at + ": KHR_materials_ior ior must be in [1, 1000] or 0");
+                m.ior = float(eta);
+            }
+        }
         const auto transmission = g.extensions.find("KHR_materials_transmission");
         if (transmission != g.extensions.end()) {
             const double t = number(transmission->second, "transmissionFactor", 0.0);
             if (!inUnit(t)) fail(at + ": transmissionFactor must be in [0, 1]");
-            if (t > 0.0) {  // the classic model's smooth dielectric
-                const auto ior = g.extensions.find("KHR_materials_ior");
-                m.model = 0;
-                m.ior = float(ior != g.extensions.end() ? number(ior->second, "ior", 1.5) : 1.5);
-                m.transmission = colour * float(t);
-                m.diffuse = glm::vec3(0.0f);
-                if (roughness > 0.0) warn(at + ": KHR_materials_transmission with roughness " + std::to_string(roughness) + " is rendered as smooth glass");
+            if (t > 0.0) {
+                if (!(m.ior > 0.0f)) m.ior = 1.5f;
+                m.transmission = glm::vec3(float(t));
                 if (transmission->second.Has("transmissionTexture")) warn(at + ": transmissionTexture is not used");
+                if (g.extensions.count("KHR_materials_volume") == 0 && !thinWalledWarned_) {
+                    warn(at + ": KHR_materials_transmission without KHR_materials_volume is thin-walled in glTF; gpurt renders solids of index ior");
+                    thinWalledWarned_ = true;
+                }
             }
         }
         if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
@@ -1074,6 +1087,7 @@ class GltfReader {
     std::vector<int> materialIds_;
     std::vector<MaterialUv> uvs_;  // per scene material: the texture coordinates of its textures
     mutable bool tangentsWarned_ = false;  // TANGENT's warning is said once per file
+    bool thinWalledWarned_ = false;        // so is the thin-walled transmission's
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;

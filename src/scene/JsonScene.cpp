@@ -515,10 +515,20 @@ class SceneReader {
             (std::string(key) == "metallic" ? material.metallic : material.roughness) = static_cast<float>(v);
             material.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF
         }
-        if (material.model == 2 && (find(value, "ior") || find(value, "reflectivity") || find(value, "specular") ||
-                                    find(value, "shininess") || find(value, "transmission")))
-            fail(at, "metallic and roughness (glTF's model) do not go with specular, shininess, reflectivity, ior or transmission");
-        if (const json* transmission = find(value, "transmission")) {
+        if (material.model == 2) {
+            // glTF's model: "ior" (KHR_materials_ior) and "transmission" a factor in [0, 1]
+            // (KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h).
+            if (find(value, "reflectivity") || find(value, "specular") || find(value, "shininess"))
+                fail(at, "metallic and roughness (glTF's model) do not go with specular, shininess or reflectivity");
+            if (material.ior != 0.0f && material.ior < 1.0f) fail(at / "ior", "must be >= 1 with metallic and roughness, got " + formatNumber(material.ior));
+            material.transmission = glm::vec3(0.0f);
+            if (const json* transmission = find(value, "transmission")) {
+                const double t = numberAtLeast(*transmission, at / "transmission", 0.0);
+                if (t > 1.0) fail(at / "transmission", "must be <= 1, got " + formatNumber(t));
+                material.transmission = glm::vec3(float(t));
+                if (t > 0.0 && material.ior == 0.0f) material.ior = 1.5f;
+            }
+        } else if (const json* transmission = find(value, "transmission")) {
             material.transmission = color(*transmission, at / "transmission");
             for (int i = 0; i < 3; ++i)
                 if (material.transmission[i] > 1.0f)

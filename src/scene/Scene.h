@@ -37,7 +37,9 @@ struct Material {
     glm::vec3 emission{0.0f};
     // A dielectric (glass) when ior > 0: Fresnel reflection and refraction with this index of
     // refraction (MTL illum 4, 6, 7 with Ni; JSON ior), the refracted ray filtered by
-    // transmission (Tf). reflectivity is then unused.
+    // transmission (Tf). reflectivity is then unused. The glTF model (below) reads them as
+    // KHR_materials_ior (0: 1.5) and, where ior > 0, KHR_materials_transmission's factor
+    // (transmission.x; 0: opaque).
     float ior = 0.0f;
     glm::vec3 transmission{1.0f};
     // Index into Scene::textures, or -1: the diffuse colour at a hit is diffuse times the

@@ -659,6 +659,24 @@ TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
     }
 }
 
+// A classic material's normal and emissive maps (MTL `norm`, `map_Ke` without `Pr`/`Pm`) travel in
+// PBRM too: the section is written for them although no material is of glTF's model.
+TEST_F(PackedSceneTest, ClassicMaterialsKeepTheirNormalAndEmissiveMaps) {
+    EXPECT_FALSE(findSection(bytes_, "PBRM")) << "no maps, no glTF material";
+    LoadedScene mapped = source_;
+    mapped.scene.materials[2].normalTexture = 1;
+    mapped.scene.materials[2].normalScale = 0.5f;
+    mapped.scene.materials[3].emissiveTexture = 0;
+    ASSERT_EQ(mapped.scene.materials[2].model, 0);
+    const Bytes b = encodePackedScene(mapped, grid_, "mapped");
+    EXPECT_TRUE(findSection(b, "PBRM"));
+    const LoadedScene packed = decodePackedScene(b, "mapped.gpscene");
+    EXPECT_EQ(packed.scene.materials[2].normalTexture, 1);
+    EXPECT_EQ(packed.scene.materials[2].normalScale, 0.5f);
+    EXPECT_EQ(packed.scene.materials[3].emissiveTexture, 0);
+    expectSameScene(mapped, packed);
+}
+
 TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
     const Entry g = section(bytes_, "GRID"), cells = section(bytes_, "CELL"),
                 list = section(bytes_, "LIST");

@@ -181,9 +181,13 @@ TEST(GltfLoader, MaterialsCameraAndPointLights) {
     EXPECT_EQ(chrome.diffuse, glm::vec3(0.2f, 0.4f, 0.6f));
     EXPECT_EQ(chrome.metallic, 1.0f);
     EXPECT_EQ(chrome.roughness, 0.0f);
-    const Material& glass = scene.materials[2];
+    EXPECT_EQ(chrome.ior, 0.0f);  // no KHR_materials_ior: 1.5, F0 0.04
+    EXPECT_EQ(chrome.transmission, glm::vec3(0.0f));
+    const Material& glass = scene.materials[2];  // the glTF model's rough dielectric
+    EXPECT_EQ(glass.model, 2);
     EXPECT_FLOAT_EQ(glass.ior, 1.33f);
-    EXPECT_EQ(glass.transmission, glm::vec3(0.9f, 1.0f, 0.8f));
+    EXPECT_EQ(glass.transmission, glm::vec3(1.0f));  // the factor; the tint is the base colour
+    EXPECT_EQ(glass.diffuse, glm::vec3(0.9f, 1.0f, 0.8f));
     EXPECT_EQ(scene.materials[3].emission, glm::vec3(8.0f, 4.0f, 0.0f));
     EXPECT_EQ(scene.materials[3].diffuse, glm::vec3(0.5f));
     ASSERT_TRUE(scene.camera.has_value());  // the first perspective one

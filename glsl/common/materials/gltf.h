@@ -16,11 +16,23 @@
 // Whitted: every light gets the same BRDF; a smooth coat spawns the mirror ray; the ambient term
 // is the directional albedo at normal incidence (smooth: its diffuse part, the mirror ray brings
 // the rest) times the occlusion map.
+// KHR_materials_ior sets the dielectric's F0 = ((ior - 1) / (ior + 1))^2 (record ior 0: 1.5, F0
+// 0.04). KHR_materials_transmission (factor t = record tf.x where ior > 0) turns the dielectric's
+// diffuse part into a rough dielectric's transmission, as the extension mixes it:
+//   (1 - m) [(1 - Fd) ((1 - t) c / pi + t c f_t) + Fd D V] + m Fm D V
+// with f_t Walter et al.'s (2007) microfacet BTDF (GGX, the same alpha, height-correlated Smith)
+// for a solid of index ior (the record's ior is relative across the boundary in the ray's
+// direction: materialFacing); leaving the solid, Fd is Schlick's at the transmitted angle and 1
+// past the critical angle. Path: the specular lobe's visible normal reflects or refracts, chosen
+// by their weights at it; a refracted direction's pdf is reported as 0 (a delta for MIS: light
+// sampling never goes through the surface). Whitted: the refracted ray is spawned as through a
+// smooth surface (Whitted cannot blur), with the mirror ray where the surface is smooth.
 #ifndef GPURT_MATERIALS_GLTF_H
 #define GPURT_MATERIALS_GLTF_H
 
 #define GPURT_GLTF_SMOOTH 0.01f     // roughness below this: a perfect mirror (alpha < 1e-4)
 #define GPURT_GLTF_DIELECTRIC 0.04f  // F0 of the dielectric (ior 1.5)
+#define GPURT_GLTF_IOR 1.5f          // the index without KHR_materials_ior
 #define GPURT_GLTF_MIN_COS 1e-4f     // n.v where the view is at or below the shading normal
 
 GPURT_FN bool gltfSmooth(float roughness) { return roughness < GPURT_GLTF_SMOOTH; }
@@ -47,22 +59,59 @@ GPURT_FN float smithVisibility(float a2, float nl, float nv) {
 // Smith's masking G1 of the view at n.v for alpha^2 = a2.
 GPURT_FN float smithMasking(float a2, float nv) { return 2.0f * nv / (nv + sqrt(a2 + (1.0f - a2) * nv * nv)); }
 
+// The dielectric's Schlick reflectance Fd at microfacet cosine c = |v.h| for the record's
+// (relative) ior and transmission factor t: Appendix B's 0.04 + 0.96 (1 - c)^5 for the default
+// index; F0 from the index (symmetric in ior and 1 / ior); leaving a transmissive solid (relative
+// index below 1) Schlick's at the transmitted angle, 1 past the critical angle.
+GPURT_FN float gltfDielectricFresnel(float ior, float t, float c) {
+    float f0 = GPURT_GLTF_DIELECTRIC;
+    if (ior > 0.0f && ior != GPURT_GLTF_IOR) {
+        float r = (ior - 1.0f) / (ior + 1.0f);
+        f0 = r * r;
+    }
+    if (t > 0.0f && ior > 0.0f && ior < 1.0f) {
+        float sin2T = (1.0f - c * c) / (ior * ior);
+        if (sin2T >= 1.0f) return 1.0f;
+        c = sqrt(1.0f - sin2T);
+    }
+    return f0 + (1.0f - f0) * schlickWeight(c);
+}
+
+// The transmission factor t of a record (0 without KHR_materials_transmission).
+GPURT_FN float gltfTransmission(MaterialRecord m) { return m.ior > 0.0f ? m.tf.x : 0.0f; }
+
 // The specular lobe's Fresnel weight (1 - m) Fd + m Fm at v.h = vh.
-GPURT_FN vec3 gltfSpecularFresnel(vec3 base, float metallic, float vh) {
+GPURT_FN vec3 gltfSpecularFresnel(MaterialRecord m, float vh) {
     float w = schlickWeight(vh);
-    float dielectric = GPURT_GLTF_DIELECTRIC + (1.0f - GPURT_GLTF_DIELECTRIC) * w;
-    vec3 conductor = base + (vec3(1.0f) - base) * w;
-    return vec3(dielectric * (1.0f - metallic)) + conductor * metallic;
+    vec3 conductor = m.kd + (vec3(1.0f) - m.kd) * w;
+    return vec3(gltfDielectricFresnel(m.ior, gltfTransmission(m), vh) * (1.0f - m.metallic)) + conductor * m.metallic;
 }
 
-// The diffuse term's weight (1 - m)(1 - Fd) c at v.h = vh (the BRDF's diffuse part times pi).
-GPURT_FN vec3 gltfDiffuseWeight(vec3 base, float metallic, float vh) {
-    float dielectric = GPURT_GLTF_DIELECTRIC + (1.0f - GPURT_GLTF_DIELECTRIC) * schlickWeight(vh);
-    return base * ((1.0f - metallic) * (1.0f - dielectric));
+// The diffuse term's weight (1 - m)(1 - t)(1 - Fd) c at v.h = vh (the BRDF's diffuse part times pi).
+GPURT_FN vec3 gltfDiffuseWeight(MaterialRecord m, float vh) {
+    float t = gltfTransmission(m);
+    return m.kd * ((1.0f - m.metallic) * (1.0f - t) * (1.0f - gltfDielectricFresnel(m.ior, t, vh)));
 }
 
-// The BRDF f(l, v) at shading normal n (0 below the surface); a smooth coat's mirror is not in it.
-GPURT_FN vec3 gltfBrdf(vec3 base, float metallic, float roughness, vec3 n, vec3 v, vec3 l) {
+// The transmission's weight (1 - m) t (1 - Fd) c at v.h = vh (the BTDF's factor before its
+// microfacet terms).
+GPURT_FN vec3 gltfTransmissionWeight(MaterialRecord m, float vh) {
+    float t = gltfTransmission(m);
+    if (!(t > 0.0f)) return vec3(0.0f);
+    return m.kd * ((1.0f - m.metallic) * t * (1.0f - gltfDielectricFresnel(m.ior, t, vh)));
+}
+
+// The probability that the specular lobe's microfacet at v.h = vh reflects (else it refracts):
+// the reflection's share of the two weights (largest channels).
+GPURT_FN float gltfReflectProbability(MaterialRecord m, float vh) {
+    float r = maxChannel(gltfSpecularFresnel(m, vh));
+    float t = maxChannel(gltfTransmissionWeight(m, vh));
+    return r + t > 0.0f ? r / (r + t) : 1.0f;
+}
+
+// The BRDF f(l, v) at shading normal n facing v (0 below the surface); a smooth surface's mirror
+// is not in it.
+GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     if (!(nl > 0.0f)) return vec3(0.0f);
     float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
@@ -71,38 +120,89 @@ GPURT_FN vec3 gltfBrdf(vec3 base, float metallic, float roughness, vec3 n, vec3 
     if (!(hh > 0.0f)) return vec3(0.0f);
     h = h / sqrt(hh);
     float vh = abs(dot(v, h));
-    vec3 f = gltfDiffuseWeight(base, metallic, vh) * GPURT_INV_PI;
-    if (gltfSmooth(roughness)) return f;
-    float alpha = roughness * roughness;
+    vec3 f = gltfDiffuseWeight(m, vh) * GPURT_INV_PI;
+    if (gltfSmooth(m.roughness)) return f;
+    float alpha = m.roughness * m.roughness;
     float a2 = alpha * alpha;
     float nh = max(dot(n, h), 0.0f);
-    return f + gltfSpecularFresnel(base, metallic, vh) * (ggxDistribution(a2, nh) * smithVisibility(a2, nl, nv));
+    return f + gltfSpecularFresnel(m, vh) * (ggxDistribution(a2, nh) * smithVisibility(a2, nl, nv));
 }
 
-// The probability of sampling the specular lobe at n.v = nv: its Fresnel weight's share of the
-// two lobes' weights at h = n (largest channels).
-GPURT_FN float gltfSpecularProbability(vec3 base, float metallic, float nv) {
-    float s = maxChannel(gltfSpecularFresnel(base, metallic, nv));
-    float d = maxChannel(gltfDiffuseWeight(base, metallic, nv));
+// The refraction's generalized half vector of v and l below the surface (relative index ior) on
+// n's side, with its cosines vh = v.h > 0 and lh = l.h < 0; false where none.
+GPURT_FN bool gltfRefractionHalf(float ior, vec3 n, vec3 v, vec3 l, GPURT_OUT(vec3) h, GPURT_OUT(float) vh,
+                                 GPURT_OUT(float) lh) {
+    h = v + ior * l;
+    vh = 0.0f;
+    lh = 0.0f;
+    float hh = dot(h, h);
+    if (!(hh > 0.0f)) return false;
+    h = h / sqrt(hh);
+    if (dot(h, n) < 0.0f) h = -h;
+    vh = dot(v, h);
+    lh = dot(l, h);
+    return vh > 0.0f && lh < 0.0f;
+}
+
+// The rough dielectric's BTDF f(l, v) for l below the surface (Walter et al. 2007; pbrt-v4's
+// DielectricBxDF): weight D G2 |l.h| v.h / ((l.h + v.h / ior)^2 |n.l| n.v), radiance scaled by
+// 1 / ior^2; 0 for a smooth surface (its refraction is a delta) or without transmission.
+GPURT_FN vec3 gltfBtdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
+    float anl = -dot(n, l);
+    if (!(anl > 0.0f) || gltfSmooth(m.roughness) || !(gltfTransmission(m) > 0.0f)) return vec3(0.0f);
+    vec3 h;
+    float vh, lh;
+    if (!gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return vec3(0.0f);
+    float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
+    float alpha = m.roughness * m.roughness;
+    float a2 = alpha * alpha;
+    float denom = lh + vh / m.ior;
+    // G2 / (|n.l| n.v) = 4 V
+    float k = ggxDistribution(a2, max(dot(n, h), 0.0f)) * 4.0f * smithVisibility(a2, anl, nv) * (-lh) * vh /
+              (denom * denom * m.ior * m.ior);
+    return gltfTransmissionWeight(m, vh) * k;
+}
+
+// The probability of sampling the specular lobe (reflection or refraction at a visible normal) at
+// n.v = nv: its weights' share of all at h = n (largest channels).
+GPURT_FN float gltfSpecularProbability(MaterialRecord m, float nv) {
+    float s = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv));
+    float d = maxChannel(gltfDiffuseWeight(m, nv));
     return s + d > 0.0f ? s / (s + d) : 0.0f;
 }
 
-// The solid-angle pdf of sampling l (specular lobe with probability pSpecular): the visible
-// normals' D G1(v) / (4 n.v) (0 for a smooth coat's mirror: a delta) plus the cosine lobe's.
-GPURT_FN float gltfPdf(float roughness, float pSpecular, vec3 n, vec3 v, vec3 l) {
+// GGX's pdf of the visible normal h seen from v: D(h) G1(v) v.h / n.v.
+GPURT_FN float ggxVisiblePdf(float a2, vec3 n, vec3 v, vec3 h) {
+    float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
+    return ggxDistribution(a2, max(dot(n, h), 0.0f)) * smithMasking(a2, nv) * max(dot(v, h), 0.0f) / nv;
+}
+
+// The solid-angle pdf of sampling l (specular lobe with probability pSpecular) above the surface:
+// the visible normal's pdf / (4 v.h) times the share that reflects (0 for a smooth surface's
+// mirror: a delta) plus the cosine lobe's; below it, the visible normal's pdf times the
+// refraction's Jacobian |l.h| / (l.h + v.h / ior)^2 and the share that refracts.
+GPURT_FN float gltfPdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
+    bool rough = !gltfSmooth(m.roughness) && pSpecular > 0.0f;
+    float alpha = m.roughness * m.roughness;
+    float a2 = alpha * alpha;
+    if (nl < 0.0f) {
+        vec3 h;
+        float vh, lh;
+        if (!rough || !(gltfTransmission(m) > 0.0f) || !gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return 0.0f;
+        float denom = lh + vh / m.ior;
+        return pSpecular * (1.0f - gltfReflectProbability(m, vh)) * ggxVisiblePdf(a2, n, v, h) * (-lh) / (denom * denom);
+    }
     if (!(nl > 0.0f)) return 0.0f;
     float pdf = (1.0f - pSpecular) * nl * GPURT_INV_PI;
-    if (gltfSmooth(roughness) || !(pSpecular > 0.0f)) return pdf;
+    if (!rough) return pdf;
     vec3 h = l + v;
     float hh = dot(h, h);
     if (!(hh > 0.0f)) return pdf;
     h = h / sqrt(hh);
-    float alpha = roughness * roughness;
-    float a2 = alpha * alpha;
-    float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
-    float nh = max(dot(n, h), 0.0f);
-    return pdf + pSpecular * ggxDistribution(a2, nh) * smithMasking(a2, nv) / (4.0f * nv);
+    float vh = max(dot(v, h), 0.0f);
+    if (!(vh > 0.0f)) return pdf;
+    return pdf + pSpecular * gltfReflectProbability(m, vh) * ggxVisiblePdf(a2, n, v, h) / (4.0f * vh);
 }
 
 // A microfacet normal of GGX (alpha) visible from v, for u in [0, 1)^2 (Heitz 2018, listing 1,
@@ -125,13 +225,20 @@ GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
     return t * ne.x + b * ne.y + n * ne.z;
 }
 
-// The ambient albedo: the directional albedo at normal incidence, (1 - m) 0.96 c + F0 with
+// The ambient albedo: the directional albedo at normal incidence, (1 - m)(1 - t) 0.96 c + F0 with
 // F0 = mix(0.04, c, m), without F0 for a smooth coat (its mirror ray brings it), times the
 // occlusion.
 GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
-    vec3 albedo = gltfDiffuseWeight(m.kd, m.metallic, 1.0f);
-    if (!gltfSmooth(m.roughness)) albedo = albedo + gltfSpecularFresnel(m.kd, m.metallic, 1.0f);
+    vec3 albedo = gltfDiffuseWeight(m, 1.0f);
+    if (!gltfSmooth(m.roughness)) albedo = albedo + gltfSpecularFresnel(m, 1.0f);
     return albedo * m.occlusion;
+}
+
+// The record as a ray meets the surface: a transmissive material's index becomes relative across
+// the boundary in the ray's direction (1 / ior leaving the solid: `entering` false).
+GPURT_FN MaterialRecord gltfFacing(MaterialRecord m, bool entering) {
+    if (m.ior > 0.0f && !entering) m.ior = 1.0f / m.ior;
+    return m;
 }
 
 // The material interface (common/material.h) for the glTF model.
@@ -144,61 +251,104 @@ GPURT_FN vec3 gltfLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos,
     vec3 toLight = lightPos - p;
     float dist2 = dot(toLight, toLight);
     vec3 l = contractNormalize(toLight);
-    vec3 f = gltfBrdf(m.kd, m.metallic, m.roughness, n, -d, l);
+    vec3 f = gltfBrdf(m, n, -d, l);
     return min(f * (GPURT_PI * max(0.0f, dot(n, l))) * lightColor * intensity / dist2, vec3(1e30f));
 }
 
-GPURT_FN bool gltfSpawns(MaterialRecord m) { return gltfSmooth(m.roughness); }
+GPURT_FN bool gltfSpawns(MaterialRecord m) { return gltfSmooth(m.roughness) || gltfTransmission(m) > 0.0f; }
 
+GPURT_FN bool gltfSplits(MaterialRecord m) { return gltfTransmission(m) > 0.0f; }
+
+// Whitted's rays: the refracted ray (as through a smooth surface) where the material transmits,
+// continuing the pixel's ray, and the mirror ray of a smooth surface.
 GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GPURT_OUT(vec3) dirA,
                           GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA, GPURT_OUT(vec3) dirB,
                           GPURT_OUT(vec3) weightB) {
+    float nv = clamp(-dot(d, ns), 0.0f, 1.0f);
     dirA = shadingReflection(d, ns, ng);
-    weightA = w * gltfSpecularFresnel(m.kd, m.metallic, max(-dot(d, ns), 0.0f));
+    weightA = gltfSmooth(m.roughness) ? w * gltfSpecularFresnel(m, nv) : vec3(0.0f);
     sideA = 1.0f;
     dirB = dirA;
     weightB = vec3(0.0f);
-    return gltfSmooth(m.roughness) && maxChannel(weightA) >= GPURT_MIN_WEIGHT ? 1 : 0;
+    vec3 tw = gltfTransmissionWeight(m, nv);
+    if (maxChannel(tw) > 0.0f && (1.0f - nv * nv) < m.ior * m.ior) {
+        vec3 t = refractedDirection(d, ns, m.ior, nv);
+        if (dot(t, ng) < 0.0f) {
+            weightB = weightA;
+            dirA = t;
+            weightA = w * tw / (m.ior * m.ior);
+            sideA = -1.0f;
+        }
+    }
+    bool a = maxChannel(weightA) >= GPURT_MIN_WEIGHT;
+    bool b = maxChannel(weightB) >= GPURT_MIN_WEIGHT;
+    if (!a && b) {  // only the reflection is worth tracing: it continues the pixel's ray
+        dirA = dirB;
+        weightA = weightB;
+        sideA = 1.0f;
+        return 1;
+    }
+    return a ? (b ? 2 : 1) : 0;
 }
 
 GPURT_FN bool gltfLit(MaterialRecord m) {
-    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m.kd, m.metallic, 1.0f)) > 0.0f;
+    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f;
 }
 
-GPURT_FN vec3 gltfEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
-    return GPURT_PI * gltfBrdf(m.kd, m.metallic, m.roughness, n, -d, wi);
-}
+// pi times the BRDF (light sampling reaches only directions above the surface).
+GPURT_FN vec3 gltfEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return GPURT_PI * gltfBrdf(m, n, -d, wi); }
 
 GPURT_FN float gltfMaterialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
-    float p = gltfSpecularProbability(m.kd, m.metallic, max(-dot(d, n), GPURT_GLTF_MIN_COS));
-    return gltfPdf(m.roughness, p, n, -d, wi);
+    if (!(dot(n, wi) > 0.0f)) return 0.0f;
+    float p = gltfSpecularProbability(m, max(-dot(d, n), GPURT_GLTF_MIN_COS));
+    return gltfPdf(m, p, n, -d, wi);
 }
 
+// A direction by the lobes' probabilities. A refracted direction reports pdf 0: light sampling
+// never draws below the surface, so the emission it finds counts in full (common/path.h).
 GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, float lobe, GPURT_OUT(vec3) dir,
                          GPURT_OUT(vec3) factor, GPURT_OUT(float) pdf, GPURT_OUT(float) side) {
     vec3 v = -d;
     float nv = max(dot(ns, v), GPURT_GLTF_MIN_COS);
-    float p = gltfSpecularProbability(m.kd, m.metallic, nv);
+    float p = gltfSpecularProbability(m, nv);
     dir = shadingReflection(d, ns, ng);
     factor = vec3(0.0f);
     pdf = 0.0f;
     side = 1.0f;
     bool mirror = gltfSmooth(m.roughness);
     if (lobe < p) {
-        if (mirror) {  // a delta lobe
-            factor = gltfSpecularFresnel(m.kd, m.metallic, nv) / p;
+        vec3 h = mirror ? ns : ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
+        float vh = mirror ? nv : max(dot(v, h), 0.0f);
+        float pr = gltfReflectProbability(m, vh);
+        if (lobe < p * pr) {
+            if (mirror) {  // a delta lobe
+                factor = gltfSpecularFresnel(m, nv) / (p * pr);
+                return true;
+            }
+            dir = mirrorDirection(d, h);
+        } else {  // refraction through the microfacet h
+            if (!((1.0f - vh * vh) < m.ior * m.ior)) return false;
+            dir = refractedDirection(d, h, m.ior, vh);
+            float cosT = -dot(ns, dir);
+            if (!(dot(dir, ng) < 0.0f) || !(cosT > 0.0f)) return false;
+            side = -1.0f;
+            if (mirror) {  // a delta lobe
+                factor = gltfTransmissionWeight(m, nv) / (m.ior * m.ior * p * (1.0f - pr));
+                return true;
+            }
+            float tpdf = gltfPdf(m, p, ns, v, dir);
+            if (!(tpdf > 0.0f)) return false;
+            factor = gltfBtdf(m, ns, v, dir) * (cosT / tpdf);
             return true;
         }
-        vec3 h = ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
-        dir = mirrorDirection(d, h);
     } else {
         dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
     }
     float cosI = dot(ns, dir);
     if (!(dot(dir, ng) > 0.0f) || !(cosI > 0.0f)) return false;
-    pdf = gltfPdf(m.roughness, p, ns, v, dir);
+    pdf = gltfPdf(m, p, ns, v, dir);
     if (!(pdf > 0.0f)) return false;
-    factor = gltfBrdf(m.kd, m.metallic, m.roughness, ns, v, dir) * (cosI / pdf);
+    factor = gltfBrdf(m, ns, v, dir) * (cosI / pdf);
     return true;
 }
 

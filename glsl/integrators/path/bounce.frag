@@ -52,8 +52,11 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
     vec4 nm = readStream(surfaceNormal);
     vec4 view = readStream(surfaceView);
     vec4 shading = readStream(surfaceShading);
-    MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
     vec3 d = view.xyz;
+    vec3 v0, e1, e2;
+    int material;
+    fetchTriangle(int(s.w), v0, e1, e2, material);
+    MaterialRecord m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w)), frontFace(e1, e2, d));
     vec3 n = shading.xyz;
     vec3 local = readStream(localColor).xyz;
 #ifdef SCENE_EMITTERS  // SceneTextures::bind: compiled out without emitters
@@ -69,9 +72,6 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
 #endif
     color = color + w * local;
 
-    vec3 v0, e1, e2;
-    int material;
-    fetchTriangle(int(s.w), v0, e1, e2, material);
     uint dim = GPURT_DIM_SCATTER + 2u * uint(depth);
     vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim));
     vec2 choice = randomPair(sampleIndex, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim + 1u));

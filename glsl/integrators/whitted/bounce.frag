@@ -71,6 +71,7 @@ void main() {
                 vec3 v0, e1, e2;
                 int material;
                 fetchTriangle(int(s.w), v0, e1, e2, material);
+                m = materialFacing(m, frontFace(e1, e2, d));
                 children = materialChildren(m, d, nm.xyz, shading.xyz, frontFace(e1, e2, d), w.xyz, dirA, weightA,
                                             sideA, dirB, weightB);
             }
