@@ -71,6 +71,7 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
     add(scene.materialIds.data(), scene.materialIds.size() * sizeof(uint32_t));
     add(scene.normals.data(), scene.normals.size() * sizeof(TriangleNormals));
     add(scene.colors.data(), scene.colors.size() * sizeof(TriangleColors));
+    add(scene.tangents.data(), scene.tangents.size() * sizeof(TriangleTangents));
     for (const Material& m : scene.materials) {
         const float v[] = {m.diffuse.x, m.diffuse.y, m.diffuse.z, m.specular.x, m.specular.y, m.specular.z,
                            m.shininess, m.reflectivity.x, m.reflectivity.y, m.reflectivity.z, m.emission.x,

@@ -34,6 +34,9 @@
 // Vertex colours (scenes with colours, SCENE_VERTEX_COLORS): RGBA32F, three texels per triangle,
 // laid out as the triangles: (c0, 0), (c1, 0), (c2, 0), linear RGB; one triangle of zeros when the
 // scene has none.
+// Vertex tangents (scenes with glTF TANGENT on a normal-mapped material, SCENE_VERTEX_TANGENTS):
+// RGBA32F, three texels per triangle, laid out as the triangles: t0, t1, t2, each (tangent,
+// handedness w = +-1), all zero for a triangle without.
 // Texture images: an R32UI buffer texture of every texture's texels one after another, each image
 // top row first, r | g << 8 | b << 16 | a << 24 sRGB; and an RGBA32UI buffer texture, one texel
 // per texture: (its first texel there, width, height, wrapS | wrapT << 8). A single texel of each

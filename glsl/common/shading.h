@@ -62,6 +62,19 @@ GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng
     return dot(s, ng) < 0.0f ? -s : s;
 }
 
+// The tangent-space normal `texel` (a normal map's linear value, its x and y times `scale`) in the
+// frame (t, b, n) of the front side's unit normal n, as the shading normal facing as ng: flipped
+// for a back hit (`front` false), ns where it is degenerate or would face away from the ray.
+GPURT_FN vec3 bentNormal(vec3 ns, vec3 ng, bool front, vec3 n, vec3 t, vec3 b, vec3 texel, float scale) {
+    vec3 m = texel * 2.0f - vec3(1.0f);
+    vec3 bent = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
+    float bb = dot(bent, bent);
+    if (!(bb > 1e-24f)) return ns;
+    bent = bent / sqrt(bb);
+    if (!front) bent = -bent;
+    return dot(bent, ng) > 0.0f ? bent : ns;
+}
+
 // The shading normal ns (facing as ng) bent by a tangent-space normal map (glTF normalTexture):
 // `texel` the map's linear value at the hit, its x and y times `scale`. The tangent frame is made
 // per triangle from its edges e1, e2 and their texture coordinate differences dt1, dt2 (image
@@ -83,13 +96,34 @@ GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, bool front, vec3 e1, vec3 e2, vec2 
     t = t / sqrt(tt);
     vec3 b = cross(n, t);
     if (dot(b, dpdv) > 0.0f) b = -b;
-    vec3 m = texel * 2.0f - vec3(1.0f);
-    vec3 bent = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
-    float bb = dot(bent, bent);
-    if (!(bb > 1e-24f)) return ns;
-    bent = bent / sqrt(bb);
-    if (!front) bent = -bent;
-    return dot(bent, ng) > 0.0f ? bent : ns;
+    return bentNormal(ns, ng, front, n, t, b, texel, scale);
+}
+
+// The vertex tangent at barycentrics (u, v) from the corners' t0, t1, t2 (glTF TANGENT: xyz the
+// tangent, w the handedness +-1; all zero for a triangle without), interpolated as the vertex
+// normals are (shadingNormal).
+GPURT_FN vec4 interpolateTangent(vec4 t0, vec4 t1, vec4 t2, float u, float v) {
+    return t0 * (1.0f - u - v) + t1 * u + t2 * v;
+}
+
+// normalMapped in the frame of a given vertex tangent (glTF TANGENT, interpolated): T the tangent
+// made orthogonal to the front side's shading normal N (Gram-Schmidt), B = cross(N, T) times the
+// handedness (glTF: bitangent = cross(normal, tangent.xyz) * tangent.w; w below 0 is -1, anything
+// else +1, so an interpolated w of 0 between corners of both hands is +1). A tangent of zero
+// length (a triangle without TANGENT, or a file's zero vector), not finite (NaN or infinite), or
+// parallel to the normal at this hit (less than 1e-3 of its length left after Gram-Schmidt) has
+// no frame: the hit falls back to the tangents generated per triangle (normalMapped).
+GPURT_FN vec3 normalMappedTangent(vec3 ns, vec3 ng, bool front, vec4 tangent, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2,
+                                  vec3 texel, float scale) {
+    vec3 n = front ? ns : -ns;
+    vec3 given = vec3(tangent.x, tangent.y, tangent.z);
+    float gg = dot(given, given);
+    vec3 t = given - n * dot(n, given);
+    float tt = dot(t, t);
+    if (!(gg > 1e-24f) || !(tt > 1e-6f * gg)) return normalMapped(ns, ng, front, e1, e2, dt1, dt2, texel, scale);
+    t = t / sqrt(tt);
+    vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    return bentNormal(ns, ng, front, n, t, b, texel, scale);
 }
 
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both

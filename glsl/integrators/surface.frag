@@ -63,7 +63,7 @@ void main() {
     MaterialRecord m = fetchMaterialRecord(material, int(h.w), h.yz);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
-    vec3 ns = fetchMappedNormal(material, int(h.w), e1, e2, d, ng, fetchShadingNormal(int(h.w), h.y, h.z, ng), t);
+    vec3 ns = fetchMappedNormal(material, int(h.w), e1, e2, d, ng, fetchShadingNormal(int(h.w), h.y, h.z, ng), t, h.yz);
     surfaceNormal = vec4(ng, float(material));
     surfaceShading = vec4(ns, h.z);
     surfaceView = vec4(d, h.y);

@@ -10,6 +10,9 @@ uniform usamplerBuffer textureTexels; // every texture image's sRGB RGBA8 texels
 uniform usamplerBuffer textureTable;  // per texture (first texel, width, height, wrapS | wrapT << 8)
 uniform samplerBuffer srgbTable;      // the linear value of each sRGB code
 uniform sampler2D vertexColors;       // per triangle c0, c1, c2 as the triangles' texels
+#ifdef SCENE_VERTEX_TANGENTS
+uniform sampler2D vertexTangents;     // per triangle t0, t1, t2 (tangent, handedness) as the triangles' texels
+#endif
 uniform samplerBuffer emitters;  // EmitterTable: (cdf, triangle id) per emitting triangle
 uniform int emitterCount;        // 0: no emitters
 uniform float emitterArea;       // their total area

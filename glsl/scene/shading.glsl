@@ -124,8 +124,11 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
 }
 
 // The shading normal ns of triangle `id` (edges e1, e2, seen along d, geometric normal ng) with
-// material m's normal map applied at image coordinates t (common/shading.h normalMapped).
-vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t) {
+// material m's normal map applied at image coordinates t (common/shading.h normalMapped): in the
+// frame of the triangle's vertex tangents at barycentrics uv where the scene has them
+// (SCENE_VERTEX_TANGENTS, normalMappedTangent, which falls back to the generated frame where they
+// are zero or degenerate), else in the frame generated from its texture coordinates.
+vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
 #ifdef SCENE_NORMAL_MAPS
     vec4 f = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 5, 0), 0);
     vec4 g = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 6, 0), 0);
@@ -133,7 +136,15 @@ vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns
     ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     vec4 a = texelFetch(triangleTexcoords, at, 0);
     vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+#ifdef SCENE_VERTEX_TANGENTS
+    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
+                                      texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
+    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), tangent, e1, e2, a.zw - a.xy, b.xy - a.xy,
+                               textureLinear(int(g.z), t), f.z);
+#else
     return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, a.zw - a.xy, b.xy - a.xy, textureLinear(int(g.z), t), f.z);
+#endif
 #else
     return ns;
 #endif

@@ -112,8 +112,14 @@ CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::v
         const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
         const Texture& map = scene_.textures[size_t(m.normalTexture)];
         const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
-        s.ns = normalMapped(s.ns, s.n, frontFace(tri.e1, tri.e2, d), tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel,
-                            m.normalScale);
+        const bool front = frontFace(tri.e1, tri.e2, d);
+        if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
+            const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
+            s.ns = normalMappedTangent(s.ns, s.n, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1,
+                                       tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        } else {
+            s.ns = normalMapped(s.ns, s.n, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        }
     }
     return s;
 }

@@ -52,18 +52,20 @@ constexpr char kBvhNodes[] = "BVHN";
 constexpr char kBvhList[] = "BVHL";
 constexpr char kColors[] = "VCOL";
 constexpr char kAlpha[] = "ALPH";
+constexpr char kTangents[] = "TANG";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
-// the vertex colours and the alpha coverage are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// the vertex colours, the alpha coverage and the vertex tangents are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha};
+                                         kColors,    kAlpha,     kTangents};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
-           tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || gridSection(tag) ||
+           tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
+           gridSection(tag) ||
            bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
@@ -84,6 +86,9 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
     // Only for a scene with vertex colours: other files stay as they were before the section existed.
     if (tag == kColors) return !loaded.scene.colors.empty();
+    // Only for a scene with vertex tangents (glTF TANGENT): other files stay as they were before
+    // the section existed.
+    if (tag == kTangents) return !loaded.scene.tangents.empty();
     if (tag == kTextures) return !loaded.scene.textures.empty();
     // Only for a scene with an environment or a background of its own: other files stay as they
     // were before the section existed.
@@ -108,6 +113,7 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
 constexpr size_t kNormalsBytes = 9 * 4;
 constexpr size_t kTexcoordsBytes = 6 * 4;
 constexpr size_t kColorsBytes = 9 * 4;
+constexpr size_t kTangentsBytes = 12 * 4;
 constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
 constexpr uint64_t kMaxTextures = 1 << 16;
 constexpr size_t kModelBytes = 4;
@@ -340,6 +346,20 @@ void checkColors(const FileLoc& file, const Scene& scene) {
                 failAt(file, "triangle " + std::to_string(t) + ": vertex colours must be finite and in [0, 1]");
 }
 
+// One tangent record per triangle, each corner's four numbers finite and its handedness w -1, 0
+// (a corner without a tangent) or 1. The tangent's length is not checked: a zero or tiny one
+// falls back to the generated frame where it is used (glsl/common/shading.h normalMappedTangent).
+void checkTangents(const FileLoc& file, const Scene& scene) {
+    const size_t n = scene.triangles.size();
+    if (!scene.tangents.empty() && scene.tangents.size() != n)
+        failAt(file, std::to_string(scene.tangents.size()) + " vertex tangents for " + std::to_string(n) + " triangles");
+    for (size_t t = 0; t < scene.tangents.size(); ++t)
+        for (const glm::vec4 c : {scene.tangents[t].t0, scene.tangents[t].t1, scene.tangents[t].t2})
+            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+                (c.w != -1.0f && c.w != 0.0f && c.w != 1.0f))
+                failAt(file, "triangle " + std::to_string(t) + ": vertex tangents must be finite with w -1, 0 or 1");
+}
+
 void checkLights(const FileLoc& file, const Scene& scene) {
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PointLight& light = scene.lights[l];
@@ -464,6 +484,7 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Pac
     checkMaterials(file, scene);
     checkTextures(file, scene);
     checkColors(file, scene);
+    checkTangents(file, scene);
     checkLights(file, scene);
     checkCameras(file, scene);
     checkRenderSettings(file, loaded);
@@ -600,6 +621,18 @@ class SectionDecoder {
             t.c1 = in.vec3();
             t.c2 = in.vec3();
         }
+    }
+
+    // Per triangle t0, t1, t2, each (x, y, z, w).
+    void tangents(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = perTriangle(in, s, kTangentsBytes, "vertex tangents", scene);
+        scene.tangents.resize(size_t(n));
+        for (TriangleTangents& t : scene.tangents)
+            for (glm::vec4* c : {&t.t0, &t.t1, &t.t2}) {
+                const glm::vec3 xyz = in.vec3();
+                *c = glm::vec4(xyz, in.f32());
+            }
     }
 
     // Per triangle t0, t1, t2.
@@ -902,6 +935,7 @@ class SectionEncoder {
         else if (tag == kModels) models();
         else if (tag == kPbr) pbr();
         else if (tag == kAlpha) alpha();
+        else if (tag == kTangents) tangents();
         else if (tag == kEnvironment) environment();
     }
 
@@ -1010,6 +1044,15 @@ class SectionEncoder {
             out_.vec3(c.c1);
             out_.vec3(c.c2);
         }
+    }
+
+    void tangents() {
+        out_.u64(scene_.tangents.size());
+        for (const TriangleTangents& t : scene_.tangents)
+            for (const glm::vec4 c : {t.t0, t.t1, t.t2}) {
+                out_.vec3(glm::vec3(c));
+                out_.f32(c.w);
+            }
     }
 
     void texcoords() {
@@ -1269,6 +1312,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kModels)) decoder.models(*section(kModels), loaded.scene);
     if (section(kPbr)) decoder.pbr(*section(kPbr), loaded.scene);
     if (section(kAlpha)) decoder.alpha(*section(kAlpha), loaded.scene);
+    if (section(kTangents)) decoder.tangents(*section(kTangents), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {

@@ -189,6 +189,19 @@ TextureTexels vertexColorTexels(const Scene& scene) {
     return colors;
 }
 
+TextureTexels vertexTangentTexels(const Scene& scene) {
+    const size_t n = scene.tangents.size();
+    TextureTexels tangents = emptyTexture("vertexTangents", n == 0 ? 3 : 3 * GPURT_TRIANGLES_PER_ROW,
+                                          textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
+    for (size_t t = 0; t < n; ++t) {
+        const TriangleTangents& v = scene.tangents[t];
+        const vec4 corner[3] = {v.t0, v.t1, v.t2};
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 4; ++c) tangents.floats[t * 12 + size_t(4 * k + c)] = corner[k][c];
+    }
+    return tangents;
+}
+
 TextureTexels texcoordTexels(const Scene& scene) {
     const size_t n = scene.texcoords.size();
     TextureTexels texcoords = emptyTexture("triangleTexcoords", n == 0 ? GPURT_TEXCOORD_TEXELS : GPURT_TEXCOORD_TEXELS * GPURT_TRIANGLES_PER_ROW,
@@ -270,6 +283,7 @@ std::vector<TextureTexels> integratorTextureTexels(const Scene& scene) {
     all.push_back(textureTableTexels(scene));
     all.push_back(srgbTableTexels());
     all.push_back(vertexColorTexels(scene));
+    if (!scene.tangents.empty()) all.push_back(vertexTangentTexels(scene));
     return all;
 }
 

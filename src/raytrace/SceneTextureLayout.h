@@ -64,6 +64,9 @@ TextureTexels texcoordTexels(const Scene& scene);
 // RGBA32F, as the vertex normals: (c0, 0), (c1, 0), (c2, 0) per triangle of scene.colors; one
 // triangle of zeros when it is empty.
 TextureTexels vertexColorTexels(const Scene& scene);
+// RGBA32F, as the vertex normals: (t0), (t1), (t2) per triangle of scene.tangents, each the
+// tangent and its handedness w; one triangle of zeros when it is empty.
+TextureTexels vertexTangentTexels(const Scene& scene);
 // R32UI, every texture's texels one after another (GPURT_INDEX_WIDTH a row); one texel when
 // the scene has no texture.
 TextureTexels textureImageTexels(const Scene& scene);
@@ -79,7 +82,8 @@ TextureTexels emitterTexels(const EmitterTable& emitters);
 // All of them, in the order SceneTextures binds them: the accelerator's, then the integrators'.
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const UniformGrid& grid);
 std::vector<TextureTexels> sceneTextureTexels(const Scene& scene, const Bvh& bvh);
-// The integrators' (SceneTextures): the triangles to the sRGB table, then the vertex colours.
+// The integrators' (SceneTextures): the triangles to the sRGB table, then the vertex colours, then
+// (only for a scene that has them) the vertex tangents.
 std::vector<TextureTexels> integratorTextureTexels(const Scene& scene);
 
 }  // namespace gpurt

@@ -75,6 +75,11 @@ GPUFloatArray makeVertexColors(const Scene& scene) {
     return uploadTexels(vertexColorTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
+GPUFloatArray makeVertexTangents(const Scene& scene) {
+    checkFits("vertex tangent", 3 * GPURT_TRIANGLES_PER_ROW, textureRowsFor(scene.tangents.size(), GPURT_TRIANGLES_PER_ROW));
+    return uploadTexels(vertexTangentTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
+}
+
 GPUFloatArray makeEmitters(const EmitterTable& emitters) {
     checkFitsBuffer("emitter", std::max<size_t>(1, emitters.triangles.size()), 1);
     return uploadTexels(emitterTexels(emitters), GPUFormat::RG32F, GPUStorage::Buffer);
@@ -147,6 +152,8 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       emitters_(makeEmitters(emitterTable_)),
       vertexColors_(makeVertexColors(scene)),
       hasVertexColors_(!scene.colors.empty()),
+      vertexTangents_(makeVertexTangents(scene)),
+      hasVertexTangents_(!scene.tangents.empty()),
       texcoords_(makeTexcoords(scene)),
       hasTexcoords_(!scene.texcoords.empty()),
       textureTexels_(makeTextureTexels(scene)),
@@ -175,6 +182,12 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
+    // The vertex tangents only where a normal map reads them (shading.glsl fetchMappedNormal): the
+    // kernels of other scenes neither declare nor bind them.
+    if (hasVertexTangents_ && hasNormalMaps_) {
+        kernel.addDefine("SCENE_VERTEX_TANGENTS");
+        kernel.addInput(vertexTangents_, "vertexTangents");
+    }
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
         .addInput(vertexNormals_, "vertexNormals")
@@ -214,6 +227,7 @@ size_t SceneTextures::bytes() const {
     auto size = [](const GPUFloatArray& a) { return a.elements() * size_t(a.channels()) * 4; };
     return size(triangles_) + size(materials_) + size(vertexNormals_) + size(emitters_) +
            size(texcoords_) + size(textureTexels_) + size(textureTable_) + size(srgbTable_) + size(vertexColors_) +
+           (hasVertexTangents_ ? size(vertexTangents_) : 0) +
            (environmentTable_.empty() ? 0  // the 1 x 1 stand-ins of a scene without an environment
                                       : size(environmentMap_) + size(environmentMarginal_) +
                                             size(environmentConditional_) + size(environmentHarmonics_));

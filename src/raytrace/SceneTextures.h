@@ -32,7 +32,7 @@ class SceneTextures {
 
     // Adds the scene textures as inputs of `kernel` (samplers triangles, materials,
     // vertexNormals, emitters, triangleTexcoords, textureTexels, textureTable, srgbTable,
-    // vertexColors), sets
+    // vertexColors; vertexTangents where a normal map reads them), sets
     // the emitter uniforms and rayOffset, and defines what the scene has (SCENE_*).
     void bind(GPUKernel& kernel) const;
     // Whether some triangle's material has alpha (sceneUsesAlpha): the accelerators' kernels then test
@@ -51,6 +51,7 @@ class SceneTextures {
     const GPUFloatArray& textureTable() const { return textureTable_; }
     const GPUFloatArray& srgbTable() const { return srgbTable_; }
     const GPUFloatArray& vertexColors() const { return vertexColors_; }
+    const GPUFloatArray& vertexTangents() const { return vertexTangents_; }
     const EmitterTable& emitterTable() const { return emitterTable_; }
     const EnvironmentTable& environmentTable() const { return environmentTable_; }
     size_t bytes() const;
@@ -65,6 +66,8 @@ class SceneTextures {
     GPUFloatArray emitters_;
     GPUFloatArray vertexColors_;  // SCENE_VERTEX_COLORS: the scene has vertex colours
     bool hasVertexColors_;
+    GPUFloatArray vertexTangents_;  // SCENE_VERTEX_TANGENTS: the scene has vertex tangents (glTF TANGENT)
+    bool hasVertexTangents_;
     GPUFloatArray texcoords_;
     bool hasTexcoords_;
     bool hasNormalMaps_ = false;

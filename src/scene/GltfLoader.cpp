@@ -619,8 +619,9 @@ class GltfReader {
         const std::vector<glm::vec3> positions = primitivePositions(position, at, matrices);
         const std::vector<glm::vec3> normals = primitiveNormals(prim, at, matrices, vertices);
         const uint32_t material = materialOf(prim.material, scene);
-        const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices, scene);
+        const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices);
         const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
+        const std::vector<glm::vec4> tangents = primitiveTangents(prim, at, matrices, vertices, material, normals, scene);
         const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
         auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
@@ -637,6 +638,10 @@ class GltfReader {
                 scene.colors.resize(scene.triangles.size() - 1);  // white for the triangles before
                 scene.colors.push_back({colors[a], colors[b], colors[c]});
             }
+            if (!tangents.empty()) {
+                scene.tangents.resize(scene.triangles.size() - 1);  // none for the triangles before
+                scene.tangents.push_back({tangents[a], tangents[b], tangents[c]});
+            }
         };
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (index.size() % 3 != 0) fail(at + ": " + std::to_string(index.size()) + " indices, not a multiple of 3");
@@ -650,6 +655,8 @@ class GltfReader {
         if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());
         // And those without colours white.
         if (!scene.colors.empty() && scene.colors.size() < scene.triangles.size()) scene.colors.resize(scene.triangles.size());
+        // And those without tangents none (generated ones).
+        if (!scene.tangents.empty() && scene.tangents.size() < scene.triangles.size()) scene.tangents.resize(scene.triangles.size());
     }
 
     // POSITION's values (three per vertex).
@@ -702,12 +709,8 @@ class GltfReader {
     // textureInfo.texCoord), not finite ones as 0; none for an untextured material or (with a
     // warning) a primitive without that set.
     std::vector<glm::vec2> primitiveTexcoords(const tinygltf::Primitive& prim, const std::string& at, uint32_t material,
-                                              size_t vertices, const Scene& scene) const {
+                                              size_t vertices) const {
         std::vector<glm::vec2> texcoords;
-        if (prim.attributes.count("TANGENT") && !tangentsWarned_ && scene.materials[material].normalTexture >= 0) {
-            warn(at + ": TANGENT is not used; normal maps use tangents generated per triangle from the texture coordinates");
-            tangentsWarned_ = true;
-        }
         if (material >= uvs_.size() || uvs_[material].set < 0) return texcoords;
         const MaterialUv& uv = uvs_[material];
         const std::string set = "TEXCOORD_" + std::to_string(uv.set);
@@ -764,6 +767,56 @@ class GltfReader {
         if (outside) warn(at + ": COLOR_0 values outside [0, 1] clamped");
         if (alpha) warn(at + ": the alpha of COLOR_0 is not used (only its RGB multiplies the base colour)");
         return colors;
+    }
+
+    // TANGENT in world space, for the normal map of the primitive's material: VEC4 of FLOAT or of
+    // normalized BYTE / SHORT (KHR_mesh_quantization), from its Draco data when compressed; any
+    // other type or count is an error. xyz goes through the linear part of the node's (or the
+    // skinned vertex's) transform and is normalised, zero where it is zero or not finite (such
+    // corners fall back to generated tangents, glsl/common/shading.h normalMappedTangent); w is
+    // its sign (0 and NaN: +1), turned over by a mirroring transform (as the bitangent
+    // cross(normal, tangent) * w must follow the mirror image). None without TANGENT or for a
+    // material without a normal map (the texture coordinates' sets the materials do not use are
+    // not named either), and none, with a warning, without NORMAL (the spec: tangents are then
+    // ignored, as the normals are made flat).
+    std::vector<glm::vec4> primitiveTangents(const tinygltf::Primitive& prim, const std::string& at,
+                                             const VertexMatrices& matrices, size_t vertices, uint32_t material,
+                                             const std::vector<glm::vec3>& normals, const Scene& scene) {
+        std::vector<glm::vec4> tangents;
+        const auto attribute = prim.attributes.find("TANGENT");
+        if (attribute == prim.attributes.end() || scene.materials[material].normalTexture < 0) return tangents;
+        if (normals.empty()) {
+            warnOnce("TANGENT without NORMAL",
+                     at + ": TANGENT is not used (no NORMAL: glTF ignores tangents then; the normal map uses "
+                          "tangents generated per triangle)");
+            return tangents;
+        }
+        const int index = attribute->second;
+        if (index < 0 || index >= int(m_.accessors.size()))
+            fail(at + " TANGENT: accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+        const bool known = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                           (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                             a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT));
+        if (!known)
+            fail(at + ": TANGENT (accessor " + std::to_string(index) + ") of component type " +
+                 std::to_string(a.componentType) + " (not FLOAT or normalized BYTE or SHORT)");
+        int components = 0;
+        const std::vector<double> t = attributeValues(prim, "TANGENT", at, components);  // Draco or the accessor
+        if (components != 4 || t.size() != 4 * vertices)
+            fail(at + ": TANGENT (accessor " + std::to_string(index) + ") is not VEC4 of one per vertex");
+        const glm::dmat3 worldTangents(matrices.world);
+        const double worldHand = glm::determinant(worldTangents) < 0.0 ? -1.0 : 1.0;
+        tangents.resize(vertices);
+        for (size_t v = 0; v < vertices; ++v) {
+            const glm::dmat3 m = matrices.skinned.empty() ? worldTangents : glm::dmat3(matrices.skinned[v]);
+            const double hand = matrices.skinned.empty() ? worldHand : glm::determinant(m) < 0.0 ? -1.0 : 1.0;
+            const glm::dvec3 w = m * glm::dvec3(t[4 * v], t[4 * v + 1], t[4 * v + 2]);
+            const double length = glm::length(w);
+            const glm::vec3 unit = length > 0.0 && std::isfinite(length) ? glm::vec3(w / length) : glm::vec3(0.0f);
+            tangents[v] = glm::vec4(unit, float((t[4 * v + 3] < 0.0 ? -1.0 : 1.0) * hand));
+        }
+        return tangents;
     }
 
     // The primitive's indices (unsigned integers below `vertices`), or 0, 1, ... without.
@@ -1086,8 +1139,7 @@ class GltfReader {
     std::string name_;
     std::vector<int> materialIds_;
     std::vector<MaterialUv> uvs_;  // per scene material: the texture coordinates of its textures
-    mutable bool tangentsWarned_ = false;  // TANGENT's warning is said once per file
-    bool thinWalledWarned_ = false;        // so is the thin-walled transmission's
+    bool thinWalledWarned_ = false;  // the thin-walled transmission's warning is said once per file
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;

@@ -397,6 +397,12 @@ class SceneReader {
         if (texcoords || !scene.texcoords.empty()) scene.texcoords.resize(scene.triangles.size());
         const bool colors = !overridden && !obj.colors.empty();
         if (colors || !scene.colors.empty()) scene.colors.resize(scene.triangles.size());
+        // Vertex tangents (dropped with an overriding material, as the texture coordinates) go
+        // through the transform's linear part; a mirroring one turns their handedness over.
+        const bool tangents = !overridden && !obj.tangents.empty();
+        if (tangents || !scene.tangents.empty()) scene.tangents.resize(scene.triangles.size());
+        const glm::dmat3 tangentMatrix = transform ? glm::dmat3(*transform) : glm::dmat3(1.0);
+        const float hand = glm::determinant(tangentMatrix) < 0.0 ? -1.0f : 1.0f;
         scene.triangles.reserve(scene.triangles.size() + obj.triangles.size());
         scene.materialIds.reserve(scene.materialIds.size() + obj.triangles.size());
         // Vertex normals go through the inverse transpose of the transform's linear part.
@@ -426,6 +432,18 @@ class SceneReader {
             else if (!scene.texcoords.empty()) scene.texcoords.push_back(TriangleTexcoords{});
             if (colors) scene.colors.push_back(obj.colors[k]);
             else if (!scene.colors.empty()) scene.colors.push_back(TriangleColors{});
+            if (tangents) {
+                TriangleTangents t = obj.tangents[k];
+                if (transform)
+                    for (glm::vec4* c : {&t.t0, &t.t1, &t.t2}) {
+                        const glm::dvec3 m = tangentMatrix * glm::dvec3(glm::vec3(*c));
+                        const double len = glm::length(m);
+                        *c = len > 0.0 && std::isfinite(len) ? glm::vec4(glm::vec3(m / len), c->w * hand) : glm::vec4(0.0f);
+                    }
+                scene.tangents.push_back(t);
+            } else if (!scene.tangents.empty()) {
+                scene.tangents.push_back(TriangleTangents{});
+            }
             scene.materialIds.push_back(overridden ? materialBase : materialBase + obj.materialIds[k]);
         }
     }

@@ -65,6 +65,9 @@ void rotateUpToY(Scene& scene, UpAxis axis) {
         turn(n.n1);
         turn(n.n2);
     }
+    // A proper rotation keeps the tangents' handedness.
+    for (TriangleTangents& t : scene.tangents)
+        for (glm::vec4* c : {&t.t0, &t.t1, &t.t2}) *c = glm::vec4(upAxisToY(glm::vec3(*c), axis), c->w);
     for (PointLight& l : scene.lights) turn(l.position);
     auto turnCamera = [&](CameraSpec& c) {
         turn(c.eye);

@@ -170,6 +170,15 @@ struct TriangleColors {
     glm::vec3 c0{1.0f}, c1{1.0f}, c2{1.0f};
 };
 
+// The vertex tangents at a triangle's corners (glTF TANGENT): xyz a unit tangent in scene space, w
+// its handedness, +1 or -1 (the bitangent is cross(normal, tangent) * w). All zero: the triangle
+// has none, and its normal map uses tangents generated from its texture coordinates
+// (glsl/common/shading.h normalMappedTangent); so does a hit where the interpolated tangent is
+// zero, not finite or parallel to the normal.
+struct TriangleTangents {
+    glm::vec4 t0{0.0f}, t1{0.0f}, t2{0.0f};
+};
+
 // Axis-aligned box; starts empty (min = +inf, max = -inf) so that extend() needs no special case.
 struct Bounds {
     glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -191,6 +200,9 @@ struct Scene {
     std::vector<TriangleTexcoords> texcoords;
     // Empty (no vertex colours), or one per triangle (white where a file gave none).
     std::vector<TriangleColors> colors;
+    // Empty (no vertex tangents), or one per triangle (zeros where a file gave none): only for
+    // triangles whose material has a normal map.
+    std::vector<TriangleTangents> tangents;
     // Never empty (index 0 = the default material when the OBJ has none).
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' diffuseTexture indices refer to these
@@ -217,7 +229,7 @@ struct Scene {
 // gives 1/2 at the centre of the scene. Both backends call this, so they light identically.
 // `backgroundLights`: the path integrator, under which a background that is not black is a light
 // too (CONTRACT.md): it then adds no headlight.
-// Rotates everything placed in the scene (triangles, shading normals, lights, camera, animation) by
+// Rotates everything placed in the scene (triangles, shading normals and tangents, lights, camera, animation) by
 // upAxisToY, so that `axis` points up, and sets upAxis to +y.
 void rotateUpToY(Scene& scene, UpAxis axis);
 

@@ -6,6 +6,10 @@
 //  - normal maps: the shading normal a constant normal map gives a quad (shown by the debug
 //    normal model as 0.5 n + 0.5) is the tangent frame's closed form: T along +u, B along -v
 //    (image up), N the face's normal, bent by the texel's (2 c - 1) with x, y times the scale;
+//  - vertex tangents (glTF TANGENT): the normal map bends the normal in the given frame, T the
+//    tangent made orthogonal to N, B = cross(N, T) w; degenerate tangents (zero, NaN, infinite,
+//    along the normal) give the generated frame's image exactly; a packed scene renders as its
+//    source;
 //  - metallic-roughness, emissive and occlusion maps: a texture of one value is the factor times
 //    that value (against the same material with the value folded into its factors).
 #include "../common/GLTest.h"
@@ -13,6 +17,7 @@
 #include "GltfReference.h"
 #include "TestScenes.h"
 #include "raytrace/MaterialRecord.h"
+#include "raytrace/PackedScene.h"
 
 #include <cmath>
 
@@ -234,6 +239,143 @@ TEST_F(GltfMaterials, NormalMapBendsTheNormalInTheTangentFrame) {
             }
         }
     }
+}
+
+// The debug-normal quad of NormalMapBendsTheNormalInTheTangentFrame (texel (200, 90, 230),
+// scale 0.8), with vertex normals +z (as a glTF with NORMAL), for the tangent tests.
+Scene tangentQuad() {
+    Scene scene;
+    Material mat;
+    mat.model = GPURT_MODEL_DEBUG_NORMAL;
+    mat.normalScale = 0.8f;
+    scene.materials.push_back(mat);
+    scene.materials[0].normalTexture = addFlatTexture(scene, 200u | (90u << 8) | (230u << 16) | 0xff000000u);
+    addTexturedQuad(scene, 0);
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    scene.normals.assign(2, TriangleNormals{n, n, n});
+    return scene;
+}
+
+// The normal the map (texel (200, 90, 230), scale 0.8) gives in the frame (t, b, n).
+glm::dvec3 bentIn(glm::dvec3 t, glm::dvec3 b, glm::dvec3 n) {
+    const glm::dvec3 m(2.0 * 200 / 255.0 - 1.0, 2.0 * 90 / 255.0 - 1.0, 2.0 * 230 / 255.0 - 1.0);
+    return glm::normalize(t * (m.x * 0.8) + b * (m.y * 0.8) + n * m.z);
+}
+
+RenderSettings smallImage() {
+    RenderSettings settings;
+    settings.width = settings.height = 16;
+    return settings;
+}
+
+CameraSpec quadView(bool back) {
+    CameraSpec spec;
+    spec.eye = {0.0f, 0.0f, back ? -3.0f : 3.0f};
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.fovy = 30.0f;
+    return spec;
+}
+
+// glTF TANGENT: a quad whose given tangent is the texture's u direction turned 90 degrees about
+// the normal (and tilted out of the surface, which Gram-Schmidt removes), with handedness +1 and
+// -1, shows the normal map bent in that frame (T = (0, 1, 0), B = cross(N, T) w), not in the
+// generated one (T = +x, B = +y), on both backends, from the front and from behind. Triangle 1
+// has no tangents (a primitive without TANGENT beside one with): it keeps the generated frame.
+TEST_F(GltfMaterials, TangentAttributeFramesTheNormalMap) {
+    const glm::dvec3 n(0.0, 0.0, 1.0), given(0.0, 1.0, 0.0);
+    const glm::dvec3 generated = bentIn({1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, n);
+    for (float w : {1.0f, -1.0f}) {
+        SCOPED_TRACE(w > 0.0f ? "w = +1" : "w = -1");
+        Scene scene = tangentQuad();
+        const glm::vec4 tilted(0.0f, 0.8f, 0.6f, w);  // (0, 1, 0) once orthogonal to N, normalised
+        scene.tangents = {TriangleTangents{tilted, tilted, tilted}, TriangleTangents{}};
+        const glm::dvec3 expected = bentIn(given, glm::cross(n, given) * double(w), n);
+        ASSERT_GT(glm::length(expected - generated), 0.3) << "the test must tell the frames apart";
+        const UniformGrid grid = buildGrid(scene, GridOptions{});
+        CpuTracer cpu(scene, grid);
+        GpuTracer gl(scene, grid);
+        for (bool back : {false, true}) {
+            SCOPED_TRACE(back ? "seen from behind" : "seen from the front");
+            const CameraBasis camera = makeCamera(quadView(back), 16, 16);
+            for (const RenderOutput& out : {gl.render(camera, smallImage()), cpu.render(camera, smallImage())}) {
+                size_t hits[2] = {0, 0};
+                for (size_t i = 0; i < out.color.size(); ++i) {
+                    if (out.prim[i] < 0.0f) continue;
+                    const int prim = int(out.prim[i]);
+                    ++hits[prim];
+                    const glm::dvec3 bent = prim == 0 ? expected : generated;
+                    const glm::dvec3 shown = back ? -bent : bent;  // the back sees the front's normal flipped
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(out.color[i][c], 0.5 * shown[c] + 0.5, 2e-3) << "pixel " << i << " triangle " << prim;
+                }
+                EXPECT_GT(hits[0], 40u);
+                EXPECT_GT(hits[1], 40u);
+            }
+        }
+    }
+}
+
+// Tangents that frame nothing fall back to the generated frame at the hit: zero (the file's zero
+// vector), not a number, infinite, or along the normal. Each gives the image of the quad without
+// tangents, on both backends.
+TEST_F(GltfMaterials, DegenerateTangentsGiveTheGeneratedFrame) {
+    const Scene plain = tangentQuad();
+    const UniformGrid plainGrid = buildGrid(plain, GridOptions{});
+    const CameraBasis camera = makeCamera(quadView(false), 16, 16);
+    const RenderOutput plainGl = GpuTracer(plain, plainGrid).render(camera, smallImage());
+    const RenderOutput plainCpu = CpuTracer(plain, plainGrid).render(camera, smallImage());
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const glm::vec4 cases[] = {glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(nan, 1.0f, 0.0f, 1.0f),
+                               glm::vec4(0.0f, inf, 0.0f, -1.0f), glm::vec4(0.0f, 0.0f, 1.0f, 1.0f),
+                               glm::vec4(0.0f, 1e-5f, -1.0f, -1.0f)};
+    for (const glm::vec4& t : cases) {
+        SCOPED_TRACE("tangent (" + std::to_string(t.x) + ", " + std::to_string(t.y) + ", " + std::to_string(t.z) + ", " +
+                     std::to_string(t.w) + ")");
+        Scene scene = tangentQuad();
+        scene.tangents.assign(2, TriangleTangents{t, t, t});
+        const UniformGrid grid = buildGrid(scene, GridOptions{});
+        const RenderOutput gl = GpuTracer(scene, grid).render(camera, smallImage());
+        const RenderOutput cpu = CpuTracer(scene, grid).render(camera, smallImage());
+        size_t hits = 0;
+        for (size_t i = 0; i < plainCpu.color.size(); ++i) {
+            if (plainCpu.prim[i] < 0.0f) continue;
+            ++hits;
+            ASSERT_NE(plainCpu.color[i].x, 0.5f) << "the map bends the normal";
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_EQ(cpu.color[i][c], plainCpu.color[i][c]) << "cpu pixel " << i;
+                ASSERT_EQ(gl.color[i][c], plainGl.color[i][c]) << "gl pixel " << i;
+            }
+        }
+        EXPECT_GT(hits, 100u);
+    }
+}
+
+// The tangent quad, of the glTF model (whose normal map PBRM carries) and lit by the headlight,
+// through the packed format (TANG) renders exactly as its source on both backends.
+TEST_F(GltfMaterials, PackedTangentsRenderAsTheirSource) {
+    LoadedScene source;
+    source.scene = tangentQuad();
+    source.scene.materials[0].model = GPURT_MODEL_GLTF;
+    source.scene.materials[0].roughness = 0.4f;
+    const glm::vec4 t(0.0f, 1.0f, 0.0f, -1.0f);
+    source.scene.tangents = {TriangleTangents{t, t, t}, TriangleTangents{}};
+    const UniformGrid grid = buildGrid(source.scene, GridOptions{});
+    const LoadedScene packed = decodePackedScene(encodePackedScene(source, grid, "tangents"), "tangents.gpscene");
+    ASSERT_TRUE(packed.grid);
+    ASSERT_EQ(packed.scene.tangents.size(), 2u);
+    const CameraBasis camera = makeCamera(quadView(false), 16, 16);
+    const RenderOutput a = GpuTracer(source.scene, grid).render(camera, smallImage());
+    const RenderOutput b = GpuTracer(packed.scene, *packed.grid).render(camera, smallImage());
+    const RenderOutput ac = CpuTracer(source.scene, grid).render(camera, smallImage());
+    const RenderOutput bc = CpuTracer(packed.scene, *packed.grid).render(camera, smallImage());
+    ASSERT_EQ(a.color.size(), b.color.size());
+    EXPECT_EQ(a.color, b.color);
+    EXPECT_EQ(ac.color, bc.color);
+    // And the tangents were used: triangle 0 differs from what generated tangents give.
+    Scene untangented = source.scene;
+    untangented.tangents.clear();
+    const RenderOutput u = CpuTracer(untangented, grid).render(camera, smallImage());
+    EXPECT_NE(u.color, bc.color);
 }
 
 // Whitted and path renders of a material whose metallic-roughness, emissive and occlusion maps

@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -181,6 +182,9 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
     ASSERT_EQ(x.colors.size(), y.colors.size());
     for (size_t t = 0; t < x.colors.size(); ++t)
         ASSERT_TRUE(sameBits(x.colors[t], y.colors[t])) << "vertex colours " << t;
+    ASSERT_EQ(x.tangents.size(), y.tangents.size());
+    for (size_t t = 0; t < x.tangents.size(); ++t)
+        ASSERT_TRUE(sameBits(x.tangents[t], y.tangents[t])) << "vertex tangents " << t;
     ASSERT_EQ(x.lights.size(), y.lights.size());
     for (size_t l = 0; l < x.lights.size(); ++l) {
         EXPECT_TRUE(sameBits(x.lights[l].position, y.lights[l].position)) << l;
@@ -581,6 +585,51 @@ TEST_F(PackedSceneTest, VertexColoursTravelInTheirOwnSection) {
     EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
     bad.scene.colors.pop_back();
     bad.scene.colors[3].c1.y = 0.0f;
+    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+}
+
+// Vertex tangents (TANG, twelve floats a triangle: each corner's tangent and handedness): written
+// only for a scene that has them, so that other files stay as they were; kept bit for bit through
+// the round trip (with their scene texture, which only such a scene has); a count that is not the
+// triangles', a record cut off, and tangents not finite or with a handedness other than -1, 0, 1
+// are refused by the reader, and the writer refuses to write them.
+TEST_F(PackedSceneTest, VertexTangentsTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "TANG")) << "a scene without vertex tangents";
+    const std::vector<TextureTexels> plain = sceneTextureTexels(source_.scene, grid_);
+    EXPECT_TRUE(std::none_of(plain.begin(), plain.end(), [](const TextureTexels& t) { return t.name == "vertexTangents"; }));
+    LoadedScene tangent = source_;
+    const size_t n = tangent.scene.triangles.size();
+    for (size_t t = 0; t < n; ++t)
+        tangent.scene.tangents.push_back({glm::vec4(float(t) / float(n), 0.6f, 0.8f, 1.0f),
+                                          glm::vec4(0.0f, -1.0f, std::numeric_limits<float>::denorm_min(), -1.0f),
+                                          glm::vec4(0.0f)});  // a corner without: all zero
+    const UniformGrid grid = buildGrid(tangent.scene, {});
+    const Bytes b = encodePackedScene(tangent, grid, "tangent");
+    const Entry tang = section(b, "TANG");
+    EXPECT_EQ(tang.size, 8 + 48 * n);
+    EXPECT_EQ(get64(b, tang.offset), n);
+    EXPECT_EQ(std::bit_cast<float>(get32(b, tang.offset + 8 + 48)), 1.0f / float(n));  // triangle 1's t0.x
+    EXPECT_EQ(std::bit_cast<float>(get32(b, tang.offset + 8 + 28)), -1.0f);             // triangle 0's t1.w
+    const std::vector<TextureTexels> texels = sceneTextureTexels(tangent.scene, grid);
+    ASSERT_EQ(texels.back().name, "vertexTangents");
+    EXPECT_EQ(texels.back().floats[4 + 3], -1.0f);  // triangle 0's second corner: its w
+    expectRoundTrip(tangent);
+    auto withFloat = [&](size_t at, float v) {
+        return patched(b, [&](Bytes& p) { put32(p, at, std::bit_cast<uint32_t>(v)); });
+    };
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, tang.offset, n - 1); }), "do not fit");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, tang.offset, uint64_t(1) << 40); }), "vertex tangents");
+    EXPECT_REFUSED(withFloat(tang.offset + 8 + 12, 0.5f), "triangle 0: vertex tangents must be finite with w -1, 0 or 1");
+    EXPECT_REFUSED(withFloat(tang.offset + 8 + 48 * 2 + 4, std::numeric_limits<float>::quiet_NaN()),
+                   "triangle 2: vertex tangents must be finite");
+    EXPECT_REFUSED(withFloat(tang.offset + 8 + 48 + 40, std::numeric_limits<float>::infinity()), "triangle 1: vertex tangents");
+    // A file shorter by a record: the section's size is not its count's.
+    refusal(patched(b, [&](Bytes& p) { put64(p, tang.at + 16, tang.size - 48); }));
+    LoadedScene bad = tangent;
+    bad.scene.tangents[3].t1.w = 2.0f;
+    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    bad.scene.tangents[3].t1.w = 1.0f;
+    bad.scene.tangents.pop_back();
     EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
 }
 

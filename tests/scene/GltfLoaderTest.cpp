@@ -9,6 +9,7 @@
 #include "../common/Refusal.h"
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -316,6 +317,121 @@ TEST(GltfLoader, RefusesWhatIsNotAUsableGltf) {
     std::ofstream(folder / "tri.bin", std::ios::binary) << std::string(36, '\0');
     EXPECT_NO_THROW(parseGltf(external, "good.gltf", folder));
     fs::remove_all(folder);
+}
+
+// A 2 x 2 PNG of the colour (200, 90, 230): a normal map for the tangent tests.
+const char kNormalMapPng[] =
+    "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEElEQVR4nGM4EfUMiBggFAA4dggh9f1xhQAAAABJRU5ErkJggg==";
+
+// A quad in z = 0 (NORMAL +z, TEXCOORD_0) whose primitive has TANGENT `tangent` (an accessor, or
+// -1: none) and material `material` (0: with a normal map, 1: without); one node per entry of
+// `nodes` (its mesh and transform).
+std::string tangentQuads(Gltf& g, const std::vector<std::string>& meshes, const std::vector<std::string>& nodes) {
+    std::string meshList, nodeList, roots;
+    for (const std::string& m : meshes) meshList += (meshList.empty() ? "" : ", ") + m;
+    for (size_t k = 0; k < nodes.size(); ++k) {
+        nodeList += (k ? ", " : "") + nodes[k];
+        roots += (k ? ", " : "") + std::to_string(k);
+    }
+    return g.json("\"extensionsUsed\": [\"KHR_mesh_quantization\"], \"scenes\": [{\"nodes\": [" + roots +
+                  "]}], \"nodes\": [" + nodeList + "], \"meshes\": [" + meshList +
+                  "], \"images\": [{\"uri\": \"" + kNormalMapPng + "\"}], \"textures\": [{\"source\": 0}], "
+                  "\"materials\": [{\"normalTexture\": {\"index\": 0}}, {}]");
+}
+
+struct TangentQuad {
+    int position, normal, texcoord, indices;
+    explicit TangentQuad(Gltf& g) {
+        position = g.positions({-1, 1, 0, -1, -1, 0, 1, -1, 0, 1, 1, 0});
+        normal = g.positions({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1});
+        texcoord = g.accessor(g.view(std::vector<float>{0, 0, 0, 1, 1, 1, 1, 0}), 5126, 4, "VEC2");
+        indices = g.indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123);
+    }
+    std::string mesh(int tangent, int material, bool normals = true) const {
+        return "{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(position) +
+               (normals ? ", \"NORMAL\": " + std::to_string(normal) : std::string()) + ", \"TEXCOORD_0\": " +
+               std::to_string(texcoord) + (tangent >= 0 ? ", \"TANGENT\": " + std::to_string(tangent) : std::string()) +
+               "}, \"indices\": " + std::to_string(indices) + ", \"material\": " + std::to_string(material) + "}]}";
+    }
+};
+
+// TANGENT (issue 22): per corner, normalised, w its sign (0: +1); through the node's transform,
+// a mirroring one turning w over; normalized BYTE (KHR_mesh_quantization) as the spec converts it;
+// a zero tangent kept as zero (the hit falls back to generated tangents). Not stored for a material
+// without a normal map (nothing to frame; no warning, as for texture coordinates no texture
+// uses), nor without NORMAL (the spec ignores tangents then: a warning).
+TEST(GltfLoader, TangentsFromTheTangentAttribute) {
+    Gltf g;
+    const TangentQuad quad(g);
+    // Corners: scaled, w 0.5, w -3, zero.
+    const int floats = g.accessor(g.view(std::vector<float>{0, 2, 0, 1, 0, 1, 0, 0.5f, 0, 1, 0, -3, 0, 0, 0, 1}), 5126, 4,
+                                  "VEC4");
+    const int bytes = g.accessor(g.view(std::vector<int8_t>{127, 0, 0, -127, 127, 0, 0, -127, 0, -127, 0, 127, 0, 0, 127, 0}),
+                                 5120, 4, "VEC4", ", \"normalized\": true");
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parse(tangentQuads(
+        g, {quad.mesh(floats, 0), quad.mesh(floats, 1), quad.mesh(bytes, 0), quad.mesh(floats, 0, false)},
+        {"{\"mesh\": 0}", "{\"mesh\": 0, \"scale\": [-1, 2, 1]}", "{\"mesh\": 1}", "{\"mesh\": 2}", "{\"mesh\": 3}"}));
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(scene.triangles.size(), 10u);
+    ASSERT_EQ(scene.tangents.size(), 10u);
+    // Triangle 0 is corners 0, 1, 2; triangle 1 corners 0, 2, 3.
+    EXPECT_EQ(scene.tangents[0].t0, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(scene.tangents[0].t1, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(scene.tangents[0].t2, glm::vec4(0, 1, 0, -1));
+    EXPECT_EQ(scene.tangents[1].t2, glm::vec4(0, 0, 0, 1));
+    // Mirrored in x, stretched in y: the tangent (0, 1, 0) stays, its handedness turns over.
+    EXPECT_EQ(scene.tangents[2].t0, glm::vec4(0, 1, 0, -1));
+    EXPECT_EQ(scene.tangents[2].t2, glm::vec4(0, 1, 0, 1));
+    // No normal map: none.
+    for (size_t t : {4u, 5u}) EXPECT_EQ(scene.tangents[t].t0, glm::vec4(0.0f)) << t;
+    // Normalized bytes: 127 is 1, -127 is -1, 0 is +1's sign.
+    EXPECT_EQ(scene.tangents[6].t0, glm::vec4(1, 0, 0, -1));
+    EXPECT_EQ(scene.tangents[6].t2, glm::vec4(0, -1, 0, 1));
+    EXPECT_EQ(scene.tangents[7].t2, glm::vec4(0, 0, 1, 1));
+    // Without NORMAL: none, and said.
+    for (size_t t : {8u, 9u}) EXPECT_EQ(scene.tangents[t].t1, glm::vec4(0.0f)) << t;
+    EXPECT_NE(err.find("mesh 3 primitive 0: TANGENT is not used (no NORMAL"), std::string::npos) << err;
+    EXPECT_EQ(err.find("TANGENT is not used;"), std::string::npos) << "the old warning: " << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+
+    // A scene whose TANGENT only meets materials without a normal map has no tangents at all.
+    Gltf plain;
+    const TangentQuad other(plain);
+    const int unused = plain.accessor(plain.view(std::vector<float>(16, 0.5f)), 5126, 4, "VEC4");
+    EXPECT_TRUE(parse(tangentQuads(plain, {other.mesh(unused, 1)}, {"{\"mesh\": 0}"})).tangents.empty());
+}
+
+// A TANGENT accessor that is not VEC4 of FLOAT or normalized BYTE / SHORT with one element per
+// vertex: exit 1 naming the file and the primitive.
+TEST(GltfLoader, RefusesTangentsOfTheWrongTypeOrCount) {
+    struct Case {
+        int componentType;
+        size_t count;
+        const char* type;
+        const char* extra;
+        const char* message;
+    };
+    const Case cases[] = {
+        {5126, 4, "VEC3", "", "mesh 0 primitive 0: TANGENT (accessor 4) is not VEC4 of one per vertex"},
+        {5126, 3, "VEC4", "", "mesh 0 primitive 0: TANGENT (accessor 4) is not VEC4 of one per vertex"},
+        {5121, 4, "VEC4", ", \"normalized\": true",
+         "mesh 0 primitive 0: TANGENT (accessor 4) of component type 5121 (not FLOAT or normalized BYTE or SHORT)"},
+        {5122, 4, "VEC4", "", "mesh 0 primitive 0: TANGENT (accessor 4) of component type 5122"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.message);
+        Gltf g;
+        const TangentQuad quad(g);
+        const int tangent = g.accessor(g.view(std::vector<float>(16, 0.5f)), c.componentType, c.count, c.type, c.extra);
+        ASSERT_EQ(tangent, 4);
+        const std::string message = refusal(tangentQuads(g, {quad.mesh(tangent, 0)}, {"{\"mesh\": 0}"}));
+        EXPECT_NE(message.find(c.message), std::string::npos) << message;
+    }
+    Gltf g;
+    const TangentQuad quad(g);
+    EXPECT_NE(refusal(tangentQuads(g, {quad.mesh(9, 0)}, {"{\"mesh\": 0}"})).find("mesh 0 primitive 0 TANGENT: accessor 9 does not exist"),
+              std::string::npos);
 }
 
 // Hostile material values (issue 22): texCoord indices no file can have, transforms that are not

@@ -169,6 +169,12 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
             if (path == fetching)
                 variants.push_back(library.assemble(path, "#define SCENE_VERTEX_COLORS\n#define SCENE_TEXTURES\n#define "
                                                           "SCENE_VERTEX_NORMALS\n#define PATH\n"));
+        // Normal maps, in the generated tangent frame and in the vertex tangents' (glTF TANGENT).
+        if (path == "integrators/surface.frag")
+            for (const char* defines : {"#define SCENE_TEXTURES\n#define SCENE_NORMAL_MAPS\n#define SCENE_VERTEX_NORMALS\n",
+                                        "#define SCENE_TEXTURES\n#define SCENE_NORMAL_MAPS\n#define SCENE_VERTEX_NORMALS\n"
+                                        "#define SCENE_VERTEX_TANGENTS\n#define PATH\n"})
+                variants.push_back(library.assemble(path, defines));
         if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {
