@@ -162,6 +162,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
     }
     hasAlpha_ = sceneUsesAlpha(scene);
+    cullsBackFaces_ = sceneCullsBackFaces(scene);
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -197,8 +198,9 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 }
 
 void SceneTextures::bindCoverage(GPUKernel& kernel) const {
-    if (!hasAlpha_) return;
-    kernel.addDefine("SCENE_ALPHA");
+    if (!hasCoverage()) return;
+    if (hasAlpha_) kernel.addDefine("SCENE_ALPHA");
+    if (cullsBackFaces_) kernel.addDefine("SCENE_CULL_BACK");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")
