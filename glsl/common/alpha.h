@@ -1,6 +1,6 @@
-// Alpha coverage (glTF alphaMode MASK / BLEND, MTL d / map_d), shared word for word by the
-// accelerators' kernels (glsl/scene/alpha.glsl) and the cpu backend (src/raytrace/AlphaCoverage),
-// after raymath.h and sampling.h. A candidate hit on a surface with alpha counts only where the
+// Alpha coverage (glTF alphaMode MASK / BLEND, MTL d / map_d) and back-face culling (glTF
+// doubleSided false), shared word for word by the accelerators' kernels (glsl/scene/alpha.glsl)
+// and the cpu backend (src/raytrace/AlphaCoverage), after raymath.h and sampling.h. A candidate hit on a surface with alpha counts only where the
 // surface covers the ray: MASK where alpha >= alphaCutoff, BLEND with probability alpha (stochastic
 // transparency: rays pass the surface with probability 1 - alpha). BLEND's choice is a hash of the
 // ray's key and the triangle, never a generator: every ray of one sample of one pixel (primary,
@@ -17,6 +17,11 @@
 #define GPURT_ALPHA_OPAQUE 0
 #define GPURT_ALPHA_MASK 1
 #define GPURT_ALPHA_BLEND 2
+
+// Added to the alpha mode in material texel 7's x when the material culls its back faces
+// (Material::cullsBackFaces: glTF doubleSided false, not transmissive): a candidate hit on a back
+// face (raymath.h backFacing) does not count, as an uncovered one does not.
+#define GPURT_CULL_BACK 4
 
 // The pattern dimension of the coverage keys (apart from every other dimension's range).
 #define GPURT_DIM_COVERAGE 8191u

@@ -7,6 +7,8 @@
 //                       (e1, 0), (e2, 0), as the grid's cell lists
 //   GPURT_BVH_BOX_MIN   the scene box's corner and the size of one quantisation step on each axis
 //   GPURT_BVH_BOX_STEP  (vec3 each): a child's box is stored in 16-bit steps of the scene box
+//   GPURT_BVH_COVERED(id, u, v, d, e1, e2)  whether a candidate hit of triangle id at (u, v)
+//                       counts (alpha coverage, back-face culling: common/alpha.h)
 // A visit tests both children's boxes, intersects the triangles of the children that are leaves,
 // the nearer first, in one loop, and goes on into the nearer inner child with the farther one on
 // a stack (ordered traversal); a popped node is visited without a second box test.
@@ -91,7 +93,7 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
             float u;
             float v;
             if (intersectTriangle(o, d, vec3(tri), e1, e2, t, u, v) && t > 0.0f && t < bestT &&
-                GPURT_BVH_COVERED(int(tri.w), u, v)) {
+                GPURT_BVH_COVERED(int(tri.w), u, v, d, e1, e2)) {
                 bestT = t;
                 bestU = u;
                 bestV = v;

@@ -148,4 +148,11 @@ GPURT_FN bool intersectTriangle(vec3 o, vec3 d, vec3 v0, vec3 e1, vec3 e2, GPURT
     return det != 0.0f && u >= 0.0f && u <= 1.0f && v >= 0.0f && u + v <= 1.0f;
 }
 
+// Whether a ray of direction d meets the back face of the triangle of edges e1 = v1 - v0,
+// e2 = v2 - v0: the front is the side from which v0, v1, v2 run counter-clockwise (glTF), i.e.
+// the side cross(e1, e2) points to. (intersectTriangle's det is -dot(d, cross(e1, e2)).)
+GPURT_FN bool backFacing(vec3 d, vec3 e1, vec3 e2) {
+    return dot(d, cross(e1, e2)) > 0.0f;
+}
+
 #endif

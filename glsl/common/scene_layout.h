@@ -24,8 +24,8 @@
 // Materials: RGBA32F, eight texels each on one row: (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
 // of refraction | 0), (metallic, roughness, normal scale, occlusion strength), (roughness channel,
-// metallic channel, normal texture | -1, emissive texture | -1), (alpha mode, alpha factor, alpha
-// cutoff, alpha channel); a channel is 4 texture + channel (0 R .. 3 A), or -1.
+// metallic channel, normal texture | -1, emissive texture | -1), (alpha mode + GPURT_CULL_BACK
+// when the material culls its back faces, alpha factor, alpha cutoff, alpha channel); a channel is 4 texture + channel (0 R .. 3 A), or -1.
 #define GPURT_MATERIAL_TEXELS 8
 // Texture coordinates (scenes with a textured material): RGBA32F, two texels per triangle, laid
 // out as the triangles (GPURT_TRIANGLES_PER_ROW a row): (t0, t1), (t2, 0, 0), in the image

@@ -1,11 +1,13 @@
-// Alpha coverage inside the accelerators' traversals (SCENE_ALPHA: some material has alpha; the
-// accelerators' kernels include this file only then): whether a candidate hit counts
-// (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). GpuTracer binds the scene
-// textures it reads and sets the sample's uniforms.
+// Alpha coverage and back-face culling inside the accelerators' traversals: whether a candidate
+// hit counts (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). The accelerators'
+// kernels include this file only when some material in use has alpha (SCENE_ALPHA) or culls its
+// back faces (SCENE_CULL_BACK: glTF doubleSided false); each compiles only its own test.
+// GpuTracer binds the scene textures it reads and sets the sample's uniforms.
 #include "../common/sampling.h"
 #include "shading.glsl"
 #include "../common/alpha.h"
 
+#ifdef SCENE_ALPHA
 uniform uint coverageSample;  // the sample index and seed of the rays traced (GpuTracer::setSample)
 uniform uint coverageSeed;
 // 1 where an element's ray need not be its pixel's (the path integrator's packed paths after its
@@ -19,15 +21,29 @@ uint elementCoverageKey() {
     uvec2 pixel = coverageFromStream != 0 ? uvec2(readStream(coveragePixels).yz) : imagePixel();
     return coverageKey(pixel.x, pixel.y, coverageSample, coverageSeed);
 }
+#else
+uint elementCoverageKey() { return 0u; }  // culling alone needs no key
+#endif
 
-// Whether triangle `id` covers the ray of key `key` at barycentrics (u, v): its material's texel
-// 7 (alpha mode, factor, cutoff, channel), the channel at the hit's texture coordinates.
-bool hitCovered(int id, float u, float v, uint key) {
+// Whether triangle `id` (edges e1, e2) covers the ray of key `key` and direction d at
+// barycentrics (u, v): its material's texel 7 (alpha mode + GPURT_CULL_BACK when it culls its
+// back faces, factor, cutoff, channel), the channel at the hit's texture coordinates.
+bool hitCovered(int id, float u, float v, uint key, vec3 d, vec3 e1, vec3 e2) {
     ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     int m = int(texelFetch(triangles, at, 0).w);
     vec4 alpha = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 7, 0), 0);
     int mode = int(alpha.x);
+#ifdef SCENE_CULL_BACK
+    if (mode >= GPURT_CULL_BACK) {
+        if (backFacing(d, e1, e2)) return false;
+        mode -= GPURT_CULL_BACK;
+    }
+#endif
+#ifdef SCENE_ALPHA
     if (mode == GPURT_ALPHA_OPAQUE) return true;
     float a = alpha.y * textureChannel(int(alpha.w), fetchTexcoord(id, u, v));
     return alphaCovers(mode, a, alpha.z, key, id);
+#else
+    return true;
+#endif
 }

@@ -8,23 +8,38 @@
 
 namespace gpurt {
 
-bool sceneUsesAlpha(const Scene& scene) {
-    std::vector<bool> alpha(scene.materials.size());
+namespace {
+
+// Whether a triangle's material has `property`.
+template <typename Property>
+bool someTriangleHas(const Scene& scene, Property property) {
+    std::vector<bool> has(scene.materials.size());
     bool any = false;
     for (size_t m = 0; m < scene.materials.size(); ++m) {
-        alpha[m] = scene.materials[m].hasAlpha();
-        any = any || alpha[m];
+        has[m] = property(scene.materials[m]);
+        any = any || has[m];
     }
-    return any && std::any_of(scene.materialIds.begin(), scene.materialIds.end(), [&](uint32_t m) { return alpha[m]; });
+    return any && std::any_of(scene.materialIds.begin(), scene.materialIds.end(), [&](uint32_t m) { return has[m]; });
+}
+
+}  // namespace
+
+bool sceneUsesAlpha(const Scene& scene) {
+    return someTriangleHas(scene, [](const Material& m) { return m.hasAlpha(); });
+}
+
+bool sceneCullsBackFaces(const Scene& scene) {
+    return someTriangleHas(scene, [](const Material& m) { return m.cullsBackFaces(); });
 }
 
 std::unique_ptr<const AlphaCoverage> AlphaCoverage::of(const Scene& scene) {
-    return sceneUsesAlpha(scene) ? std::make_unique<const AlphaCoverage>(scene) : nullptr;
+    return sceneUsesAlpha(scene) || sceneCullsBackFaces(scene) ? std::make_unique<const AlphaCoverage>(scene) : nullptr;
 }
 
 // glsl/scene/alpha.glsl hitCovered.
-bool AlphaCoverage::covers(int prim, float u, float v, uint32_t key) const {
+bool AlphaCoverage::covers(int prim, float u, float v, uint32_t key, glm::vec3 d, glm::vec3 e1, glm::vec3 e2) const {
     const Material& m = scene_.materials[scene_.materialIds[size_t(prim)]];
+    if (m.cullsBackFaces() && raymath::backFacing(d, e1, e2)) return false;
     if (m.alphaMode == GPURT_ALPHA_OPAQUE) return true;
     float alpha = m.alphaFactor;
     if (m.alphaTexture.given() && !scene_.texcoords.empty()) {

@@ -1,6 +1,7 @@
-// Alpha coverage on the cpu backend: whether a candidate hit of a traversal counts (glTF alphaMode
-// MASK / BLEND, MTL d / map_d), as glsl/scene/alpha.glsl decides it in the accelerators' kernels,
-// with the decision of glsl/common/alpha.h shared word for word.
+// Alpha coverage and back-face culling on the cpu backend: whether a candidate hit of a traversal
+// counts (glTF alphaMode MASK / BLEND, MTL d / map_d; glTF doubleSided false), as
+// glsl/scene/alpha.glsl decides it in the accelerators' kernels, with the decisions of
+// glsl/common/alpha.h and raymath.h backFacing shared word for word.
 #pragma once
 
 #include <cstdint>
@@ -13,26 +14,30 @@ namespace gpurt {
 // Whether a triangle of the scene has a material with alpha (a library's unused materials do not
 // count): only then do the traversals test coverage (SCENE_ALPHA in the kernels).
 bool sceneUsesAlpha(const Scene& scene);
+// Whether a triangle of the scene has a material that culls its back faces
+// (Material::cullsBackFaces): only then do the traversals test facing (SCENE_CULL_BACK).
+bool sceneCullsBackFaces(const Scene& scene);
 
 class AlphaCoverage {
   public:
-    // Null when no material of the scene has alpha (every hit counts). Keeps a reference to the
-    // scene: it must outlive the coverage.
+    // Null when no material in use has alpha or culls its back faces (every hit counts). Keeps a
+    // reference to the scene: it must outlive the coverage.
     static std::unique_ptr<const AlphaCoverage> of(const Scene& scene);
 
     explicit AlphaCoverage(const Scene& scene) : scene_(scene) {}
 
-    // Whether triangle `prim` covers the ray of coverage key `key` (common/alpha.h coverageKey)
-    // at barycentrics (u, v).
-    bool covers(int prim, float u, float v, uint32_t key) const;
+    // Whether triangle `prim` (edges e1, e2) covers the ray of coverage key `key`
+    // (common/alpha.h coverageKey) and direction d at barycentrics (u, v).
+    bool covers(int prim, float u, float v, uint32_t key, glm::vec3 d, glm::vec3 e1, glm::vec3 e2) const;
 
   private:
     const Scene& scene_;
 };
 
 // Whether a hit counts: always without coverage.
-inline bool hitCovered(const AlphaCoverage* coverage, int prim, float u, float v, uint32_t key) {
-    return coverage == nullptr || coverage->covers(prim, u, v, key);
+inline bool hitCovered(const AlphaCoverage* coverage, int prim, float u, float v, uint32_t key, glm::vec3 d,
+                       glm::vec3 e1, glm::vec3 e2) {
+    return coverage == nullptr || coverage->covers(prim, u, v, key, d, e1, e2);
 }
 
 }  // namespace gpurt

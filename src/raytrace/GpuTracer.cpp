@@ -66,11 +66,11 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
         whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
         path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
-        if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
-            for (GPUKernel* k : accel_->kernels()) {
-                textures_.bindCoverage(*k);
+        for (GPUKernel* k : accel_->kernels()) {
+            textures_.bindCoverage(*k);
+            if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
                 k->addInput(pipeline_->pathState, "coveragePixels");
-            }
+        }
     }
     return *pipeline_;
 }

@@ -53,20 +53,20 @@ constexpr char kBvhList[] = "BVHL";
 constexpr char kColors[] = "VCOL";
 constexpr char kAlpha[] = "ALPH";
 constexpr char kTangents[] = "TANG";
+constexpr char kSided[] = "SIDE";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
-// the vertex colours, the alpha coverage and the vertex tangents are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// the vertex colours, the alpha coverage, the vertex tangents and the sides are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha,     kTangents};
+                                         kColors,    kAlpha,     kTangents, kSided};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
            tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
-           gridSection(tag) ||
-           bvhSection(tag);
+           tag == kSided || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -108,6 +108,10 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kAlpha)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return m.hasAlpha(); });
+    // Only when some material is single-sided (glTF doubleSided false): likewise.
+    if (tag == kSided)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return !m.doubleSided; });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
@@ -123,6 +127,8 @@ constexpr size_t kModelBytes = 4;
 constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 // ALPH per material: alpha mode (u32), factor, cutoff (f32), the alpha channel (texture, channel).
 constexpr size_t kAlphaBytes = 5 * 4;
+// SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
+constexpr size_t kSidedBytes = 4;
 constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
 // The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
 constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
@@ -732,6 +738,21 @@ class SectionDecoder {
         }
     }
 
+    // Each material's sidedness (count = the materials', then kSidedBytes each: 1 double-sided, 0
+    // single-sided, nothing else). Read after the materials.
+    void sided(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kSidedBytes, "materials' sides", kMaxTextureMaterials, scene.materials.size(),
+                                   "materials");
+        for (uint64_t k = 0; k < n; ++k) {
+            const uint32_t doubleSided = in.u32();
+            if (doubleSided > 1)
+                fail("section " + s.tag + ": material " + std::to_string(k) + ": double-sided " +
+                     std::to_string(doubleSided) + " (0 or 1)");
+            scene.materials[size_t(k)].doubleSided = doubleSided == 1;
+        }
+    }
+
     void environment(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
         if (s.size < 4) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
@@ -936,6 +957,7 @@ class SectionEncoder {
         else if (tag == kPbr) pbr();
         else if (tag == kAlpha) alpha();
         else if (tag == kTangents) tangents();
+        else if (tag == kSided) sided();
         else if (tag == kEnvironment) environment();
     }
 
@@ -1097,6 +1119,11 @@ class SectionEncoder {
             out_.u32(uint32_t(int32_t(m.normalTexture)));
             out_.u32(uint32_t(int32_t(m.emissiveTexture)));
         }
+    }
+
+    void sided() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) out_.u32(m.doubleSided ? 1u : 0u);
     }
 
     void alpha() {
@@ -1313,6 +1340,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kPbr)) decoder.pbr(*section(kPbr), loaded.scene);
     if (section(kAlpha)) decoder.alpha(*section(kAlpha), loaded.scene);
     if (section(kTangents)) decoder.tangents(*section(kTangents), loaded.scene);
+    if (section(kSided)) decoder.sided(*section(kSided), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {

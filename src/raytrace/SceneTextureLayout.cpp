@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/RayMath.h"  // common/alpha.h GPURT_CULL_BACK
 #include "raytrace/SurfaceTexture.h"
 
 namespace gpurt {
@@ -154,7 +155,8 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.metallic, mat.roughness, mat.normalScale, mat.occlusionStrength),
             vec4(channel(mat.roughnessTexture), channel(mat.metallicTexture), float(mat.normalTexture),
                  float(mat.emissiveTexture)),
-            vec4(float(mat.alphaMode), mat.alphaFactor, mat.alphaCutoff, channel(mat.alphaTexture))};
+            vec4(float(mat.alphaMode + (mat.cullsBackFaces() ? GPURT_CULL_BACK : 0)), mat.alphaFactor, mat.alphaCutoff,
+                 channel(mat.alphaTexture))};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

@@ -167,9 +167,10 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
-        if (m.model == 2 && m.ior > 0.0f && m.transmission.x > 0.0f) hasTransmission_ = true;  // GPURT_MODEL_GLTF
+        if (m.model == 2 && m.transmits()) hasTransmission_ = true;  // GPURT_MODEL_GLTF
     }
     hasAlpha_ = sceneUsesAlpha(scene);
+    cullsBackFaces_ = sceneCullsBackFaces(scene);
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -212,8 +213,9 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 }
 
 void SceneTextures::bindCoverage(GPUKernel& kernel) const {
-    if (!hasAlpha_) return;
-    kernel.addDefine("SCENE_ALPHA");
+    if (!hasCoverage()) return;
+    if (hasAlpha_) kernel.addDefine("SCENE_ALPHA");
+    if (cullsBackFaces_) kernel.addDefine("SCENE_CULL_BACK");
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")

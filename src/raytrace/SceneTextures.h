@@ -38,8 +38,13 @@ class SceneTextures {
     // Whether some triangle's material has alpha (sceneUsesAlpha): the accelerators' kernels then test
     // candidate hits for coverage (glsl/scene/alpha.glsl).
     bool hasAlpha() const { return hasAlpha_; }
-    // Defines SCENE_ALPHA in an accelerator's kernel and adds what its coverage test reads (the
-    // triangles, materials, texture coordinates and textures); nothing without alpha.
+    // Whether some triangle's material culls its back faces (sceneCullsBackFaces).
+    bool cullsBackFaces() const { return cullsBackFaces_; }
+    // Whether the accelerators' kernels test candidate hits at all: alpha or culling.
+    bool hasCoverage() const { return hasAlpha_ || cullsBackFaces_; }
+    // Defines SCENE_ALPHA and SCENE_CULL_BACK (each where the scene has it) in an accelerator's
+    // kernel and adds what its coverage test reads (the triangles, materials, texture coordinates
+    // and textures); nothing without coverage.
     void bindCoverage(GPUKernel& kernel) const;
 
     const GPUFloatArray& triangles() const { return triangles_; }
@@ -72,7 +77,8 @@ class SceneTextures {
     bool hasTexcoords_;
     bool hasNormalMaps_ = false;
     bool hasTransmission_ = false;  // a glTF material with KHR_materials_transmission
-    bool hasAlpha_ = false;  // SCENE_ALPHA in the accelerators' kernels  // some material has a normal map (and the scene texture coordinates)
+    bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
+    bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;

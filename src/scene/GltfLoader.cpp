@@ -623,7 +623,13 @@ class GltfReader {
         const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
         const std::vector<glm::vec4> tangents = primitiveTangents(prim, at, matrices, vertices, material, normals, scene);
         const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
+        // The glTF spec: a node whose world transform has a negative determinant (a mirror)
+        // turns its primitives' front faces clockwise; the scene's triangles are counter-clockwise
+        // at the front (Material::doubleSided), so such a primitive's corners 1 and 2 swap. (A
+        // skinned primitive keeps its order: its node's own transform is not used.)
+        const bool mirrored = matrices.skinned.empty() && glm::determinant(glm::dmat3(matrices.world)) < 0.0;
         auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+            if (mirrored) std::swap(b, c);
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
             scene.materialIds.push_back(material);
             if (!normals.empty()) {
@@ -955,6 +961,7 @@ class GltfReader {
         // Material extensions gpurt does not read are warned about once per file with the
         // other unread extensions (kExtensionsRead).
         readAlpha(g, baseTexture, named, m, uv, scene);
+        m.doubleSided = g.doubleSided;  // glTF's default: single-sided (back faces culled)
         uvs_.resize(scene.materials.size() + 1);
         uvs_.back() = uv;
         scene.materials.push_back(m);

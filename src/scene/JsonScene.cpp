@@ -505,7 +505,7 @@ class SceneReader {
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
-                                  "metallic", "roughness"});
+                                  "metallic", "roughness", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -569,6 +569,11 @@ class SceneReader {
                         fail(reflectAt / i,
                              "must be <= 1, got " + formatNumber(material.reflectivity[i]));
             }
+        }
+        // false: the back faces are culled (as glTF's doubleSided; default true here).
+        if (const json* sided = find(value, "doubleSided")) {
+            if (!sided->is_boolean()) fail(at / "doubleSided", std::string("expected true or false, got ") + sided->type_name());
+            material.doubleSided = sided->get<bool>();
         }
         return material;
     }

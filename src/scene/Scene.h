@@ -72,8 +72,19 @@ struct Material {
     float alphaFactor = 1.0f;
     float alphaCutoff = 0.5f;
     TextureChannel alphaTexture;
+    // Whether rays see the surface from behind (glTF doubleSided; OBJ, PLY and JSON surfaces are
+    // always double-sided). A single-sided surface's back faces (where the ray meets the triangle's
+    // winding clockwise: dot(d, cross(v1 - v0, v2 - v0)) > 0) are culled by every traversal, for
+    // every ray, as alpha coverage is (glsl/common/alpha.h).
+    bool doubleSided = true;
 
     bool hasAlpha() const { return alphaMode != 0; }
+    // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
+    // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
+    bool transmits() const { return ior > 0.0f && (model != 2 || transmission.x > 0.0f); }
+    // Whether the traversals cull the back faces: single-sided and not transmissive. A dielectric
+    // is never culled, as the rays inside a solid meet its back faces.
+    bool cullsBackFaces() const { return !doubleSided && !transmits(); }
     bool emits() const { return emission != glm::vec3(0.0f); }
 };
 

@@ -185,6 +185,10 @@ TEST_F(EnvironmentMaps, RotateOptionTurnsTheMap) {
 // The default light (docs/SCENE_FORMAT.md): over the pixels that show the model (the prim AOV),
 // the mean of each PNG pixel's largest channel is in 0.25..0.75 and under 2% have a channel at
 // 255, under both integrators.
+// Not tests/assets/gltf/cornell_box.glb: it is single-sided (glTF's default) with its walls
+// facing inwards, and the default camera is behind its back wall, so the picture is the inside of
+// the box seen through the culled wall, lit only through the box's open side (Cli,
+// SingleSidedCornellBoxFromBehindShowsItsInside); the same box as OBJ and PLY is here.
 class DefaultLight : public GpurtTest, public ::testing::WithParamInterface<std::tuple<std::string, std::string>> {};
 
 TEST_P(DefaultLight, ShowsTheModelWellExposed) {
@@ -222,7 +226,7 @@ INSTANTIATE_TEST_SUITE_P(
                                          "../shared/models/bunny.obj",
                                          "../shared/models/bunny_lo.obj", "../shared/models/teapot.obj",
                                          "../shared/models/cornell_box.obj", "tests/assets/gltf/teapot.gltf",
-                                         "tests/assets/gltf/cornell_box.glb", "tests/assets/ply/teapot_binary.ply",
+                                         "tests/assets/ply/teapot_binary.ply",
                                          "tests/assets/ply/cornell_box_be.ply", "tests/assets/textures/globe.glb",
                                          "tests/assets/textures/quad.obj"),
                        ::testing::Values("whitted", "path")),

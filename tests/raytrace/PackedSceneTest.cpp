@@ -161,6 +161,7 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_EQ(x.materials[m].name, y.materials[m].name) << m;
         EXPECT_EQ(x.materials[m].diffuseTexture, y.materials[m].diffuseTexture) << m;
         EXPECT_EQ(x.materials[m].alphaMode, y.materials[m].alphaMode) << m;
+        EXPECT_EQ(x.materials[m].doubleSided, y.materials[m].doubleSided) << m;
         EXPECT_TRUE(sameBits(x.materials[m].alphaFactor, y.materials[m].alphaFactor)) << m;
         EXPECT_TRUE(sameBits(x.materials[m].alphaCutoff, y.materials[m].alphaCutoff)) << m;
         EXPECT_EQ(x.materials[m].alphaTexture.texture, y.materials[m].alphaTexture.texture) << m;
@@ -662,6 +663,30 @@ TEST_F(PackedSceneTest, AlphaCoverageTravelsInItsOwnSection) {
     LoadedScene bad = alpha;
     bad.scene.materials[1].alphaCutoff = -1.0f;
     EXPECT_THROW(encodePackedScene(bad, grid_, "bad"), InputError);
+}
+
+// Sides (SIDE, one u32 a material: 1 double-sided, 0 single-sided): written only when some
+// material is single-sided, so that other files stay as they were; kept through the round trip;
+// any other value is refused.
+TEST_F(PackedSceneTest, SidesTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "SIDE")) << "a scene of double-sided materials";
+    EXPECT_EQ(encodePackedScene(source_, grid_, "again"), bytes_) << "unchanged without single-sided materials";
+    LoadedScene sided = source_;
+    sided.scene.materials[1].doubleSided = false;
+    const size_t materials = sided.scene.materials.size();
+    const Bytes b = encodePackedScene(sided, grid_, "sided");
+    const Entry side = section(b, "SIDE");
+    EXPECT_EQ(side.size, 8 + 4 * materials);
+    EXPECT_EQ(get64(b, side.offset), materials);
+    for (size_t m = 0; m < materials; ++m) EXPECT_EQ(get32(b, side.offset + 8 + 4 * m), m == 1 ? 0u : 1u) << m;
+    const LoadedScene packed = decodePackedScene(b, "sided.gpscene");
+    expectSameScene(sided, packed);
+    EXPECT_FALSE(packed.scene.materials[1].doubleSided);
+    EXPECT_TRUE(packed.scene.materials[0].doubleSided);
+    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8 + 4, 2); }), "material 1: double-sided 2");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8, 0xffffffffu); }), "material 0: double-sided");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, side.offset, materials + 1); }), "section SIDE");
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

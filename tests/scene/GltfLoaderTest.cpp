@@ -238,6 +238,54 @@ TEST(GltfLoader, AlphaModesAndCutoff) {
     }
 }
 
+// doubleSided per material, false by default (the glTF spec): such a material culls its back
+// faces unless it is transmissive (glass).
+TEST(GltfLoader, DoubleSidedPerMaterialDefaultFalse) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const std::string prim = "{\"attributes\": {\"POSITION\": " + std::to_string(p) + "}, \"material\": ";
+    const Scene scene = parse(g.json(
+        "\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"materials\": [{}, {\"doubleSided\": true}, "
+        "{\"doubleSided\": false}, {\"extensions\": {\"KHR_materials_transmission\": {\"transmissionFactor\": 1}}}], "
+        "\"extensionsUsed\": [\"KHR_materials_transmission\"], "
+        "\"meshes\": [{\"primitives\": [" + prim + "0}, " + prim + "1}, " + prim + "2}, " + prim + "3}]}]"));
+    ASSERT_EQ(scene.materials.size(), 5u);  // gpurt's default, then the four in order of use
+    EXPECT_TRUE(scene.materials[0].doubleSided) << "gpurt's default material";
+    EXPECT_FALSE(scene.materials[1].doubleSided) << "glTF's default";
+    EXPECT_TRUE(scene.materials[1].cullsBackFaces());
+    EXPECT_TRUE(scene.materials[2].doubleSided);
+    EXPECT_FALSE(scene.materials[2].cullsBackFaces());
+    EXPECT_FALSE(scene.materials[3].doubleSided);
+    EXPECT_FALSE(scene.materials[4].doubleSided);
+    EXPECT_GT(scene.materials[4].ior, 0.0f);
+    EXPECT_FALSE(scene.materials[4].cullsBackFaces()) << "glass is never culled";
+}
+
+// The front of a triangle is counter-clockwise in its node's frame; a node whose transform has a
+// negative determinant (a mirror) keeps its front faces on the same side of the surface (the glTF
+// spec: its winding turns clockwise), so the scene's triangle, counter-clockwise at the front,
+// has its corners 1 and 2 swapped: its cross(e1, e2) points along the mirrored normal.
+TEST(GltfLoader, MirroredNodesKeepTheirFrontFaces) {
+    for (const char* node : {"{\"mesh\": 0}", "{\"mesh\": 0, \"scale\": [-1, 1, 1]}",
+                             "{\"mesh\": 0, \"scale\": [1, -1, -1]}", "{\"mesh\": 0, \"scale\": [1, 1, -1]}"}) {
+        SCOPED_TRACE(node);
+        Gltf g;
+        const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});  // counter-clockwise seen from +z
+        const Scene scene = parse(g.json(std::string("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [") + node +
+                                         "], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                                         std::to_string(p) + "}}]}]"));
+        ASSERT_EQ(scene.triangles.size(), 1u);
+        const Triangle& t = scene.triangles[0];
+        const glm::vec3 front = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+        // The local normal +z through the inverse transpose of diag(sx, sy, sz): +z times sz.
+        const float sz = std::string(node).find("-1]") != std::string::npos ? -1.0f : 1.0f;
+        EXPECT_EQ(front.x, 0.0f);
+        EXPECT_EQ(front.y, 0.0f);
+        EXPECT_GT(front.z * sz, 0.0f) << front.z;
+        EXPECT_EQ(t.v0, glm::vec3(0.0f));
+    }
+}
+
 // With a baseColorTexture, alpha is baseColorFactor[3] times the texture's A.
 TEST(GltfLoader, AlphaTextureIsTheBaseColourTexturesA) {
     std::ifstream in("tests/assets/textures/quad_separate.gltf");

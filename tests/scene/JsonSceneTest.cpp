@@ -302,6 +302,24 @@ TEST_F(JsonSceneTest, DuplicateKeysAreErrors) {
         {"/meshes/1/transform/scale: duplicate key"});
 }
 
+// A material override's "doubleSided": false culls its back faces (glTF's doubleSided); OBJ's
+// materials and overrides without it stay double-sided.
+TEST_F(JsonSceneTest, DoubleSidedFalseMakesAMaterialSingleSided) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj"},
+        {"file": "tri.obj", "material": {"doubleSided": false}},
+        {"file": "tri.obj", "material": {"doubleSided": true}},
+        {"file": "tri.obj", "material": {"diffuse": [0.5, 0.5, 0.5]}}]})"));
+    ASSERT_EQ(scene.materials.size(), 4u);
+    EXPECT_TRUE(scene.materials[0].doubleSided);
+    EXPECT_FALSE(scene.materials[1].doubleSided);
+    EXPECT_TRUE(scene.materials[2].doubleSided);
+    EXPECT_TRUE(scene.materials[3].doubleSided);
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"doubleSided": 0}}]})",
+                {"/meshes/0/material/doubleSided: expected true or false, got number"});
+}
+
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});

@@ -153,6 +153,17 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
                                         "#define SCENE_ALPHA\n#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n"})
                 variants.push_back(library.assemble(path, defines));
         if (path == "accel/grid/intersect.frag") variants.push_back(library.assemble(path, "#define SCENE_ALPHA\n#define SCENE_TEXTURES\n"));
+        // Back-face culling (SCENE_CULL_BACK), alone and with alpha.
+        if (path == "accel/grid/trace.frag" || path == "accel/bvh/trace.frag")
+            for (const char* defines : {"#define SCENE_CULL_BACK\n#define FROM_START\n#define TRACE_STEPS (1 << 30)\n",
+                                        "#define SCENE_CULL_BACK\n#define ANY_HIT\n#define TRACE_STEPS 16\n",
+                                        "#define SCENE_CULL_BACK\n#define FROM_START\n#define TRACE_STEPS (1 << 30)\n#define CAMERA\n",
+                                        "#define SCENE_CULL_BACK\n#define SCENE_ALPHA\n#define SCENE_TEXTURES\n#define ANY_HIT\n"})
+                variants.push_back(library.assemble(path, defines));
+        if (path == "accel/grid/intersect.frag") {
+            variants.push_back(library.assemble(path, "#define SCENE_CULL_BACK\n"));
+            variants.push_back(library.assemble(path, "#define SCENE_CULL_BACK\n#define SCENE_ALPHA\n"));
+        }
         if (path == "integrators/whitted/bounce.frag") variants.push_back(library.assemble(path, "#define LAST_ROUND\n"));
         if (path == "integrators/shadowgen.frag" || path == "integrators/light.frag") {
             variants.push_back(library.assemble(path, "#define EMITTER\n"));

@@ -5,12 +5,13 @@
 #include "scene/pixel.glsl"
 // Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
 #include "common/sampling.h"
-#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage (scene/alpha.glsl)
+// Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
+#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
-uint rayCoverageKey;
-#define GPURT_BVH_COVERED(id, u, v) hitCovered(id, u, v, rayCoverageKey)
+uint rayCoverageKey = 0u;
+#define GPURT_BVH_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, rayCoverageKey, d, e1, e2)
 #else
-#define GPURT_BVH_COVERED(id, u, v) true
+#define GPURT_BVH_COVERED(id, u, v, d, e1, e2) true
 #endif
 #ifdef CAMERA
 #include "scene/camera.glsl"

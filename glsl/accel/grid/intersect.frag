@@ -4,11 +4,12 @@
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
 #include "grid.glsl"
-#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+// Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
+#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
-#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#define GRID_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, elementCoverageKey(), d, e1, e2)
 #else
-#define GRID_COVERED(id, u, v) true
+#define GRID_COVERED(id, u, v, d, e1, e2) true
 #endif
 
 uniform sampler2D rayOrigin;
@@ -42,7 +43,7 @@ void main() {
         int id = fetchListTriangle(i, v0, e1, e2);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance && GRID_COVERED(id, u, w)) {
+            t <= tExit + cellTolerance && GRID_COVERED(id, u, w, d, e1, e2)) {
             bestT = t;
             bestId = id;
             bestU = u;

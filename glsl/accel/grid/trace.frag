@@ -11,11 +11,12 @@
 #include "grid.glsl"
 // Outside the #ifdefs: a file is included once, so the first #include of it must not be skipped.
 #include "common/sampling.h"
-#ifdef SCENE_ALPHA  // some material has alpha: candidate hits are tested for coverage
+// Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
+#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
-#define GRID_COVERED(id, u, v) hitCovered(id, u, v, elementCoverageKey())
+#define GRID_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, elementCoverageKey(), d, e1, e2)
 #else
-#define GRID_COVERED(id, u, v) true
+#define GRID_COVERED(id, u, v, d, e1, e2) true
 #endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
@@ -98,7 +99,7 @@ void main() {
             vec3 v0, e1, e2;
             int id = fetchListTriangle(k, v0, e1, e2);
             float t, u, w;
-            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, u, w)
+            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, u, w, d, e1, e2)
 #ifndef ANY_HIT
                 && t <= tExit + cellTolerance
 #endif

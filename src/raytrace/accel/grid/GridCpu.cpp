@@ -56,7 +56,7 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t cove
                 float t, u, v;
                 if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;
                 if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t &&
-                    hitCovered(coverage_.get(), int(id), u, v, coverageKey)) {
+                    hitCovered(coverage_.get(), int(id), u, v, coverageKey, d, tri.e1, tri.e2)) {
                     hit.t = t;
                     hit.prim = static_cast<int>(id);
                     hit.u = u;
