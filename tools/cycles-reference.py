@@ -6,11 +6,11 @@ Needs Blender (not installed by scripts/install-deps.sh: no test uses it): apt-g
 python3-numpy.
 
 Render (inside Blender):
-  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       render SCENE.glb --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fovy DEG] --size WxH --spp N \\
       [--env FILE.hdr --env-strength S --env-rotate DEG] [--bounces N] -o OUT.exr [--png OUT.png]
 Compare (inside Blender too: it reads the EXRs):
-  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       compare GPURT.exr CYCLES.exr [--regions N] [--side-by-side OUT.png]
   prints, for an N x N grid of regions, the mean of each image's luminance there and their ratio;
   --side-by-side writes both (clamped, sRGB) next to each other.
