@@ -2,15 +2,20 @@
 """Reference images from Blender's Cycles (Debian `blender`, its bundled glTF importer) for a glTF
 scene seen by gpurt's camera (CONTRACT.md), and the comparison of gpurt's image with it.
 
-Needs Blender (not installed by scripts/install-deps.sh: no test uses it): apt-get install blender
+Needs Blender (not installed by scripts/install-deps.sh: no test runs it; the tests read the EXRs it wrote): apt-get install blender
 python3-numpy.
 
 Render (inside Blender):
-  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       render SCENE.glb --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fovy DEG] --size WxH --spp N \\
-      [--env FILE.hdr --env-strength S --env-rotate DEG] [--bounces N] -o OUT.exr [--png OUT.png]
+      [--env FILE.hdr --env-strength S --env-rotate DEG] [--bounces N] [--seed S] [--threads N]
+      [--half] [--distribution GGX|MULTI_GGX] -o OUT.exr [--png OUT.png]
+  --bounces N is gpurt's (the longest path in hits); Cycles gets max_bounces N - 1, which counts
+  the scatterings after the first hit (max_bounces 0 is direct light only, gpurt's --bounces 1).
+  Filter Glossy is 0 (its default 1 blurs glossy lobes after diffuse ones), clamping and
+  denoising are off. The references of tests/assets/cycles/ were made with it (README.txt there).
 Compare (inside Blender too: it reads the EXRs):
-  blender -b --factory-startup -noaudio --python-exit-code 1 -P scripts/cycles-reference.py -- \\
+  blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       compare GPURT.exr CYCLES.exr [--regions N] [--side-by-side OUT.png]
   prints, for an N x N grid of regions, the mean of each image's luminance there and their ratio;
   --side-by-side writes both (clamped, sRGB) next to each other.
@@ -89,9 +94,22 @@ def render(args):
     scene.cycles.samples = args.spp
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
-    scene.cycles.max_bounces = args.bounces
-    scene.cycles.diffuse_bounces = scene.cycles.glossy_bounces = scene.cycles.transmission_bounces = args.bounces
+    # gpurt's --bounces N is the longest path in hits: next-event estimation at the first N - 1
+    # hits, the N-th hit only seen (its emission, or the environment past it). Cycles' max_bounces
+    # counts the scatterings after the first hit: max_bounces 0 is direct light only, gpurt's 1.
+    cycles_bounces = max(0, args.bounces - 1) if args.cycles_bounces is None else args.cycles_bounces
+    scene.cycles.max_bounces = cycles_bounces
+    scene.cycles.diffuse_bounces = scene.cycles.glossy_bounces = scene.cycles.transmission_bounces = cycles_bounces
     scene.cycles.sample_clamp_direct = scene.cycles.sample_clamp_indirect = 0.0
+    scene.cycles.blur_glossy = 0.0  # Filter Glossy (default 1) blurs glossy lobes after diffuse ones: biased
+    scene.cycles.seed = args.seed
+    if args.threads:
+        scene.render.threads_mode = "FIXED"
+        scene.render.threads = args.threads
+    for material in bpy.data.materials:
+        for node in material.node_tree.nodes if material.node_tree else []:
+            if node.type == "BSDF_PRINCIPLED":
+                node.distribution = args.distribution
     scene.cycles.filter_width = 0.01
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
@@ -99,7 +117,8 @@ def render(args):
     scene.view_settings.view_transform = "Standard"
     scene.view_settings.look = "None"
     scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.color_mode = "RGB"
+    scene.render.image_settings.color_depth = "16" if args.half else "32"
     scene.render.image_settings.exr_codec = "ZIP"
     scene.render.filepath = args.output
     bpy.ops.render.render(write_still=True)
@@ -167,7 +186,13 @@ def main():
     r.add_argument("--fovy", type=float, default=45.0)
     r.add_argument("--size", default="320x240")
     r.add_argument("--spp", type=int, default=64)
-    r.add_argument("--bounces", type=int, default=4)
+    r.add_argument("--bounces", type=int, default=4, help="gpurt's --bounces (Cycles gets max_bounces N - 1)")
+    r.add_argument("--cycles-bounces", type=int, help="Cycles' max_bounces itself (overrides --bounces)")
+    r.add_argument("--distribution", default="GGX", choices=["GGX", "MULTI_GGX"],
+                   help="the Principled BSDFs' microfacet distribution (glTF's is GGX, single scattering)")
+    r.add_argument("--seed", type=int, default=0)
+    r.add_argument("--threads", type=int, default=0, help="render threads (default: all)")
+    r.add_argument("--half", action="store_true", help="write half-float RGB (else 32-bit float)")
     r.add_argument("--env")
     r.add_argument("--env-strength", type=float, default=1.0)
     r.add_argument("--env-rotate", type=float, default=0.0)
