@@ -428,9 +428,11 @@ TEST(GltfLoader, TangentsFromTheTangentAttribute) {
     EXPECT_EQ(scene.tangents[0].t1, glm::vec4(0, 1, 0, 1));
     EXPECT_EQ(scene.tangents[0].t2, glm::vec4(0, 1, 0, -1));
     EXPECT_EQ(scene.tangents[1].t2, glm::vec4(0, 0, 0, 1));
-    // Mirrored in x, stretched in y: the tangent (0, 1, 0) stays, its handedness turns over.
+    // Mirrored in x, stretched in y: the tangent (0, 1, 0) stays, its handedness turns over; the
+    // mirrored triangle's corners are 0, 2, 1 (its front face kept, as the spec says).
     EXPECT_EQ(scene.tangents[2].t0, glm::vec4(0, 1, 0, -1));
-    EXPECT_EQ(scene.tangents[2].t2, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(scene.tangents[2].t1, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(scene.tangents[2].t2, glm::vec4(0, 1, 0, -1));
     // No normal map: none.
     for (size_t t : {4u, 5u}) EXPECT_EQ(scene.tangents[t].t0, glm::vec4(0.0f)) << t;
     // Normalized bytes: 127 is 1, -127 is -1, 0 is +1's sign.
