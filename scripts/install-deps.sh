@@ -19,6 +19,12 @@ packages=(
   libembree-dev
   clang libclang-rt-14-dev llvm
 )
+# `--cycles`: also Blender and numpy for tools/cycles-reference.py, which remakes the Cycles
+# reference images in tests/assets/cycles/. No test runs Blender (the images are committed), so
+# ./test.sh does not ask for them.
+if [ "${1:-}" = "--cycles" ]; then
+  packages+=(blender python3-numpy)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

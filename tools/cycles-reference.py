@@ -2,8 +2,7 @@
 """Reference images from Blender's Cycles (Debian `blender`, its bundled glTF importer) for a glTF
 scene seen by gpurt's camera (CONTRACT.md), and the comparison of gpurt's image with it.
 
-Needs Blender (not installed by scripts/install-deps.sh: no test runs it; the tests read the EXRs it wrote): apt-get install blender
-python3-numpy.
+Needs Blender and numpy: scripts/install-deps.sh --cycles (not installed for ./test.sh: no test runs it; the tests read the EXRs it wrote).
 
 Render (inside Blender):
   blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
