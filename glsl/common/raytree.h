@@ -25,6 +25,22 @@
 #define GPURT_TREE_POP 1       // it takes the pending ray on top of the stack (slot `height`)
 #define GPURT_TREE_DONE 2      // the pixel's tree is done
 
+// How many of a hit's two candidate children (A continues the pixel's ray, B is pushed) are worth
+// tracing (weight at least GPURT_MIN_WEIGHT): where only B is, it becomes A (leaving on the
+// facing side, sideA 1). Returns 0, 1 or 2.
+GPURT_FN int rayTreeChildren(GPURT_INOUT(vec3) dirA, GPURT_INOUT(vec3) weightA, GPURT_INOUT(float) sideA, vec3 dirB,
+                             vec3 weightB) {
+    bool a = max(weightA.x, max(weightA.y, weightA.z)) >= GPURT_MIN_WEIGHT;
+    bool b = max(weightB.x, max(weightB.y, weightB.z)) >= GPURT_MIN_WEIGHT;
+    if (!a && b) {  // only the second is worth tracing: it continues the pixel's ray
+        dirA = dirB;
+        weightA = weightB;
+        sideA = 1.0f;
+        return 1;
+    }
+    return a ? (b ? 2 : 1) : 0;
+}
+
 // Whether a hit of the ray at `depth` (hits after the primary one), in a tree that has taken
 // `rays` rays, may spawn children.
 GPURT_FN bool rayTreeMaySpawn(int depth, int rays, int maxBounces) {

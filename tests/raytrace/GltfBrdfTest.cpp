@@ -50,6 +50,34 @@ GltfParams randomParams(std::mt19937& rng) {
     return p;
 }
 
+// Pearson's chi-square of a histogram against its expected counts, cells expecting fewer than 5
+// pooled into one, and the 0.001 critical value for its degrees of freedom (Wilson-Hilferty).
+struct ChiSquare {
+    double statistic = 0.0, critical = 0.0;
+    int cells = 0;
+};
+
+ChiSquare chiSquare(const std::vector<double>& histogram, const std::vector<double>& expected) {
+    ChiSquare r;
+    double pooledObserved = 0.0, pooledExpected = 0.0;
+    for (size_t c = 0; c < histogram.size(); ++c) {
+        if (expected[c] < 5.0) {  // sparse cells pooled into one
+            pooledObserved += histogram[c];
+            pooledExpected += expected[c];
+            continue;
+        }
+        r.statistic += (histogram[c] - expected[c]) * (histogram[c] - expected[c]) / expected[c];
+        ++r.cells;
+    }
+    if (pooledExpected >= 5.0) {
+        r.statistic += (pooledObserved - pooledExpected) * (pooledObserved - pooledExpected) / pooledExpected;
+        ++r.cells;
+    }
+    const double k = r.cells - 1, z = 3.09;
+    r.critical = k * std::pow(1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k)), 3.0);
+    return r;
+}
+
 TEST(GltfBrdf, IsAppendixBAndReciprocal) {
     std::mt19937 rng(7);
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
@@ -177,26 +205,9 @@ TEST(GltfBrdf, SamplesFollowThePdf) {
                 integral += mass;
             }
         EXPECT_NEAR(integral, double(kept) / samples, 0.01);
-        double chi2 = 0.0, pooledObserved = 0.0, pooledExpected = 0.0;
-        int cells = 0;
-        for (size_t c = 0; c < histogram.size(); ++c) {
-            if (expected[c] < 5.0) {  // sparse cells pooled into one
-                pooledObserved += histogram[c];
-                pooledExpected += expected[c];
-                continue;
-            }
-            chi2 += (histogram[c] - expected[c]) * (histogram[c] - expected[c]) / expected[c];
-            ++cells;
-        }
-        if (pooledExpected >= 5.0) {
-            chi2 += (pooledObserved - pooledExpected) * (pooledObserved - pooledExpected) / pooledExpected;
-            ++cells;
-        }
-        ASSERT_GT(cells, 100);
-        // The 0.001 critical value of chi-square with k degrees of freedom (Wilson-Hilferty).
-        const double k = cells - 1, z = 3.09;
-        const double critical = k * std::pow(1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k)), 3.0);
-        EXPECT_LT(chi2, critical) << cells << " cells";
+        const ChiSquare chi = chiSquare(histogram, expected);
+        ASSERT_GT(chi.cells, 100);
+        EXPECT_LT(chi.statistic, chi.critical) << chi.cells << " cells";
     }
 }
 
@@ -327,25 +338,9 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
                     integral += mass;
                 }
             EXPECT_NEAR(integral, double(kept) / samples, 0.01);
-            double chi2 = 0.0, pooledObserved = 0.0, pooledExpected = 0.0;
-            int cells = 0;
-            for (size_t c = 0; c < histogram.size(); ++c) {
-                if (expected[c] < 5.0) {
-                    pooledObserved += histogram[c];
-                    pooledExpected += expected[c];
-                    continue;
-                }
-                chi2 += (histogram[c] - expected[c]) * (histogram[c] - expected[c]) / expected[c];
-                ++cells;
-            }
-            if (pooledExpected >= 5.0) {
-                chi2 += (pooledObserved - pooledExpected) * (pooledObserved - pooledExpected) / pooledExpected;
-                ++cells;
-            }
-            ASSERT_GT(cells, 100);
-            const double dof = cells - 1, z = 3.09;
-            const double critical = dof * std::pow(1.0 - 2.0 / (9.0 * dof) + z * std::sqrt(2.0 / (9.0 * dof)), 3.0);
-            EXPECT_LT(chi2, critical) << cells << " cells";
+            const ChiSquare chi = chiSquare(histogram, expected);
+            ASSERT_GT(chi.cells, 100);
+            EXPECT_LT(chi.statistic, chi.critical) << chi.cells << " cells";
         }
     }
 }

@@ -74,15 +74,7 @@ GPURT_FN int hitChildren(vec3 d, vec3 ng, vec3 ns, bool entering, vec3 reflectiv
             }
         }
     }
-    bool a = max(weightA.x, max(weightA.y, weightA.z)) >= GPURT_MIN_WEIGHT;
-    bool b = max(weightB.x, max(weightB.y, weightB.z)) >= GPURT_MIN_WEIGHT;
-    if (!a && b) {  // only the reflection is worth tracing: it continues the pixel's ray
-        dirA = dirB;
-        weightA = weightB;
-        sideA = 1.0f;
-        return 1;
-    }
-    return a ? (b ? 2 : 1) : 0;
+    return rayTreeChildren(dirA, weightA, sideA, dirB, weightB);
 }
 
 // The weights of the diffuse and glossy lobes of a material for the path integrator (0 for glass,

@@ -280,15 +280,7 @@ GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GP
             sideA = -1.0f;
         }
     }
-    bool a = maxChannel(weightA) >= GPURT_MIN_WEIGHT;
-    bool b = maxChannel(weightB) >= GPURT_MIN_WEIGHT;
-    if (!a && b) {  // only the reflection is worth tracing: it continues the pixel's ray
-        dirA = dirB;
-        weightA = weightB;
-        sideA = 1.0f;
-        return 1;
-    }
-    return a ? (b ? 2 : 1) : 0;
+    return rayTreeChildren(dirA, weightA, sideA, dirB, weightB);
 }
 
 GPURT_FN bool gltfLit(MaterialRecord m) {
