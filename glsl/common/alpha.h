@@ -18,10 +18,14 @@
 #define GPURT_ALPHA_MASK 1
 #define GPURT_ALPHA_BLEND 2
 
-// Added to the alpha mode in material texel 7's x when the material culls its back faces
-// (Material::cullsBackFaces: glTF doubleSided false, not transmissive): a candidate hit on a back
-// face (raymath.h backFacing) does not count, as an uncovered one does not.
-#define GPURT_CULL_BACK 4
+// A triangle's coverage flags, the w of its second texel in the accelerators' triangle lists (the
+// grid's cell lists, the BVH's leaves): whether its material culls back faces
+// (Material::cullsBackFaces: glTF doubleSided false, not transmissive: a candidate hit on a back
+// face, raymath.h backFacing, does not count, as an uncovered one does not), whether it has
+// alpha. A triangle with neither (0) counts wherever it is hit: the kernels test it without
+// fetching its material; culling alone needs only the ray and the edges.
+#define GPURT_COVER_CULL 1
+#define GPURT_COVER_ALPHA 2
 
 // The pattern dimension of the coverage keys (apart from every other dimension's range).
 #define GPURT_DIM_COVERAGE 8191u

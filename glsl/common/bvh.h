@@ -4,11 +4,12 @@
 //   GPURT_BVH_PARAMS    leading parameters of bvhTrace (empty in GLSL: the samplers are uniforms)
 //   GPURT_BVH_NODE(i)   texel i (uvec4) of the nodes: two a node, one per child (bvhChildTexel)
 //   GPURT_BVH_TRI(i)    texel i (vec4) of the leaf-ordered triangle list: three an entry, (v0, id),
-//                       (e1, 0), (e2, 0), as the grid's cell lists
+//                       (e1, coverage flags), (e2, 0), as the grid's cell lists
 //   GPURT_BVH_BOX_MIN   the scene box's corner and the size of one quantisation step on each axis
 //   GPURT_BVH_BOX_STEP  (vec3 each): a child's box is stored in 16-bit steps of the scene box
-//   GPURT_BVH_COVERED(id, u, v, d, e1, e2)  whether a candidate hit of triangle id at (u, v)
-//                       counts (alpha coverage, back-face culling: common/alpha.h)
+//   GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2)  whether a candidate hit of triangle id at (u, v)
+//                       counts (alpha coverage, back-face culling: common/alpha.h); flags: the
+//                       triangle's coverage flags (GPURT_COVER_*), 0 when it counts everywhere
 // A visit tests both children's boxes, intersects the triangles of the children that are leaves,
 // the nearer first, in one loop, and goes on into the nearer inner child with the farther one on
 // a stack (ordered traversal); a popped node is visited without a second box test.
@@ -87,13 +88,14 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
             int k = i < count0 ? first0 + i : first1 + (i - count0);
             tests += 1;
             vec4 tri = GPURT_BVH_TRI(3 * k);
-            vec3 e1 = vec3(GPURT_BVH_TRI(3 * k + 1));
+            vec4 e1Flags = GPURT_BVH_TRI(3 * k + 1);
+            vec3 e1 = vec3(e1Flags);
             vec3 e2 = vec3(GPURT_BVH_TRI(3 * k + 2));
             float t;
             float u;
             float v;
             if (intersectTriangle(o, d, vec3(tri), e1, e2, t, u, v) && t > 0.0f && t < bestT &&
-                GPURT_BVH_COVERED(int(tri.w), u, v, d, e1, e2)) {
+                GPURT_BVH_COVERED(int(tri.w), e1Flags.w, u, v, d, e1, e2)) {
                 bestT = t;
                 bestU = u;
                 bestV = v;

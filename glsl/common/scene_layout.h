@@ -11,7 +11,8 @@
 #define GPURT_INDEX_WIDTH 4096
 // Grid element lists ("cell triangles"): RGBA32F, the triangles of every cell's list in list
 // order, three texels each as in the triangle texture but with w = the triangle id:
-// (v0.xyz, id), (e1, 0), (e2, 0); this many references a row (3 x 4096 texels).
+// (v0.xyz, id), (e1, coverage flags: common/alpha.h GPURT_COVER_*), (e2, 0); this many references
+// a row (3 x 4096 texels).
 #define GPURT_REFS_PER_ROW 4096
 // BVH nodes (accel/bvh): RGBA32UI buffer texture, two texels a node (common/bvh.h), this many
 // nodes a row in `gpurt pack --dump`; its leaf-ordered triangle list is laid out as the cell lists.
@@ -24,8 +25,9 @@
 // Materials: RGBA32F, eight texels each on one row: (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
 // of refraction | 0), (metallic, roughness, normal scale, occlusion strength), (roughness channel,
-// metallic channel, normal texture | -1, emissive texture | -1), (alpha mode + GPURT_CULL_BACK
-// when the material culls its back faces, alpha factor, alpha cutoff, alpha channel); a channel is 4 texture + channel (0 R .. 3 A), or -1.
+// metallic channel, normal texture | -1, emissive texture | -1), (alpha mode, alpha factor, alpha
+// cutoff, alpha channel); a channel is 4 texture + channel (0 R .. 3 A), or -1. Back-face culling
+// is in the accelerators' triangle lists (coverage flags: common/alpha.h GPURT_COVER_*).
 #define GPURT_MATERIAL_TEXELS 8
 // Texture coordinates (scenes with a textured material): RGBA32F, two texels per triangle, laid
 // out as the triangles (GPURT_TRIANGLES_PER_ROW a row): (t0, t1), (t2, 0, 0), in the image

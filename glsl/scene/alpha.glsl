@@ -25,22 +25,23 @@ uint elementCoverageKey() {
 uint elementCoverageKey() { return 0u; }  // culling alone needs no key
 #endif
 
-// Whether triangle `id` (edges e1, e2) covers the ray of key `key` and direction d at
-// barycentrics (u, v): its material's texel 7 (alpha mode + GPURT_CULL_BACK when it culls its
-// back faces, factor, cutoff, channel), the channel at the hit's texture coordinates.
-bool hitCovered(int id, float u, float v, uint key, vec3 d, vec3 e1, vec3 e2) {
+// Whether triangle `id` (edges e1, e2, coverage flags `flags`: common/alpha.h GPURT_COVER_*, the
+// w of its second texel in the accelerators' lists) covers the ray of key `key` and direction d at
+// barycentrics (u, v). Flags 0: it does, with no fetch; culling alone needs no fetch either;
+// alpha reads its material's texel 7 (alpha mode, factor, cutoff, channel) and the channel at the
+// hit's texture coordinates.
+bool hitCovered(int id, float flags, float u, float v, uint key, vec3 d, vec3 e1, vec3 e2) {
+    int f = int(flags);
+    if (f == 0) return true;
+#ifdef SCENE_CULL_BACK
+    if ((f & GPURT_COVER_CULL) != 0 && backFacing(d, e1, e2)) return false;
+#endif
+#ifdef SCENE_ALPHA
+    if ((f & GPURT_COVER_ALPHA) == 0) return true;
     ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     int m = int(texelFetch(triangles, at, 0).w);
     vec4 alpha = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 7, 0), 0);
     int mode = int(alpha.x);
-#ifdef SCENE_CULL_BACK
-    if (mode >= GPURT_CULL_BACK) {
-        if (backFacing(d, e1, e2)) return false;
-        mode -= GPURT_CULL_BACK;
-    }
-#endif
-#ifdef SCENE_ALPHA
-    if (mode == GPURT_ALPHA_OPAQUE) return true;
     float a = alpha.y * textureChannel(int(alpha.w), fetchTexcoord(id, u, v));
     return alphaCovers(mode, a, alpha.z, key, id);
 #else

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/RayMath.h"  // common/alpha.h GPURT_CULL_BACK
+#include "raytrace/RayMath.h"  // common/alpha.h GPURT_COVER_*
 #include "raytrace/SurfaceTexture.h"
 
 namespace gpurt {
@@ -55,23 +55,31 @@ TextureTexels voxelIndexTexels(const UniformGrid& grid) {
 }
 
 namespace {
-// Three texels for triangle t at `out`: (v0, w), (e1, 0), (e2, 0), with the same float edges as
+// Three texels for triangle t at `out`: (v0, w), (e1, w1), (e2, 0), with the same float edges as
 // the CPU backend (e = v - v0, rounded once).
-void writeTriangle(const Triangle& tri, float w, float* out) {
+void writeTriangle(const Triangle& tri, float w, float w1, float* out) {
     const vec3 e1 = tri.v1 - tri.v0;
     const vec3 e2 = tri.v2 - tri.v0;
-    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, 0.0f), vec4(e2, 0.0f)};
+    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, w1), vec4(e2, 0.0f)};
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 4; ++c) out[k * 4 + c] = texel[k][c];
 }
 }  // namespace
 
+// The coverage flags of a material's triangles (common/alpha.h GPURT_COVER_CULL, _ALPHA).
+static float coverageFlags(const Material& m) {
+    return float((m.cullsBackFaces() ? GPURT_COVER_CULL : 0) | (m.hasAlpha() ? GPURT_COVER_ALPHA : 0));
+}
+
+// An accelerator's triangle list: triangle ids[k] at entry k, (v0, id), (e1, coverage flags), (e2, 0).
 static TextureTexels listTriangleTexels(const Scene& scene, const std::vector<uint32_t>& ids, const char* name) {
     const size_t refs = ids.size();
     TextureTexels list = emptyTexture(name, 3 * GPURT_REFS_PER_ROW, textureRowsFor(refs, GPURT_REFS_PER_ROW), 4, true);
+    std::vector<float> flags(scene.materials.size());
+    for (size_t m = 0; m < flags.size(); ++m) flags[m] = coverageFlags(scene.materials[m]);
     for (size_t k = 0; k < refs; ++k) {
         const uint32_t id = ids[k];
-        writeTriangle(scene.triangles[id], float(id), &list.floats[k * 12]);
+        writeTriangle(scene.triangles[id], float(id), flags[scene.materialIds[id]], &list.floats[k * 12]);
     }
     return list;
 }
@@ -134,7 +142,7 @@ TextureTexels triangleTexels(const Scene& scene) {
     TextureTexels triangles = emptyTexture("triangles", 3 * GPURT_TRIANGLES_PER_ROW,
                                            textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
     for (size_t t = 0; t < n; ++t)  // rows hold whole triangles: texel 3t is row-major too
-        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), &triangles.floats[t * 12]);
+        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), 0.0f, &triangles.floats[t * 12]);
     return triangles;
 }
 
@@ -155,7 +163,7 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.metallic, mat.roughness, mat.normalScale, mat.occlusionStrength),
             vec4(channel(mat.roughnessTexture), channel(mat.metallicTexture), float(mat.normalTexture),
                  float(mat.emissiveTexture)),
-            vec4(float(mat.alphaMode + (mat.cullsBackFaces() ? GPURT_CULL_BACK : 0)), mat.alphaFactor, mat.alphaCutoff,
+            vec4(float(mat.alphaMode), mat.alphaFactor, mat.alphaCutoff,
                  channel(mat.alphaTexture))};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)

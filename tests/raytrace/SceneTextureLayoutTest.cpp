@@ -26,6 +26,8 @@ Scene scatteredTriangles(int n) {
         material.specular = vec3(0.4f, 0.5f * float(m), 0.6f);
         material.shininess = 10.0f + float(m);
         material.reflectivity = vec3(0.05f * float(m));
+        material.doubleSided = m == 0;  // 1 and 2 cull their back faces
+        material.alphaMode = m == 2 ? 1 : 0;  // 2 has alpha (MASK)
         scene.materials.push_back(material);
     }
     for (int t = 0; t < n; ++t) {
@@ -72,9 +74,20 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
         const uint32_t id = grid.cellTriangles[k];
         const Triangle& tri = scene.triangles[id];
         const vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
-        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(id), e1.x, e1.y, e1.z, 0.0f,
+        // The second texel's w: the coverage flags, culling 1 + alpha 2 (material id % 3: 0, 1, 3).
+        const float flags[3] = {0.0f, 1.0f, 3.0f};
+        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(id), e1.x, e1.y, e1.z, flags[id % 3],
                                     e2.x, e2.y, e2.z, 0.0f};
         for (int c = 0; c < 12; ++c) ASSERT_EQ(texel[c], expected[c]) << "entry " << k << " value " << c;
+    }
+    // The BVH's leaves carry the same entries in leaf order.
+    const Bvh bvh = buildBvh(scene, BvhOptions{});
+    const TextureTexels leaves = bvhTriangleTexels(scene, bvh);
+    for (size_t k = 0; k < bvh.triangles.size(); ++k) {
+        const size_t row = k / GPURT_REFS_PER_ROW, column = 3 * (k % GPURT_REFS_PER_ROW);
+        const float* texel = &leaves.floats[(row * size_t(leaves.width) + column) * 4];
+        ASSERT_EQ(texel[3], float(bvh.triangles[k])) << k;
+        ASSERT_EQ(texel[7], float(bvh.triangles[k] % 3 == 0 ? 0 : bvh.triangles[k] % 3 == 1 ? 1 : 3)) << k;
     }
 
     const TextureTexels triangles = triangleTexels(scene);
@@ -109,7 +122,7 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
             mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior,
             mat.metallic,       mat.roughness,      mat.normalScale,    mat.occlusionStrength,
             -1.0f,              -1.0f,              -1.0f,              -1.0f,
-            0.0f,               1.0f,               0.5f,               -1.0f};
+            float(mat.alphaMode), 1.0f,             0.5f,               -1.0f};
         for (int k = 0; k < 4 * GPURT_MATERIAL_TEXELS; ++k)
             EXPECT_EQ(materials.floats[m * 4 * GPURT_MATERIAL_TEXELS + size_t(k)], expected[k]) << m << " " << k;
     }

@@ -9,9 +9,9 @@
 #if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
 uint rayCoverageKey = 0u;
-#define GPURT_BVH_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, rayCoverageKey, d, e1, e2)
+#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2) hitCovered(id, flags, u, v, rayCoverageKey, d, e1, e2)
 #else
-#define GPURT_BVH_COVERED(id, u, v, d, e1, e2) true
+#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2) true
 #endif
 #ifdef CAMERA
 #include "scene/camera.glsl"

@@ -21,11 +21,13 @@ uvec2 cellRange(ivec3 v) {
 }
 
 // Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.
-int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2) {
+int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2, out float flags) {
     int at = int(3u * k);
     vec4 a = texelFetch(cellTriangles, at);
     v0 = a.xyz;
-    e1 = texelFetch(cellTriangles, at + 1).xyz;
+    vec4 b = texelFetch(cellTriangles, at + 1);
+    e1 = b.xyz;
+    flags = b.w;
     e2 = texelFetch(cellTriangles, at + 2).xyz;
     return int(a.w);
 }

@@ -7,9 +7,9 @@
 // Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
 #if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
-#define GRID_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, elementCoverageKey(), d, e1, e2)
+#define GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(id, flags, u, v, elementCoverageKey(), d, e1, e2)
 #else
-#define GRID_COVERED(id, u, v, d, e1, e2) true
+#define GRID_COVERED(id, flags, u, v, d, e1, e2) true
 #endif
 
 uniform sampler2D rayOrigin;
@@ -40,10 +40,11 @@ void main() {
     float bestU = 0.0f, bestV = 0.0f;
     for (uint i = range.x; i < range.x + range.y; ++i) {
         vec3 v0, e1, e2;
-        int id = fetchListTriangle(i, v0, e1, e2);
+        float flags;
+        int id = fetchListTriangle(i, v0, e1, e2, flags);
         float t, u, w;
         if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance && GRID_COVERED(id, u, w, d, e1, e2)) {
+            t <= tExit + cellTolerance && GRID_COVERED(id, flags, u, w, d, e1, e2)) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -14,9 +14,9 @@
 // Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
 #if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
 #include "scene/alpha.glsl"
-#define GRID_COVERED(id, u, v, d, e1, e2) hitCovered(id, u, v, elementCoverageKey(), d, e1, e2)
+#define GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(id, flags, u, v, elementCoverageKey(), d, e1, e2)
 #else
-#define GRID_COVERED(id, u, v, d, e1, e2) true
+#define GRID_COVERED(id, flags, u, v, d, e1, e2) true
 #endif
 #ifdef CAMERA
 #include "scene/camera.glsl"
@@ -97,9 +97,10 @@ void main() {
         uvec2 range = cellRange(cell);
         for (uint k = range.x; k < range.x + range.y; ++k) {
             vec3 v0, e1, e2;
-            int id = fetchListTriangle(k, v0, e1, e2);
+            float flags;
+            int id = fetchListTriangle(k, v0, e1, e2, flags);
             float t, u, w;
-            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, u, w, d, e1, e2)
+            if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT && GRID_COVERED(id, flags, u, w, d, e1, e2)
 #ifndef ANY_HIT
                 && t <= tExit + cellTolerance
 #endif
