@@ -11,6 +11,7 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <optional>
 
 #include "image/InputError.h"
 #include "raytrace/Parallel.h"
@@ -47,9 +48,12 @@ struct Box {
     }
 };
 
+// A triangle as the build sees it: its box, its box's centre and its id. The build reorders these
+// records themselves (not ids into them), so that each pass reads its range in memory order.
 struct PrimRef {
     Box box;
     glm::vec3 centroid;
+    uint32_t id;
 };
 
 // The box stored for a child: its triangles' box widened by a few parts per million of the
@@ -61,69 +65,84 @@ Bvh::Child storedChild(const Box& b, int32_t ref, uint32_t count) {
     return {b.lo - padLo, b.hi + padHi, ref, count};
 }
 
+// The boxes of a range of triangles: of the triangles, and of their centres.
+struct RangeBoxes {
+    Box box, centroids;
+};
+
 class Builder {
   public:
     Builder(const Scene& scene, const BvhOptions& options)
         : maxLeaf_(std::clamp(options.maxLeafSize, 1, kBvhMaxLeafSize)), threads_(resolveThreads(options.threads)) {
         const size_t n = scene.triangles.size();
         prims_.resize(n);
-        ids_.resize(n);
-        for (size_t k = 0; k < n; ++k) {
-            const Triangle& t = scene.triangles[k];
-            Box b;
-            b.extend(t.v0);
-            b.extend(t.v1);
-            b.extend(t.v2);
-            prims_[k] = {b, 0.5f * (b.lo + b.hi)};
-            ids_[k] = uint32_t(k);
-        }
+        parallelChunks(n, 65536, threads_, [&](size_t begin, size_t end, size_t) {
+            for (size_t k = begin; k < end; ++k) {
+                const Triangle& t = scene.triangles[k];
+                Box b;
+                b.extend(t.v0);
+                b.extend(t.v1);
+                b.extend(t.v2);
+                prims_[k] = {b, 0.5f * (b.lo + b.hi), uint32_t(k)};
+            }
+        });
     }
 
     Bvh build() {
         Bvh bvh;
-        const uint32_t n = uint32_t(ids_.size());
-        Box all = rangeBox(0, n);
+        const uint32_t n = uint32_t(prims_.size());
+        const RangeBoxes all = rangeBoxes(0, n);
         if (n == 0) {
             bvh.nodes.push_back({{storedChild(Box{}, -1, 0), storedChild(Box{}, -1, 0)}});
         } else if (n <= uint32_t(maxLeaf_)) {
-            bvh.nodes.push_back({{storedChild(all, 0, n), storedChild(Box{}, -1, 0)}});
+            bvh.nodes.push_back({{storedChild(all.box, 0, n), storedChild(Box{}, -1, 0)}});
             bvh.depth = 2;
         } else {
             int depth = 0;
+            bvh.nodes.reserve(n - 1);  // a tree of n leaf triangles has at most n - 1 inner nodes
             subtree(bvh.nodes, 0, n, all, 1, threads_, depth);
             bvh.depth = depth;
         }
-        bvh.triangles = std::move(ids_);
+        bvh.triangles.resize(n);
+        for (uint32_t k = 0; k < n; ++k) bvh.triangles[k] = prims_[k].id;
         return bvh;
     }
 
   private:
-    Box rangeBox(uint32_t begin, uint32_t end) const {
-        Box b;
-        for (uint32_t k = begin; k < end; ++k) b.extend(prims_[ids_[k]].box);
-        return b;
+    RangeBoxes rangeBoxes(uint32_t begin, uint32_t end) const {
+        RangeBoxes r;
+        for (uint32_t k = begin; k < end; ++k) {
+            r.box.extend(prims_[k].box);
+            r.centroids.extend(prims_[k].centroid);
+        }
+        return r;
     }
+
+    // The bin of a centre on an axis, for a range whose centres start at lo, kBins / extent scale.
+    static int binOf(float c, float lo, float scale) { return std::min(kBins - 1, int((c - lo) * scale)); }
 
     struct Split {
         int axis = -1;
         int bin = 0;  // the left side holds bins 0..bin
         float cost = std::numeric_limits<float>::infinity();
+        RangeBoxes left, right;  // the boxes of the two sides (the bins' unions: exact)
     };
 
     // The cheapest binned split of [begin, end) whose centroids span `cb`.
     Split bestSplit(uint32_t begin, uint32_t end, const Box& cb) const {
         Split best;
         const glm::vec3 extent = cb.hi - cb.lo;
-        std::array<std::array<Box, kBins>, 3> bins;
+        std::array<std::array<RangeBoxes, kBins>, 3> bins;
         std::array<std::array<uint32_t, kBins>, 3> counts{};
         glm::vec3 scale;
         for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? float(kBins) / extent[a] : 0.0f;
         for (uint32_t k = begin; k < end; ++k) {
-            const PrimRef& p = prims_[ids_[k]];
+            const PrimRef& p = prims_[k];
             for (int a = 0; a < 3; ++a) {
                 if (scale[a] == 0.0f) continue;
-                const int b = std::min(kBins - 1, int((p.centroid[a] - cb.lo[a]) * scale[a]));
-                bins[a][b].extend(p.box);
+                const int b = binOf(p.centroid[a], cb.lo[a], scale[a]);
+                bins[a][b].box.extend(p.box);
+                bins[a][b].centroids.extend(p.centroid);
                 counts[a][b] += 1;
             }
         }
@@ -133,31 +152,42 @@ class Builder {
             Box right;
             uint32_t rightCount = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                right.extend(bins[a][b]);
+                right.extend(bins[a][b].box);
                 rightCount += counts[a][b];
                 rightCost[b] = right.area() * float(rightCount);
             }
             Box left;
             uint32_t leftCount = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                left.extend(bins[a][b]);
+                left.extend(bins[a][b].box);
                 leftCount += counts[a][b];
                 if (leftCount == 0 || leftCount == end - begin) continue;
                 const float cost = left.area() * float(leftCount) + rightCost[b + 1];
-                if (cost < best.cost) best = {a, b, cost};
+                if (cost < best.cost) {
+                    best.axis = a;
+                    best.bin = b;
+                    best.cost = cost;
+                }
             }
         }
+        if (best.axis >= 0)
+            for (int b = 0; b < kBins; ++b) {
+                RangeBoxes& side = b <= best.bin ? best.left : best.right;
+                side.box.extend(bins[best.axis][b].box);
+                side.centroids.extend(bins[best.axis][b].centroids);
+            }
         return best;
     }
 
-    // The child over [begin, end) with box `box`: a leaf, or an inner node appended to `out`
+    // The child over [begin, end) with boxes `boxes`: a leaf, or an inner node appended to `out`
     // (with its subtree after it). `depth` is the child's level; deepest gets the tree's depth.
-    Bvh::Child subtree(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, const Box& box, int depth,
+    Bvh::Child subtree(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, const RangeBoxes& boxes, int depth,
                        int threads, int& deepest) {
         const uint32_t count = end - begin;
-        Box cb;
-        for (uint32_t k = begin; k < end; ++k) cb.extend(prims_[ids_[k]].centroid);
+        const Box& box = boxes.box;
+        const Box& cb = boxes.centroids;
         uint32_t mid = begin + count / 2;
+        std::optional<RangeBoxes> leftBoxes, rightBoxes;  // known when a binned split made them
         const bool spread = cb.hi.x > cb.lo.x || cb.hi.y > cb.lo.y || cb.hi.z > cb.lo.z;
         if (spread && depth < kMedianDepth) {
             const Split s = bestSplit(begin, end, cb);
@@ -166,11 +196,12 @@ class Builder {
             if (count <= uint32_t(maxLeaf_) && float(count) * kIntersectCost <= splitCost) return leaf(begin, count, box, depth, deepest);
             if (s.axis >= 0) {
                 const float lo = cb.lo[s.axis], scale = float(kBins) / (cb.hi[s.axis] - cb.lo[s.axis]);
-                const auto first = ids_.begin() + begin, last = ids_.begin() + end;
-                mid = uint32_t(std::partition(first, last, [&](uint32_t id) {
-                          return std::min(kBins - 1, int((prims_[id].centroid[s.axis] - lo) * scale)) <= s.bin;
-                      }) - ids_.begin());
+                const auto first = prims_.begin() + begin, last = prims_.begin() + end;
+                mid = uint32_t(std::partition(first, last, [&](const PrimRef& p) {
+                          return binOf(p.centroid[s.axis], lo, scale) <= s.bin;
+                      }) - prims_.begin());
                 if (mid == begin || mid == end) mid = begin + count / 2;
+                else leftBoxes = s.left, rightBoxes = s.right;
             }
         } else if (count <= uint32_t(maxLeaf_)) {
             return leaf(begin, count, box, depth, deepest);
@@ -178,27 +209,29 @@ class Builder {
             // Too deep for the heuristic: the object median on the centroids' longest axis.
             const glm::vec3 e = cb.hi - cb.lo;
             const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
-            std::nth_element(ids_.begin() + begin, ids_.begin() + mid, ids_.begin() + end,
-                             [&](uint32_t a, uint32_t b) { return prims_[a].centroid[axis] < prims_[b].centroid[axis]; });
+            std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
+                             [&](const PrimRef& a, const PrimRef& b) { return a.centroid[axis] < b.centroid[axis]; });
         }
         const int32_t index = int32_t(out.size());
         out.emplace_back();
-        const Box leftBox = rangeBox(begin, mid), rightBox = rangeBox(mid, end);
+        if (!leftBoxes) leftBoxes = rangeBoxes(begin, mid), rightBoxes = rangeBoxes(mid, end);
         Bvh::Child left, right;
         if (threads > 1 && count >= kParallelRange) {
             std::vector<Bvh::Node> leftNodes, rightNodes;
+            leftNodes.reserve(mid - begin);
+            rightNodes.reserve(end - mid);
             int leftDepth = 0, rightDepth = 0;
             auto leftTask = std::async(std::launch::async, [&] {
-                return subtree(leftNodes, begin, mid, leftBox, depth + 1, threads / 2, leftDepth);
+                return subtree(leftNodes, begin, mid, *leftBoxes, depth + 1, threads / 2, leftDepth);
             });
-            right = subtree(rightNodes, mid, end, rightBox, depth + 1, threads - threads / 2, rightDepth);
+            right = subtree(rightNodes, mid, end, *rightBoxes, depth + 1, threads - threads / 2, rightDepth);
             left = leftTask.get();
             splice(out, leftNodes, left);
             splice(out, rightNodes, right);
             deepest = std::max({deepest, leftDepth, rightDepth});
         } else {
-            left = subtree(out, begin, mid, leftBox, depth + 1, 1, deepest);
-            right = subtree(out, mid, end, rightBox, depth + 1, 1, deepest);
+            left = subtree(out, begin, mid, *leftBoxes, depth + 1, 1, deepest);
+            right = subtree(out, mid, end, *rightBoxes, depth + 1, 1, deepest);
         }
         out[size_t(index)] = {{left, right}};
         return storedChild(box, index, 0);
@@ -213,18 +246,16 @@ class Builder {
     // references, and `child`'s, by where it lands.
     static void splice(std::vector<Bvh::Node>& out, const std::vector<Bvh::Node>& nodes, Bvh::Child& child) {
         const int32_t offset = int32_t(out.size());
-        for (Bvh::Node node : nodes) {
-            for (Bvh::Child& c : node.child)
+        out.insert(out.end(), nodes.begin(), nodes.end());
+        for (size_t k = size_t(offset); k < out.size(); ++k)
+            for (Bvh::Child& c : out[k].child)
                 if (c.count == 0 && c.ref >= 0) c.ref += offset;
-            out.push_back(node);
-        }
         if (child.count == 0 && child.ref >= 0) child.ref += offset;
     }
 
     int maxLeaf_;
     int threads_;
-    std::vector<PrimRef> prims_;
-    std::vector<uint32_t> ids_;
+    std::vector<PrimRef> prims_;  // in leaf order once built
 };
 
 }  // namespace
