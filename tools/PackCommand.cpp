@@ -201,7 +201,8 @@ void printScene(const std::string& name, const Scene& scene) {
         size_t users = 0;
         for (const Material& m : scene.materials)
             users += m.diffuseTexture == int(k) || m.roughnessTexture.texture == int(k) || m.metallicTexture.texture == int(k) ||
-                     m.normalTexture == int(k) || m.emissiveTexture == int(k) || m.occlusionTexture.texture == int(k);
+                     m.normalTexture == int(k) || m.emissiveTexture == int(k) || m.occlusionTexture.texture == int(k) ||
+                     m.alphaTexture.texture == int(k) || m.transmissionTexture.texture == int(k);
         std::printf("  texture %zu  %s %dx%d, wrap %s/%s, %zu material%s\n", k, printable(t.name).c_str(), t.image.width,
                     t.image.height, kWrapNames[t.wrapS], kWrapNames[t.wrapT], users, users == 1 ? "" : "s");
     }

@@ -119,6 +119,9 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
         r.emission = texturedDiffuse(int(g.w), r.emission, t);
         r.emitterLight = false;
     }
+#ifdef SCENE_TRANSMISSION_MAPS  // a transmissive glTF material with a transmissionTexture: its R scales the factor
+    r.tf = r.tf * textureChannel(int(texelFetch(materials, at + ivec2(8, 0), 0).x), t);
+#endif
 #endif
     return r;
 }

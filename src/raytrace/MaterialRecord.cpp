@@ -25,6 +25,7 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
         r.metallic = m.metallic * channelAt(scene, m.metallicTexture, t);
         r.roughness = m.roughness * channelAt(scene, m.roughnessTexture, t);
         r.occlusion = 1.0f + m.occlusionStrength * (channelAt(scene, m.occlusionTexture, t) - 1.0f);
+        r.tf = m.transmission * channelAt(scene, m.transmissionTexture, t);  // shading.glsl: SCENE_TRANSMISSION_MAPS
         if (m.emissiveTexture >= 0) {
             r.emitterLight = false;
             if (!scene.texcoords.empty()) r.emission = m.emission * sampleTexture(scene.textures[size_t(m.emissiveTexture)], t);

@@ -54,19 +54,20 @@ constexpr char kColors[] = "VCOL";
 constexpr char kAlpha[] = "ALPH";
 constexpr char kTangents[] = "TANG";
 constexpr char kSided[] = "SIDE";
+constexpr char kTransmissionMaps[] = "TRNS";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
-// the vertex colours, the alpha coverage, the vertex tangents and the sides are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// the vertex colours, the alpha coverage, the vertex tangents, the sides and the transmission maps are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha,     kTangents, kSided};
+                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
            tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
-           tag == kSided || gridSection(tag) || bvhSection(tag);
+           tag == kSided || tag == kTransmissionMaps || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -112,6 +113,10 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kSided)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return !m.doubleSided; });
+    // Only when some material has a transmission map (glTF transmissionTexture): likewise.
+    if (tag == kTransmissionMaps)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return m.transmissionTexture.given(); });
     return true;
 }
 constexpr size_t kNormalsBytes = 9 * 4;
@@ -129,6 +134,8 @@ constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 constexpr size_t kAlphaBytes = 5 * 4;
 // SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
 constexpr size_t kSidedBytes = 4;
+// TRNS per material: the transmission map's channel (texture, channel; -1: none).
+constexpr size_t kTransmissionMapBytes = 2 * 4;
 constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
 // The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
 constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
@@ -302,11 +309,13 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         for (int texture : {mat.diffuseTexture, mat.roughnessTexture.texture, mat.metallicTexture.texture, mat.normalTexture,
-                            mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture})
+                            mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture,
+                            mat.transmissionTexture.texture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
-        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture})
+        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture,
+                                 mat.transmissionTexture})
             if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
         if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
             !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
@@ -753,6 +762,19 @@ class SectionDecoder {
         }
     }
 
+    // Each material's transmission map (count = the materials', then kTransmissionMapBytes each;
+    // its texture and channel are checked with the other maps'). Read after the materials.
+    void transmissionMaps(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kTransmissionMapBytes, "materials' transmission maps", kMaxTextureMaterials,
+                                   scene.materials.size(), "materials");
+        for (uint64_t k = 0; k < n; ++k) {
+            TextureChannel& c = scene.materials[size_t(k)].transmissionTexture;
+            c.texture = int(int32_t(in.u32()));
+            c.channel = int(int32_t(in.u32()));
+        }
+    }
+
     void environment(const Section& s, Scene& scene) const {
         ByteReader in = reader(s);
         if (s.size < 4) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
@@ -958,6 +980,7 @@ class SectionEncoder {
         else if (tag == kAlpha) alpha();
         else if (tag == kTangents) tangents();
         else if (tag == kSided) sided();
+        else if (tag == kTransmissionMaps) transmissionMaps();
         else if (tag == kEnvironment) environment();
     }
 
@@ -1124,6 +1147,14 @@ class SectionEncoder {
     void sided() {
         out_.u64(scene_.materials.size());
         for (const Material& m : scene_.materials) out_.u32(m.doubleSided ? 1u : 0u);
+    }
+
+    void transmissionMaps() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) {
+            out_.u32(uint32_t(int32_t(m.transmissionTexture.texture)));
+            out_.u32(uint32_t(int32_t(m.transmissionTexture.channel)));
+        }
     }
 
     void alpha() {
@@ -1341,6 +1372,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kAlpha)) decoder.alpha(*section(kAlpha), loaded.scene);
     if (section(kTangents)) decoder.tangents(*section(kTangents), loaded.scene);
     if (section(kSided)) decoder.sided(*section(kSided), loaded.scene);
+    if (section(kTransmissionMaps)) decoder.transmissionMaps(*section(kTransmissionMaps), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 
     if (section(kGrid)) {

@@ -164,7 +164,8 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(channel(mat.roughnessTexture), channel(mat.metallicTexture), float(mat.normalTexture),
                  float(mat.emissiveTexture)),
             vec4(float(mat.alphaMode), mat.alphaFactor, mat.alphaCutoff,
-                 channel(mat.alphaTexture))};
+                 channel(mat.alphaTexture)),
+            vec4(channel(mat.transmissionTexture), 0.0f, 0.0f, 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

@@ -168,6 +168,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
         if (m.model == 2 && m.transmits()) hasTransmission_ = true;  // GPURT_MODEL_GLTF
+        if (m.model == 2 && m.transmits() && m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
     }
     hasAlpha_ = sceneUsesAlpha(scene);
     cullsBackFaces_ = sceneCullsBackFaces(scene);
@@ -180,6 +181,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     if (hasNormalMaps_) kernel.addDefine("SCENE_NORMAL_MAPS");
     if (hasTransmission_) kernel.addDefine("SCENE_TRANSMISSION");  // integrators/light.frag
+    if (hasTransmissionMaps_) kernel.addDefine("SCENE_TRANSMISSION_MAPS");  // shading.glsl fetchMaterialRecord
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");

@@ -77,6 +77,7 @@ class SceneTextures {
     bool hasTexcoords_;
     bool hasNormalMaps_ = false;
     bool hasTransmission_ = false;  // a glTF material with KHR_materials_transmission
+    bool hasTransmissionMaps_ = false;  // one of them with a transmissionTexture (SCENE_TRANSMISSION_MAPS)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
     GPUFloatArray textureTexels_;

@@ -909,7 +909,6 @@ class GltfReader {
             if (t > 0.0) {
                 if (!(m.ior > 0.0f)) m.ior = 1.5f;
                 m.transmission = glm::vec3(float(t));
-                if (transmission->second.Has("transmissionTexture")) warn(at + ": transmissionTexture is not used");
                 if (g.extensions.count("KHR_materials_volume") == 0 && !thinWalledWarned_) {
                     warn(at + ": KHR_materials_transmission without KHR_materials_volume is thin-walled in glTF; gpurt renders solids of index ior");
                     thinWalledWarned_ = true;
@@ -951,6 +950,7 @@ class GltfReader {
                 m.occlusionStrength = float(occlusion.strength);
                 if (!inUnit(occlusion.strength)) fail(at + ": occlusionTexture strength must be in [0, 1]");
             }
+            if (m.transmits()) readTransmissionTexture(g, named, m, uv, scene);
         } else {
             for (const char* unused : {"normalTexture", "occlusionTexture", "emissiveTexture"})
                 if ((std::strcmp(unused, "normalTexture") == 0 && g.normalTexture.index >= 0) ||
@@ -976,6 +976,29 @@ class GltfReader {
         glm::dmat3 transform{1.0};
         std::string slot;  // the slot that chose them
     };
+
+    // KHR_materials_transmission's transmissionTexture (a textureInfo inside the extension, which
+    // tinygltf leaves as JSON): its R channel times the factor, with its texCoord and
+    // KHR_texture_transform as every slot's. An index that is no whole number >= 0, or a texCoord
+    // that is no whole number, is refused naming the material.
+    void readTransmissionTexture(const tinygltf::Material& g, const std::string& named, Material& m, MaterialUv& uv,
+                                 Scene& scene) {
+        const tinygltf::Value& ext = g.extensions.at("KHR_materials_transmission");
+        if (!ext.IsObject() || !ext.Has("transmissionTexture")) return;
+        const tinygltf::Value& info = ext.Get("transmissionTexture");
+        int index = -1, texCoord = 0;
+        if (!info.IsObject() || !info.Has("index") || !wholeNumber(info.Get("index"), index) || index < 0)
+            fail(named + ": transmissionTexture has no texture index");
+        if (info.Has("texCoord") && !wholeNumber(info.Get("texCoord"), texCoord))
+            fail(named + ": transmissionTexture texCoord is not a whole number");
+        tinygltf::ExtensionMap extensions;
+        if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+            const tinygltf::Value& e = info.Get("extensions");
+            for (const std::string& key : e.Keys()) extensions[key] = e.Get(key);
+        }
+        const int tex = slot(index, texCoord, extensions, "transmissionTexture", named, uv, scene);
+        if (tex >= 0) m.transmissionTexture = {tex, 0};  // R
+    }
 
     // alphaMode MASK / BLEND: alpha is baseColorFactor[3] times baseColorTexture's A (the base
     // colour's texture slot when the material has one), MASK's alphaCutoff in [0, 1].

@@ -27,8 +27,8 @@ bool looksLikeGlb(const std::string& head);
 // buffers, accessors outside their buffers, indices out of range, non-finite positions, damaged
 // Draco data, broken skins (joints that are no node, joint indices out of range, a wrong count of
 // inverseBindMatrices), node cycles. Points and lines, morph targets, animations, and extensions
-// and attributes gpurt does not use are warnings naming them. Textures are not used yet: a textured
-// material is a warning, and keeps its colour factor; a missing image file is a warning.
+// and attributes gpurt does not use are warnings naming them. The materials' texture slots are read as
+// docs/SCENE_FORMAT.md says; an image that cannot be read is a warning (the material keeps its factors).
 Scene loadGltf(const std::filesystem::path& path);
 
 // loadGltf on bytes already in memory; external buffers are looked for in `folder` (the fuzz

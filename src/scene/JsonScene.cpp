@@ -382,7 +382,8 @@ class SceneReader {
         };
         for (Material m : obj.materials) {
             for (int* texture : {&m.diffuseTexture, &m.roughnessTexture.texture, &m.metallicTexture.texture,
-                                 &m.normalTexture, &m.emissiveTexture, &m.occlusionTexture.texture})
+                                 &m.normalTexture, &m.emissiveTexture, &m.occlusionTexture.texture,
+                                 &m.alphaTexture.texture, &m.transmissionTexture.texture})
                 shift(*texture);
             scene.materials.push_back(m);
         }

@@ -64,6 +64,10 @@ struct Material {
     // 1 + strength (texel - 1).
     TextureChannel occlusionTexture;
     float occlusionStrength = 1.0f;
+    // glTF KHR_materials_transmission's transmissionTexture (channel R, linear): where the
+    // material transmits (transmits(): the factor transmission.x > 0), the factor at a hit is
+    // times this channel there.
+    TextureChannel transmissionTexture;
     // Alpha coverage (glsl/common/alpha.h GPURT_ALPHA_*): 0 opaque; 1 MASK, the surface is there
     // where alpha >= alphaCutoff; 2 BLEND, rays pass it with probability 1 - alpha. alpha is
     // alphaFactor times alphaTexture's channel where it has one (glTF baseColorFactor[3] times

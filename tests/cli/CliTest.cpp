@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "CliRunner.h"
+#include "../common/TransmissionQuad.h"
 
 namespace {
 
@@ -420,6 +421,35 @@ TEST_F(Cli, GltfTangentsPackAndAWrongTangentTypeIsExitOne) {
     }
 }
 
+// glTF transmissionTexture goes through `gpurt pack` (TRNS): the quad of TransmissionQuad.h (its
+// texture through texCoord 1 and KHR_texture_transform) in front of an emitter, lit by a point
+// light, renders as the packed file does, byte for byte, on both backends with both integrators,
+// and differs from the same file without the texture (the factor alone). pack counts the texture's
+// user.
+TEST_F(Cli, GltfTransmissionTexturePacksAndRendersAsItsSource) {
+    using gpurt::test::TransmissionQuad;
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << TransmissionQuad::image();
+    write("window.gltf", TransmissionQuad::gltf(0.8, "bands.bmp", true));
+    write("plain.gltf", TransmissionQuad::gltf(0.8, "bands.bmp", true, false));
+    const Result pack = gpurt("pack " + path("window.gltf") + " -o " + path("window.gpscene"));
+    ASSERT_EQ(pack.code, 0) << pack.err;
+    EXPECT_NE(pack.out.find("24x1, wrap clamp/clamp, 1 material\n"), std::string::npos) << pack.out;
+    for (const char* backend : {"gl", "cpu"})
+        for (const char* integrator : {"whitted", "path"}) {
+            SCOPED_TRACE(std::string(backend) + " " + integrator);
+            const std::string options = std::string(" --size 32x32 --eye 0,0,3 --target 0,0,0 --spp 4 --backend ") + backend +
+                                        " --integrator " + integrator;
+            for (const char* scene : {"window.gltf", "window.gpscene", "plain.gltf"}) {
+                const Result r = gpurt("render " + path(scene) + options + " -o " + path(std::string(scene) + ".png") +
+                                       " --aov color=" + path(std::string(scene) + ".pfm"));
+                ASSERT_EQ(r.code, 0) << scene << "\n" << r.err;
+            }
+            EXPECT_TRUE(slurp(dir / "window.gltf.pfm") == slurp(dir / "window.gpscene.pfm")) << "the packed scene's colours";
+            EXPECT_TRUE(slurp(dir / "window.gltf.png") == slurp(dir / "window.gpscene.png")) << "the packed scene's picture";
+            EXPECT_FALSE(slurp(dir / "window.gltf.pfm") == slurp(dir / "plain.gltf.pfm")) << "the texture changes nothing";
+        }
+}
+
 // glTF files written by another tool (Cesium's obj2gltf, checked by Khronos' glTF-Validator:
 // scripts/make-test-assets.sh; a .gltf with its .bin and a .glb) hit what the OBJ they were made from
 // hits, bit for bit: the same triangle ids, depths and normals at every pixel, on both backends
@@ -710,7 +740,7 @@ TEST_F(Cli, PackDumpWritesTheTexturesAndTheOccupancy) {
         EXPECT_EQ(triangles.bottomFirst[size_t(c)], vertices[size_t(firstVertex - 1)][size_t(c)]);
     EXPECT_EQ(triangleW.bottomFirst[0], 0.0f);
     const Pfm materials = readPfm(dir / "dump/materials.pfm");
-    EXPECT_EQ(materials.width, 8);  // the teapot has only the default material: eight texels (scene_layout.h)
+    EXPECT_EQ(materials.width, 9);  // the teapot has only the default material: nine texels (scene_layout.h)
     EXPECT_EQ(materials.height, 1);
     for (const char* axis : {"x", "y", "z"})
         EXPECT_EQ(slurp(dir / "dump" / (std::string("occupancy_") + axis + ".png")).substr(0, 8),

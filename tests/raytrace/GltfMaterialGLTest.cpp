@@ -11,15 +11,24 @@
 //    along the normal) give the generated frame's image exactly; a packed scene renders as its
 //    source;
 //  - metallic-roughness, emissive and occlusion maps: a texture of one value is the factor times
-//    that value (against the same material with the value folded into its factors).
+//    that value (against the same material with the value folded into its factors);
+//  - transmissionTexture: a glTF quad whose transmission is the factor times the texture's R in
+//    bands of 0, 128/255 and 1 shows, band by band, the radiance the formula gives (the opaque
+//    dielectric's direct light and ambient, the emitter behind through the transmitting share).
 #include "../common/GLTest.h"
 #include "EnvironmentTestMaps.h"
 #include "GltfReference.h"
 #include "TestScenes.h"
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/PackedScene.h"
+#include "scene/GltfLoader.h"
+#include "../common/TransmissionQuad.h"
+
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 namespace gpurt::test {
 namespace {
@@ -441,6 +450,94 @@ TEST_F(GltfMaterials, FlatMapsAreTheirValueTimesTheFactor) {
                 EXPECT_NEAR(a.color[i][c], b.color[i][c] + shift, tolerance) << "gl pixel " << i << " channel " << c;
                 EXPECT_NEAR(ac.color[i][c], bc.color[i][c] + shift, tolerance) << "cpu pixel " << i << " channel " << c;
             }
+        }
+    }
+}
+
+// KHR_materials_transmission's transmissionTexture on both backends and both integrators. The
+// quad of TransmissionQuad.h (read from its glTF: the slot, texCoord 1 and KHR_texture_transform;
+// base colour c, metallic 0, roughness 0, ior 1 so F0 = 0 and Fd(x) = (1 - x)^5, transmission
+// t = 0.8 x R / 255 in three bands, R = 0, 128, 255, read linearly) stands in front of an emitting
+// quad of radiance Le = 2 (classic, black: it reflects nothing) and is lit from the front by a
+// point light (intensity I at P), on a black background. At a pixel whose ray d meets the quad at
+// X (v = -d, n = +z, l towards P, h = normalize(l + v)):
+//   L = c (1 - t) (1 - Fd(v.h)) (n.l) I / |P - X|^2     the opaque dielectric's diffuse, lit
+//     + c t (1 - Fd(n.v)) Le                            the transmitted share, ior 1: straight on
+//     + 0.1 c (1 - t)                                   Whitted's ambient (its albedo at normal incidence)
+// (the smooth coat's mirror, weight Fd(n.v) < 1e-6 here, sees black). Whitted: every pixel within
+// 1e-4 relative; path (its transmitted share chosen at random): each band's mean residual within
+// 5 standard errors. The two backends make the same pictures.
+TEST_F(GltfMaterials, TransmissionTextureScalesTheFactorPerHit) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-transmission-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "transmission.bmp", std::ios::binary) << TransmissionQuad::image();
+    const double factor = 0.8;
+    Scene scene = parseGltf(TransmissionQuad::gltf(factor, "transmission.bmp"), "transmission.gltf", dir);
+    fs::remove_all(dir);
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    ASSERT_TRUE(scene.materials[scene.materialIds[0]].transmissionTexture.given());
+    const glm::dvec3 c(TransmissionQuad::kBase[0], TransmissionQuad::kBase[1], TransmissionQuad::kBase[2]);
+    const double le = 2.0, intensity = 4.0;
+    const glm::dvec3 light(0.5, 1.0, 2.0);
+    const uint32_t emitter = addMaterial(scene, glm::vec3(0.0f), glm::vec3(float(le)));
+    ASSERT_TRUE(scene.normals.empty() && scene.colors.empty() && scene.tangents.empty());
+    const glm::vec3 a(-4, -4, -1), b(4, -4, -1), e(4, 4, -1), f(-4, 4, -1);
+    scene.triangles.insert(scene.triangles.end(), {Triangle{a, b, e}, Triangle{a, e, f}});
+    scene.materialIds.insert(scene.materialIds.end(), {emitter, emitter});
+    scene.texcoords.resize(scene.triangles.size());
+    scene.lights.push_back({glm::vec3(light), glm::vec3(1.0f), float(intensity)});
+    scene.background = glm::vec3(0.0f);
+
+    CameraSpec spec;
+    spec.eye = {0.0f, 0.0f, 3.0f};
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.fovy = 45.0f;
+    const int size = 40;
+    auto schlick = [](double x) { return std::pow(1.0 - x, 5.0); };  // Fd with F0 = 0
+    for (const Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
+        const bool path = integrator == Integrator::Path;
+        SCOPED_TRACE(path ? "path" : "whitted");
+        const Both both = renderBoth(scene, spec, size, size, path ? 64 : 1, 4, integrator, 5);
+        // The same pictures; not always the same count of shadow rays: the emitter's points seen
+        // through the quad sample the emitter's own plane edge-on (cosine 0), where each backend's
+        // rounding decides whether a shadow ray is made (it carries no light either way).
+        expectSamePictures(both.gl, both.cpu, "transmission texture", false);
+        EXPECT_EQ(both.gl.stats.secondaryRays, both.cpu.stats.secondaryRays);
+        for (int backend = 0; backend < 2; ++backend) {
+            SCOPED_TRACE(backend == 0 ? "gl" : "cpu");
+            const RenderOutput& out = backend == 0 ? both.gl : both.cpu;
+            Mean bands[3][3];
+            for (int j = 0; j < size; ++j)
+                for (int i = 0; i < size; ++i) {
+                    const size_t at = size_t(j * size + i);
+                    const glm::dvec3 d = pixelRay(spec, size, i, j), eye(spec.eye);
+                    const glm::dvec3 x = eye + d * (-eye.z / d.z);
+                    // Half a pixel (0.03 in y) and more from a band's edge and the quad's sides.
+                    const int band = std::abs(x.x) < 0.95 && std::abs(x.y) < 0.95 ? TransmissionQuad::band(x.y, 0.02) : -1;
+                    if (band < 0) continue;
+                    ASSERT_LE(out.prim[at], 1.0f) << "pixel " << i << ", " << j << " sees the quad";
+                    const double t = factor * TransmissionQuad::kBandR[band] / 255.0;
+                    const glm::dvec3 v = -d, l = glm::normalize(light - x), h = glm::normalize(l + v);
+                    const double nv = v.z, nl = l.z, vh = std::abs(glm::dot(v, h));
+                    const double dist2 = glm::dot(light - x, light - x);
+                    glm::dvec3 expected = c * ((1.0 - t) * (1.0 - schlick(vh)) * std::max(nl, 0.0) * intensity / dist2) +
+                                          c * (t * (1.0 - schlick(nv)) * le);
+                    if (!path) expected += 0.1 * c * (1.0 - t);
+                    for (int k = 0; k < 3; ++k) {
+                        if (!path)
+                            ASSERT_NEAR(out.color[at][k], expected[k], 1e-4 * expected[k] + 1e-5)
+                                << "pixel " << i << ", " << j << " band " << band << " channel " << k;
+                        bands[band][k].add(out.color[at][k] - expected[k]);
+                    }
+                }
+            for (int band = 0; band < 3; ++band)
+                for (int k = 0; k < 3; ++k) {
+                    const Mean& m = bands[band][k];
+                    ASSERT_GT(m.n, 100u) << "band " << band;
+                    EXPECT_NEAR(m.mean(), 0.0, 5.0 * m.error() + 1e-3)
+                        << "band " << band << " channel " << k << ", standard error " << m.error();
+                }
         }
     }
 }

@@ -166,6 +166,8 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.materials[m].alphaCutoff, y.materials[m].alphaCutoff)) << m;
         EXPECT_EQ(x.materials[m].alphaTexture.texture, y.materials[m].alphaTexture.texture) << m;
         EXPECT_EQ(x.materials[m].alphaTexture.channel, y.materials[m].alphaTexture.channel) << m;
+        EXPECT_EQ(x.materials[m].transmissionTexture.texture, y.materials[m].transmissionTexture.texture) << m;
+        EXPECT_EQ(x.materials[m].transmissionTexture.channel, y.materials[m].transmissionTexture.channel) << m;
     }
     ASSERT_EQ(x.textures.size(), y.textures.size());
     for (size_t k = 0; k < x.textures.size(); ++k) {
@@ -687,6 +689,42 @@ TEST_F(PackedSceneTest, SidesTravelInTheirOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8 + 4, 2); }), "material 1: double-sided 2");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8, 0xffffffffu); }), "material 0: double-sided");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, side.offset, materials + 1); }), "section SIDE");
+}
+
+// Transmission maps (TRNS, texture and channel a material: glTF transmissionTexture): written only
+// when some material has one, so that other files stay as they were; kept through the round trip;
+// a texture out of range, a channel outside 0-3 and a count other than the materials' are refused.
+TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "TRNS")) << "a scene without transmission maps";
+    LoadedScene mapped = source_;
+    ASSERT_GE(mapped.scene.textures.size(), 2u);
+    mapped.scene.materials[2].model = GPURT_MODEL_GLTF;
+    mapped.scene.materials[2].ior = 1.5f;
+    mapped.scene.materials[2].transmission = glm::vec3(0.75f);
+    mapped.scene.materials[2].transmissionTexture = {1, 0};
+    const size_t materials = mapped.scene.materials.size();
+    const Bytes b = encodePackedScene(mapped, grid_, "mapped");
+    const Entry trns = section(b, "TRNS");
+    EXPECT_EQ(trns.size, 8 + 8 * materials);
+    EXPECT_EQ(get64(b, trns.offset), materials);
+    for (size_t m = 0; m < materials; ++m) {
+        EXPECT_EQ(get32(b, trns.offset + 8 + 8 * m), m == 2 ? 1u : 0xffffffffu) << m;
+        EXPECT_EQ(get32(b, trns.offset + 12 + 8 * m), 0u) << m;
+    }
+    const LoadedScene packed = decodePackedScene(b, "mapped.gpscene");
+    expectSameScene(mapped, packed);
+    EXPECT_EQ(packed.scene.materials[2].transmissionTexture.texture, 1);
+    EXPECT_FALSE(packed.scene.materials[1].transmissionTexture.given());
+    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    const uint32_t textures = uint32_t(mapped.scene.textures.size());
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, trns.offset + 8 + 16, textures); }),
+                   "material 2: texture " + std::to_string(textures) + " out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, trns.offset + 8, uint32_t(-2)); }), "material 0: texture -2 out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, trns.offset + 8 + 20, 4); }), "material 2: texture channel 4");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, trns.offset, materials + 1); }), "section TRNS");
+    LoadedScene bad = mapped;
+    bad.scene.materials[2].transmissionTexture.channel = -1;
+    EXPECT_THROW(encodePackedScene(bad, grid_, "bad"), InputError);
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

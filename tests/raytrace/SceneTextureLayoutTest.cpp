@@ -122,7 +122,8 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
             mat.transmission.x, mat.transmission.y, mat.transmission.z, mat.ior,
             mat.metallic,       mat.roughness,      mat.normalScale,    mat.occlusionStrength,
             -1.0f,              -1.0f,              -1.0f,              -1.0f,
-            float(mat.alphaMode), 1.0f,             0.5f,               -1.0f};
+            float(mat.alphaMode), 1.0f,             0.5f,               -1.0f,
+            -1.0f,              0.0f,               0.0f,               0.0f};
         for (int k = 0; k < 4 * GPURT_MATERIAL_TEXELS; ++k)
             EXPECT_EQ(materials.floats[m * 4 * GPURT_MATERIAL_TEXELS + size_t(k)], expected[k]) << m << " " << k;
     }

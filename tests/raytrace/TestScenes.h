@@ -68,7 +68,10 @@ inline void addBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) 
 
 // The 8-bit pictures of both backends (default tone map): at most 1 level apart on 99.9% of the
 // pixels.
-inline void expectSamePictures(const RenderOutput& gl, const RenderOutput& cpu, const std::string& what) {
+// `sameRays` false: the pictures only (a scene whose rounding decides some rays' existence: an
+// emitter's own points sampling it edge-on).
+inline void expectSamePictures(const RenderOutput& gl, const RenderOutput& cpu, const std::string& what,
+                               bool sameRays = true) {
     const std::vector<glm::vec3> a = toneMapImage(gl.color, {}), b = toneMapImage(cpu.color, {});
     size_t close = 0, nans = 0;
     for (size_t i = 0; i < a.size(); ++i) {
@@ -79,6 +82,7 @@ inline void expectSamePictures(const RenderOutput& gl, const RenderOutput& cpu, 
     }
     EXPECT_GE(double(close) / double(a.size()), 0.999) << what;
     EXPECT_EQ(nans, 0u) << what;
+    if (!sameRays) return;
     // The same rays but where float differences send a glass ray another way (0.1%).
     EXPECT_NEAR(double(gl.stats.shadowRays), double(cpu.stats.shadowRays), 1e-3 * double(cpu.stats.shadowRays)) << what;
     EXPECT_NEAR(double(gl.stats.secondaryRays), double(cpu.stats.secondaryRays), 1e-3 * double(cpu.stats.secondaryRays)) << what;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "GltfDocument.h"
+#include "../common/TransmissionQuad.h"
 #include "image/InputError.h"
 
 namespace gpurt {
@@ -509,6 +510,82 @@ TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
               std::string::npos);
     EXPECT_NE(refusal(withMaterial("{\"pbrMetallicRoughness\": {\"roughnessFactor\": 1.5}}")).find("roughnessFactor"),
               std::string::npos);
+}
+
+// KHR_materials_transmission's transmissionTexture (TransmissionQuad.h): the slot is the texture's
+// R channel, read through its texCoord (1) and its KHR_texture_transform (rotation pi/2, offset
+// (0, 1): u' = v, v' = 1 - u by the extension's matrix), with no warning about the slot; the
+// factor stays as given. Without the texture, or with factor 0 (nothing transmits), no slot.
+TEST(GltfLoaderMaterials, TransmissionTextureSlotTexCoordAndTransform) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-transmission-slot-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    auto load = [&](const std::string& text) { return parseGltf(text, "window.gltf", dir); };
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load(test::TransmissionQuad::gltf(0.75, "bands.bmp"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warnings.find("transmissionTexture"), std::string::npos) << warnings;
+    ASSERT_EQ(scene.materials.size(), 2u);  // gpurt's default, then the window
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(scene.materialIds, (std::vector<uint32_t>{1, 1}));
+    EXPECT_EQ(m.transmission, glm::vec3(0.75f));
+    EXPECT_EQ(m.ior, 1.0f);
+    EXPECT_TRUE(m.transmits());
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_EQ(m.transmissionTexture.texture, 0);
+    EXPECT_EQ(m.transmissionTexture.channel, 0);  // R
+    EXPECT_EQ(m.diffuseTexture, -1);
+    EXPECT_EQ(scene.textures[0].image.width, test::TransmissionQuad::kColumns);
+    EXPECT_EQ(scene.textures[0].wrapS, uint32_t(kWrapClamp));
+    // TEXCOORD_1 at the corners (indices 0 1 2, 0 2 3) through the extension's u' = cos(r) u +
+    // sin(r) v + ox, v' = -sin(r) u + cos(r) v + oy with r = pi/2, (ox, oy) = (0, 1).
+    const glm::dvec2 uv1[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    const double r = 1.5707963267948966;
+    auto mapped = [&](int k) {
+        const glm::dvec2 t = uv1[k];
+        return glm::vec2(float(std::cos(r) * t.x + std::sin(r) * t.y), float(-std::sin(r) * t.x + std::cos(r) * t.y + 1.0));
+    };
+    ASSERT_EQ(scene.texcoords.size(), 2u);
+    const int corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int tri = 0; tri < 2; ++tri) {
+        const glm::vec2 got[3] = {scene.texcoords[size_t(tri)].t0, scene.texcoords[size_t(tri)].t1, scene.texcoords[size_t(tri)].t2};
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(got[k].x, mapped(corners[tri][k]).x, 1e-6f) << "triangle " << tri << " corner " << k;
+            EXPECT_NEAR(got[k].y, mapped(corners[tri][k]).y, 1e-6f) << "triangle " << tri << " corner " << k;
+        }
+    }
+    const Scene plain = load(test::TransmissionQuad::gltf(0.75, "bands.bmp", false, false));
+    EXPECT_FALSE(plain.materials[1].transmissionTexture.given());
+    EXPECT_TRUE(plain.texcoords.empty());
+    const Scene opaque = load(test::TransmissionQuad::gltf(0.0, "bands.bmp"));
+    EXPECT_FALSE(opaque.materials[1].transmits());
+    EXPECT_FALSE(opaque.materials[1].transmissionTexture.given());
+    // Hostile slots: exit 1 naming the material and the slot.
+    auto withInfo = [&](const std::string& info) {
+        std::string text = test::TransmissionQuad::gltf(1.0, "bands.bmp");
+        const std::string slot = "\"transmissionTexture\": {\"index\": 0, \"texCoord\": 1";
+        const size_t at = text.find(slot);
+        EXPECT_NE(at, std::string::npos);
+        text.replace(at, slot.size(), "\"transmissionTexture\": {" + info);
+        return test::refusalOf([&] { load(text); }, "window.gltf: ");
+    };
+    for (const auto& [info, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"texCoord\": 1", "material 0 ('window'): transmissionTexture has no texture index"},
+             {"\"index\": -1, \"texCoord\": 1", "transmissionTexture has no texture index"},
+             {"\"index\": \"0\", \"texCoord\": 1", "transmissionTexture has no texture index"},
+             {"\"index\": 7, \"texCoord\": 1", "material 0 ('window'): texture 7 does not exist"},
+             {"\"index\": 0, \"texCoord\": 300", "transmissionTexture texCoord 300 out of range"},
+             {"\"index\": 0, \"texCoord\": 0.5", "transmissionTexture texCoord is not a whole number"}}) {
+        const std::string message = withInfo(info);
+        EXPECT_NE(message.find(part), std::string::npos) << info << ": " << message;
+    }
+    std::string badTransform = test::TransmissionQuad::gltf(1.0, "bands.bmp");
+    const std::string offset = "\"offset\": [0, 1]";
+    badTransform.replace(badTransform.find(offset), offset.size(), "\"offset\": [0, \"1\"]");
+    EXPECT_NE(test::refusalOf([&] { load(badTransform); }, "window.gltf: ")
+                  .find("transmissionTexture KHR_texture_transform offset is not 2 numbers"),
+              std::string::npos);
+    fs::remove_all(dir);
 }
 
 }  // namespace

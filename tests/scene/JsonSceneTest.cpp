@@ -17,6 +17,7 @@
 #include "image/InputError.h"
 #include "scene/ObjLoader.h"
 #include "raytrace/SceneLoader.h"
+#include "../common/TransmissionQuad.h"
 
 namespace gpurt {
 namespace {
@@ -171,6 +172,27 @@ TEST_F(JsonSceneTest, NumberingContinuesAcrossMeshesAndMaterialsAreOffset) {
     EXPECT_EQ(scene.materials[4].reflectivity, glm::vec3(0.1f, 0.2f, 0.3f));
     const std::vector<uint32_t> ids = {0, 2, 2, 1, 3, 3, 3, 4};
     EXPECT_EQ(scene.materialIds, ids);
+}
+
+// Each mesh file's textures follow the earlier files' in the scene's list, and every texture slot
+// of its materials is moved with them: an OBJ's map_d (alpha) listed after another textured OBJ
+// names its own texture, as its map_Kd does.
+TEST_F(JsonSceneTest, LaterMeshFilesKeepEveryTextureSlotOnTheirOwnTextures) {
+    write("bands.bmp", test::TransmissionQuad::image());
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl m\nf 1/1 2/2 3/3\n";
+    write("first.mtl", "newmtl m\nKd 1 1 1\nmap_Kd bands.bmp\n");
+    write("second.mtl", "newmtl m\nKd 1 1 1\nd 0.5\nmap_Kd bands.bmp\nmap_d bands.bmp\n");
+    write("first.obj", "mtllib first.mtl\n" + quad);
+    write("second.obj", "mtllib second.mtl\n" + quad);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [{"file": "first.obj"}, {"file": "second.obj"}]})"));
+    ASSERT_EQ(scene.textures.size(), 2u);
+    ASSERT_EQ(scene.materialIds.size(), 2u);
+    const Material& first = scene.materials[scene.materialIds[0]];
+    const Material& second = scene.materials[scene.materialIds[1]];
+    EXPECT_EQ(first.diffuseTexture, 0);
+    EXPECT_EQ(second.diffuseTexture, 1);
+    ASSERT_TRUE(second.alphaTexture.given());
+    EXPECT_EQ(second.alphaTexture.texture, 1);
 }
 
 TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
