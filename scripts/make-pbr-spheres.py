@@ -17,7 +17,12 @@ The spheres carry TANGENT (dP/du, w so that cross(N, T) w points towards v = 0, 
 top): Blender's importer ignores TANGENT and makes MikkTSpace tangents of the same frame, so
 both renderers read the normal map alike.
 
-    scripts/make-pbr-spheres.py [OUT.glb]
+With --dielectrics it writes tests/assets/cycles/dielectric_spheres.glb instead: the same spheres
+and floor, the spheres dark untextured dielectrics (no TANGENT) of roughness 0.2 (dark red, top
+left), 0.6 (green, top right), 0.4 (blue, bottom left) and 0.8 (grey, bottom right), so that their specular lobe, not their diffuse colour, makes
+most of their light: there a change of a dielectric's roughness shows in the region means.
+
+    scripts/make-pbr-spheres.py [--dielectrics] [OUT.glb]
 """
 import json
 import math
@@ -90,7 +95,11 @@ def sphere(segments=24, rings=12):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "tests/assets/cycles/pbr_spheres.glb"
+    args = sys.argv[1:]
+    dielectrics = "--dielectrics" in args
+    args = [a for a in args if a != "--dielectrics"]
+    default = "tests/assets/cycles/dielectric_spheres.glb" if dielectrics else "tests/assets/cycles/pbr_spheres.glb"
+    out = args[0] if args else default
     blob = bytearray()
     views, accessors = [], []
 
@@ -120,6 +129,8 @@ def main():
     sphere_attributes = {"POSITION": add_accessor(positions, "VEC3"), "NORMAL": add_accessor(normals, "VEC3"),
                          "TANGENT": add_accessor(tangents, "VEC4"), "TEXCOORD_0": add_accessor(uvs, "VEC2")}
     sphere_indices = add_accessor(indices, "SCALAR", 5123, 34963)
+    if dielectrics:
+        del sphere_attributes["TANGENT"]  # no normal map: the accessor stays, unused
     floor_size, floor_y = 1.6, -1.0
     floor_positions = [(-floor_size, floor_y, floor_size), (floor_size, floor_y, floor_size),
                        (floor_size, floor_y, -floor_size), (-floor_size, floor_y, -floor_size)]
@@ -155,6 +166,14 @@ def main():
         {"name": "floor", "pbrMetallicRoughness": {
             "baseColorTexture": {"index": 6}, "metallicFactor": 0.0, "roughnessFactor": 0.8}},
     ]
+    if dielectrics:
+        # (tint, roughness) top left, top right, bottom left (the bumpy blue's place and roughness),
+        # bottom right
+        spheres = [((0.06, 0.015, 0.01), 0.2), ((0.015, 0.05, 0.02), 0.6), ((0.01, 0.02, 0.06), 0.4),
+                   ((0.03, 0.03, 0.03), 0.8)]
+        materials[:4] = [{"name": "dark_dielectric_%d" % k, "pbrMetallicRoughness": {
+            "baseColorFactor": list(tint) + [1.0], "metallicFactor": 0.0, "roughnessFactor": roughness}}
+            for k, (tint, roughness) in enumerate(spheres)]
     meshes = [{"name": "sphere_%d" % k, "primitives": [{"attributes": sphere_attributes, "indices": sphere_indices,
                                                          "material": k}]} for k in range(4)]
     meshes.append({"name": "floor", "primitives": [{"attributes": floor_attributes, "indices": floor_indices,

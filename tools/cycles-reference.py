@@ -8,11 +8,13 @@ Render (inside Blender):
   blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       render SCENE.glb --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fovy DEG] --size WxH --spp N \\
       [--env FILE.hdr --env-strength S --env-rotate DEG] [--bounces N] [--seed S] [--threads N]
-      [--half] [--distribution GGX|MULTI_GGX] -o OUT.exr [--png OUT.png]
+      [--half] [--distribution GGX|MULTI_GGX] [--lambert R,G,B] -o OUT.exr [--png OUT.png]
   --bounces N is gpurt's (the longest path in hits); Cycles gets max_bounces N - 1, which counts
   the scatterings after the first hit (max_bounces 0 is direct light only, gpurt's --bounces 1).
   Filter Glossy is 0 (its default 1 blurs glossy lobes after diffuse ones), clamping and
-  denoising are off. The references of tests/assets/cycles/ were made with it (README.txt there).
+  denoising are off. --lambert R,G,B replaces every material by a Lambert diffuse of that colour
+  (light transport alone, against gpurt's classic Lambert material). The references of
+  tests/assets/cycles/ were made with it (README.txt there).
 Compare (inside Blender too: it reads the EXRs):
   blender -b --factory-startup -noaudio --python-exit-code 1 -P tools/cycles-reference.py -- \\
       compare GPURT.exr CYCLES.exr [--regions N] [--side-by-side OUT.png]
@@ -63,6 +65,10 @@ def render(args):
     camera_data = bpy.data.cameras.new("gpurt")
     camera_data.sensor_fit = "VERTICAL"
     camera_data.angle_y = math.radians(args.fovy)
+    # gpurt's camera clips nothing; a new Blender camera clips nearer than 0.1 and past 1000 units
+    # (a Cornell box of 556 units seen from 800 units away lost its back wall).
+    camera_data.clip_start = 1e-4 * (target - eye).length
+    camera_data.clip_end = 1e4 * max((target - eye).length, 1.0)
     camera = bpy.data.objects.new("gpurt", camera_data)
     scene.collection.objects.link(camera)
     rotation = Matrix((right, true_up, -forward)).transposed()  # columns: camera x, y, z
@@ -109,6 +115,25 @@ def render(args):
         for node in material.node_tree.nodes if material.node_tree else []:
             if node.type == "BSDF_PRINCIPLED":
                 node.distribution = args.distribution
+    if args.lambert:
+        # Every material a Lambert Diffuse BSDF (roughness 0) of one colour: light transport without
+        # the Principled BSDF's differences from glTF's Appendix B, to compare with gpurt's classic
+        # Lambert material (an OBJ without MTL is 0.8 grey).
+        lambert = bpy.data.materials.new("lambert")
+        lambert.use_nodes = True
+        tree = lambert.node_tree
+        tree.nodes.clear()
+        diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = tuple(args.lambert) + (1.0,)
+        diffuse.inputs["Roughness"].default_value = 0.0
+        output = tree.nodes.new("ShaderNodeOutputMaterial")
+        tree.links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
+        for obj in scene.objects:
+            if obj.type == "MESH":
+                obj.data.materials.clear()
+                obj.data.materials.append(lambert)
+                for polygon in obj.data.polygons:
+                    polygon.material_index = 0
     scene.cycles.filter_width = 0.01
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
@@ -189,6 +214,8 @@ def main():
     r.add_argument("--cycles-bounces", type=int, help="Cycles' max_bounces itself (overrides --bounces)")
     r.add_argument("--distribution", default="GGX", choices=["GGX", "MULTI_GGX"],
                    help="the Principled BSDFs' microfacet distribution (glTF's is GGX, single scattering)")
+    r.add_argument("--lambert", type=parse_vector, metavar="R,G,B",
+                   help="replace every material by a Lambert diffuse of this linear colour")
     r.add_argument("--seed", type=int, default=0)
     r.add_argument("--threads", type=int, default=0, help="render threads (default: all)")
     r.add_argument("--half", action="store_true", help="write half-float RGB (else 32-bit float)")
