@@ -26,111 +26,120 @@ void forRows(size_t rows, const Body& body) {
     });
 }
 
-// The 9 spherical-harmonic coefficients of the map, in environment.h's order and scene axes.
-// Each is a quadratic polynomial of the direction; a texel centre's direction is
-// (sin(theta) a, cos(theta), -sin(theta) b) with a = sin(phi - rot), b = cos(phi - rot), so each
-// row needs only the sums of L, L a, L b, L a^2 and L a b over its columns; each row's sums are
-// weighed by its texels' exact solid angle (a constant map projects exactly).
-std::array<glm::vec3, 9> projectHarmonics(const EnvironmentTable& t) {
-    const size_t w = size_t(t.width), h = size_t(t.height);
-    std::vector<double> ca(w), cb(w);
+// The columns' direction factors: a texel centre's direction is (sin(theta) a, cos(theta),
+// -sin(theta) b) with a = sin(phi - rot), b = cos(phi - rot) (environment.h environmentDirection).
+struct ColumnFactors {
+    std::vector<double> a, b;
+};
+
+ColumnFactors columnFactors(size_t w, glm::vec2 rotation) {
+    ColumnFactors c{std::vector<double>(w), std::vector<double>(w)};
     for (size_t i = 0; i < w; ++i) {
         const double phi = ((double(i) + 0.5) / double(w) - 0.5) * 2.0 * kPi;
         const double sp = std::sin(phi), cp = std::cos(phi);
-        ca[i] = double(t.rotation.x) * sp - double(t.rotation.y) * cp;  // environment.h environmentDirection
-        cb[i] = double(t.rotation.x) * cp + double(t.rotation.y) * sp;
+        c.a[i] = double(rotation.x) * sp - double(rotation.y) * cp;
+        c.b[i] = double(rotation.x) * cp + double(rotation.y) * sp;
     }
-    std::vector<std::array<glm::dvec3, 9>> rows(h);
-    forRows(h, [&](size_t j) {
-        glm::dvec3 s0(0.0), sa(0.0), sb(0.0), saa(0.0), sab(0.0);
-        const glm::vec4* row = &t.texels[j * w];
-        for (size_t i = 0; i < w; ++i) {
-            const glm::dvec3 L(row[i].x, row[i].y, row[i].z);
-            s0 += L;
-            sa += L * ca[i];
-            sb += L * cb[i];
-            saa += L * (ca[i] * ca[i]);
-            sab += L * (ca[i] * cb[i]);
-        }
-        const double theta = (double(j) + 0.5) / double(h) * kPi, st = std::sin(theta), y = std::cos(theta);
-        const double dOmega = (2.0 * kPi / double(w)) * (std::cos(double(j) / double(h) * kPi) - std::cos(double(j + 1) / double(h) * kPi));
-        const glm::dvec3 sbb = s0 - saa;  // a^2 + b^2 = 1
-        std::array<glm::dvec3, 9>& c = rows[j];
-        c[0] = s0 * 0.282095;
-        c[1] = s0 * (0.488603 * y);
-        c[2] = sb * (-0.488603 * st);
-        c[3] = sa * (0.488603 * st);
-        c[4] = sa * (1.092548 * st * y);
-        c[5] = sb * (-1.092548 * y * st);
-        c[6] = (sbb * (3.0 * st * st) - s0) * 0.315392;
-        c[7] = sab * (-1.092548 * st * st);
-        c[8] = (saa * (st * st) - s0 * (y * y)) * 0.546274;
-        for (glm::dvec3& v : c) v *= dOmega;
-    });
-    std::array<glm::dvec3, 9> sum{};
-    for (const std::array<glm::dvec3, 9>& c : rows)
-        for (size_t k = 0; k < 9; ++k) sum[k] += c[k];
-    std::array<glm::vec3, 9> out;
-    for (size_t k = 0; k < 9; ++k) out[k] = glm::vec3(sum[k]);
-    return out;
+    return c;
 }
 
-// The sampling distribution: per texel its weight (the largest luminance of it and its 8
-// neighbours, wrapping across u, clamped at the poles: the bilinear filter blends those into the
+// Row j's share of the 9 spherical-harmonic coefficients (environment.h's order, scene axes).
+// Each is a quadratic polynomial of the direction, so a row needs only the sums of L, L a, L b,
+// L a^2 and L a b over its columns (s0, sa, sb, saa, sab); the row is weighed by its texels'
+// exact solid angle (a constant map projects exactly).
+std::array<glm::dvec3, 9> rowHarmonics(size_t j, size_t w, size_t h, const glm::dvec3& s0, const glm::dvec3& sa,
+                                       const glm::dvec3& sb, const glm::dvec3& saa, const glm::dvec3& sab) {
+    const double theta = (double(j) + 0.5) / double(h) * kPi, st = std::sin(theta), y = std::cos(theta);
+    const double dOmega = (2.0 * kPi / double(w)) * (std::cos(double(j) / double(h) * kPi) - std::cos(double(j + 1) / double(h) * kPi));
+    const glm::dvec3 sbb = s0 - saa;  // a^2 + b^2 = 1
+    std::array<glm::dvec3, 9> c;
+    c[0] = s0 * 0.282095;
+    c[1] = s0 * (0.488603 * y);
+    c[2] = sb * (-0.488603 * st);
+    c[3] = sa * (0.488603 * st);
+    c[4] = sa * (1.092548 * st * y);
+    c[5] = sb * (-1.092548 * y * st);
+    c[6] = (sbb * (3.0 * st * st) - s0) * 0.315392;
+    c[7] = sab * (-1.092548 * st * st);
+    c[8] = (saa * (st * st) - s0 * (y * y)) * 0.546274;
+    for (glm::dvec3& v : c) v *= dOmega;
+    return c;
+}
+
+// sin(theta) at row j's centre: the distribution's weight of a row's texels besides luminance.
+float rowSine(size_t j, size_t h) { return float(std::sin((double(j) + 0.5) / double(h) * kPi)); }
+
+// The sampling distribution's weight of texel i of row j: the largest luminance of it and its 8
+// neighbours (wrapping across u, clamped at the poles: the bilinear filter blends those into the
 // radiance inside it, so a bright texel's halo is sampled as often as it shines, and BSDF
 // directions that find the halo of a small sun do not meet the dim sky's pdf there) times
-// sin(theta) at its row's centre; each row's cumulative distribution, the rows' marginal one, and
-// each texel's density in (u, v) in texels[].w.
-void buildDistribution(EnvironmentTable& t) {
-    const size_t w = size_t(t.width), h = size_t(t.height);
-    std::vector<float> luminance(w * h);
-    forRows(h, [&](size_t j) {
-        for (size_t i = 0; i < w; ++i) luminance[j * w + i] = raymath::environmentLuminance(glm::vec3(t.texels[j * w + i]));
-    });
-    std::vector<double> rowSums(h, 0.0);
-    std::vector<float> weight(w * h);
-    t.conditional.assign(w * h, 0.0f);
-    forRows(h, [&](size_t j) {
-        const float* rows[3] = {&luminance[(j == 0 ? 0 : j - 1) * w], &luminance[j * w], &luminance[std::min(h - 1, j + 1) * w]};
-        const float s = float(std::sin((double(j) + 0.5) / double(h) * kPi));
-        double sum = 0.0;
-        for (size_t i = 0; i < w; ++i) {
-            const size_t l = i == 0 ? w - 1 : i - 1, r = i + 1 == w ? 0 : i + 1;
-            float m = 0.0f;
-            for (const float* row : rows) m = std::max(m, std::max(row[l], std::max(row[i], row[r])));
-            weight[j * w + i] = m * s;
-            sum += double(m * s);
-        }
-        double run = 0.0;
-        float* cdf = &t.conditional[j * w];
-        for (size_t i = 0; i < w; ++i) {
-            run += double(weight[j * w + i]);
-            // A row without light is never drawn; its columns stay uniform.
-            cdf[i] = sum > 0.0 ? float(run / sum) : float(double(i + 1) / double(w));
-        }
-        cdf[w - 1] = 1.0f;
-        rowSums[j] = sum;
-    });
-    double total = 0.0;
-    for (double r : rowSums) total += r;
-    t.marginal.assign(h, 0.0f);
-    t.sampled = total > 0.0 && std::isfinite(total);
-    if (!t.sampled) return;  // texels[].w stay 0: no pdf anywhere
-    double run = 0.0;
-    for (size_t j = 0; j < h; ++j) {
-        run += rowSums[j];
-        t.marginal[j] = float(run / total);
+// sin(theta) at the row's centre. `across` holds each texel's maximum along its row (of it and
+// its 2 neighbours); the maximum over the rows above and below completes the 3 x 3 one.
+struct RowWeights {
+    const float *up, *mid, *down;
+    float s;
+    RowWeights(const float* across, size_t j, size_t w, size_t h)
+        : up(across + (j == 0 ? 0 : j - 1) * w), mid(across + j * w), down(across + std::min(h - 1, j + 1) * w), s(rowSine(j, h)) {}
+    float operator()(size_t i) const { return std::max(std::max(up[i], mid[i]), down[i]) * s; }
+};
+
+// The sum of row j's weights, in double, in four partial sums (no chain through every column).
+double rowSum(const float* across, size_t j, size_t w, size_t h) {
+    const RowWeights weight(across, j, w, h);
+    double p0 = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0;
+    size_t i = 0;
+    for (; i + 4 <= w; i += 4) {
+        p0 += double(weight(i));
+        p1 += double(weight(i + 1));
+        p2 += double(weight(i + 2));
+        p3 += double(weight(i + 3));
     }
-    t.marginal[h - 1] = 1.0f;
-    // Texel (i, j)'s density in (u, v): its probability (weight / total) times W H.
-    const double scale = double(w) * double(h) / total;
-    forRows(h, [&](size_t j) {
-        for (size_t i = 0; i < w; ++i) t.texels[j * w + i].w = float(double(weight[j * w + i]) * scale);
-    });
+    for (; i < w; ++i) p0 += double(weight(i));
+    return (p0 + p1) + (p2 + p3);
+}
+
+// Row j's distribution from `across` (see RowWeights), its weights' sum `sum` known: the
+// conditional cumulative distribution of its columns into cdf[0, w) and each texel's density in
+// (u, v), its probability (weight / total) times W H = weight x `scale`, into texels[].w. The
+// running sum is in double, four columns a step: the four partial sums come off the chain, so
+// the additions that wait on each other are a quarter of the columns.
+void buildRow(const float* across, size_t j, size_t w, size_t h, double sum, double scale, float* cdf, glm::vec4* texels) {
+    const RowWeights weight(across, j, w, h);
+    for (size_t i = 0; i < w; ++i) {
+        const float x = weight(i);
+        cdf[i] = x;
+        texels[i].w = float(double(x) * scale);
+    }
+    if (!(sum > 0.0)) {  // a row without light is never drawn; its columns stay uniform
+        for (size_t i = 0; i < w; ++i) cdf[i] = float(double(i + 1) / double(w));
+        return;
+    }
+    const double inv = 1.0 / sum;
+    double run = 0.0;
+    size_t i = 0;
+    for (; i + 4 <= w; i += 4) {
+        const double p0 = double(cdf[i]), p1 = p0 + double(cdf[i + 1]), p2 = p1 + double(cdf[i + 2]), p3 = p2 + double(cdf[i + 3]);
+        cdf[i] = float((run + p0) * inv);
+        cdf[i + 1] = float((run + p1) * inv);
+        cdf[i + 2] = float((run + p2) * inv);
+        cdf[i + 3] = float((run + p3) * inv);
+        run += p3;
+    }
+    for (; i < w; ++i) {
+        run += double(cdf[i]);
+        cdf[i] = float(run * inv);
+    }
+    cdf[w - 1] = 1.0f;
 }
 
 }  // namespace
 
+// One pass over the rows (in parallel) turns the map's texels into the table's (times the
+// strength, density 0), sums the spherical harmonics' row terms and, when the distribution is
+// asked for, each texel's luminance maximum along its row. Then, with the distribution: each
+// row's weight sum (a second pass over those maxima, 8 MB); the rows' marginal; a last pass writes
+// each row's conditional distribution and its texels' densities. The big arrays are LargeArrays:
+// written once, never zeroed first, in huge pages where the kernel gives them.
 EnvironmentTable buildEnvironmentTable(const Scene& scene) {
     EnvironmentTable t;
     if (!scene.environment) return t;
@@ -138,16 +147,68 @@ EnvironmentTable buildEnvironmentTable(const Scene& scene) {
     const EnvironmentImage& image = *env.image;
     t.width = image.width;
     t.height = image.height;
-    t.texels.resize(image.texels.size());
-    const size_t w = size_t(t.width);
-    forRows(size_t(t.height), [&](size_t j) {
-        for (size_t i = j * w; i < (j + 1) * w; ++i) t.texels[i] = glm::vec4(image.texels[i] * env.strength, 0.0f);
+    const size_t w = size_t(t.width), h = size_t(t.height);
+    const double angle = double(env.rotation) * kPi / 180.0;
+    t.rotation = glm::vec2(float(std::cos(angle)), float(std::sin(angle)));
+    t.texels.resize(w * h);
+    LargeArray<float> across;
+    if (env.sampled) across.resize(w * h);
+    const ColumnFactors factors = columnFactors(w, t.rotation);
+    std::vector<std::array<glm::dvec3, 9>> harmonicRows(h);
+    const float strength = env.strength;
+    parallelChunks(h, 16, 0, [&](size_t begin, size_t end, size_t) {
+        std::vector<float> luminance(w);
+        for (size_t j = begin; j < end; ++j) {
+            const glm::vec3* src = &image.texels[j * w];
+            glm::vec4* dst = &t.texels[j * w];
+            glm::dvec3 s0(0.0), sa(0.0), sb(0.0), saa(0.0), sab(0.0);
+            for (size_t i = 0; i < w; ++i) {
+                const glm::vec3 c = src[i] * strength;
+                dst[i] = glm::vec4(c, 0.0f);
+                luminance[i] = raymath::environmentLuminance(c);
+                const glm::dvec3 L(c);
+                const double a = factors.a[i], b = factors.b[i];
+                s0 += L;
+                sa += L * a;
+                sb += L * b;
+                saa += L * (a * a);
+                sab += L * (a * b);
+            }
+            harmonicRows[j] = rowHarmonics(j, w, h, s0, sa, sb, saa, sab);
+            if (across.empty()) continue;
+            float* out = &across[j * w];
+            const float* l = luminance.data();
+            if (w == 1) {
+                out[0] = l[0];
+                continue;
+            }
+            out[0] = std::max(std::max(l[w - 1], l[0]), l[1]);
+            for (size_t i = 1; i + 1 < w; ++i) out[i] = std::max(std::max(l[i - 1], l[i]), l[i + 1]);
+            out[w - 1] = std::max(std::max(l[w - 2], l[w - 1]), l[0]);
+        }
     });
-    const double a = double(env.rotation) * kPi / 180.0;
-    t.rotation = glm::vec2(float(std::cos(a)), float(std::sin(a)));
-    t.harmonics = projectHarmonics(t);
-    if (env.sampled) buildDistribution(t);
-    else t.marginal.assign(size_t(t.height), 1.0f), t.conditional.assign(t.texels.size(), 1.0f);
+    std::array<glm::dvec3, 9> harmonics{};
+    for (const std::array<glm::dvec3, 9>& c : harmonicRows)
+        for (size_t k = 0; k < 9; ++k) harmonics[k] += c[k];
+    for (size_t k = 0; k < 9; ++k) t.harmonics[k] = glm::vec3(harmonics[k]);
+    if (!env.sampled) return t;
+
+    std::vector<double> rowSums(h);
+    forRows(h, [&](size_t j) { rowSums[j] = rowSum(across.data(), j, w, h); });
+    double total = 0.0;
+    for (double r : rowSums) total += r;
+    t.sampled = total > 0.0 && std::isfinite(total);
+    if (!t.sampled) return t;  // texels[].w stay 0: no pdf anywhere
+    t.marginal.resize(h);
+    double run = 0.0;
+    for (size_t j = 0; j < h; ++j) {
+        run += rowSums[j];
+        t.marginal[j] = float(run / total);
+    }
+    t.marginal[h - 1] = 1.0f;
+    t.conditional.resize(w * h);
+    const double scale = double(w) * double(h) / total;
+    forRows(h, [&](size_t j) { buildRow(across.data(), j, w, h, rowSums[j], scale, &t.conditional[j * w], &t.texels[j * w]); });
     return t;
 }
 

@@ -12,15 +12,17 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/LargeArray.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
 
 struct EnvironmentTable {
     int width = 0, height = 0;              // 0: no environment
-    std::vector<glm::vec4> texels;          // width * height, top row first: (radiance, uvPdf)
+    LargeArray<glm::vec4> texels;           // width * height, top row first: (radiance, uvPdf)
+    // The distribution, only where `sampled` (empty otherwise: nothing searches it):
     std::vector<float> marginal;            // height: cumulative share of rows 0..j (last exactly 1)
-    std::vector<float> conditional;         // width * height: per row, cumulative share of its columns
+    LargeArray<float> conditional;          // width * height: per row, cumulative share of its columns
     glm::vec2 rotation{1.0f, 0.0f};         // (cos, sin) of the rotation about +Y
     std::array<glm::vec3, 9> harmonics{};   // environment.h environmentIrradiance's c0..c8
     bool sampled = false;                   // next-event estimation samples it (some light, and asked)
@@ -36,8 +38,9 @@ struct EnvironmentTable {
     glm::vec3 irradiance(glm::vec3 n) const;
 };
 
-// The table of the scene's environment (empty without one). `importance`: build the sampling
-// distribution (false: BSDF sampling alone finds the environment; for measurements).
+// The table of the scene's environment (empty without one). The environment's `sampled` asks for
+// the sampling distribution (false: BSDF sampling alone finds the environment); a map without
+// light (or with an infinite total) has none either.
 EnvironmentTable buildEnvironmentTable(const Scene& scene);
 
 }  // namespace gpurt

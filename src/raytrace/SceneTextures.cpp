@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <span>
 #include <string>
 
 namespace gpurt {
@@ -104,29 +105,29 @@ GPUFloatArray makeTextureTable(const Scene& scene) {
 }
 
 // The environment's textures (1 x 1 zeros without one): the map (radiance, uvPdf), the marginal
-// and conditional cumulative distributions, the 9 spherical-harmonic coefficients.
+// and conditional cumulative distributions (1 x 1 where the table has none: not sampled), the 9
+// spherical-harmonic coefficients. The table's arrays go up as they are, without a copy.
 GPUFloatArray makeEnvironmentArray(const EnvironmentTable& t, int which) {
-    const bool has = !t.empty();
+    static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "texels are 4 packed floats");
+    const bool has = !t.empty(), sampled = has && t.sampled;
     const int w = has ? t.width : 1, h = has ? t.height : 1;
     if (has) checkFits("environment map", size_t(t.width), size_t(t.height));
+    static const float stand[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one = 1.0f;
     std::vector<float> data;
     switch (which) {
         case 0: {
             GPUFloatArray a(w, h, GPUFormat::RGBA32F, "environmentMap");
-            data.assign(size_t(w) * size_t(h) * 4, 0.0f);
-            for (size_t k = 0; has && k < t.texels.size(); ++k)
-                for (int c = 0; c < 4; ++c) data[4 * k + size_t(c)] = t.texels[k][c];
-            a.upload(data);
+            a.upload(has ? std::span<const float>(&t.texels[0].x, 4 * t.texels.size()) : std::span<const float>(stand, 4));
             return a;
         }
         case 1: {
-            GPUFloatArray a(has ? t.height : 1, 1, GPUFormat::R32F, "environmentMarginal");
-            a.upload(has ? t.marginal : std::vector<float>{1.0f});
+            GPUFloatArray a(sampled ? t.height : 1, 1, GPUFormat::R32F, "environmentMarginal");
+            a.upload(sampled ? std::span<const float>(t.marginal) : std::span<const float>(&one, 1));
             return a;
         }
         case 2: {
-            GPUFloatArray a(w, h, GPUFormat::R32F, "environmentConditional");
-            a.upload(has ? t.conditional : std::vector<float>{1.0f});
+            GPUFloatArray a(sampled ? t.width : 1, sampled ? t.height : 1, GPUFormat::R32F, "environmentConditional");
+            a.upload(sampled ? std::span<const float>(t.conditional) : std::span<const float>(&one, 1));
             return a;
         }
         default: {
