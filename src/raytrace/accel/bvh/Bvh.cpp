@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "image/InputError.h"
+#include "raytrace/LargeArray.h"
 #include "raytrace/Parallel.h"
 #include "raytrace/accel/SceneBox.h"
 
@@ -181,7 +182,7 @@ class Builder {
 
     // The child over [begin, end) with boxes `boxes`: a leaf, or an inner node appended to `out`
     // (with its subtree after it). `depth` is the child's level; deepest gets the tree's depth.
-    Bvh::Child subtree(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, const RangeBoxes& boxes, int depth,
+    Bvh::Child subtree(Bvh::BvhNodes& out, uint32_t begin, uint32_t end, const RangeBoxes& boxes, int depth,
                        int threads, int& deepest) {
         const uint32_t count = end - begin;
         const Box& box = boxes.box;
@@ -217,7 +218,7 @@ class Builder {
         if (!leftBoxes) leftBoxes = rangeBoxes(begin, mid), rightBoxes = rangeBoxes(mid, end);
         Bvh::Child left, right;
         if (threads > 1 && count >= kParallelRange) {
-            std::vector<Bvh::Node> leftNodes, rightNodes;
+            Bvh::BvhNodes leftNodes, rightNodes;
             leftNodes.reserve(mid - begin);
             rightNodes.reserve(end - mid);
             int leftDepth = 0, rightDepth = 0;
@@ -244,7 +245,7 @@ class Builder {
 
     // Appends `nodes` (a subtree built on its own, its root at 0) to `out`, moving its node
     // references, and `child`'s, by where it lands.
-    static void splice(std::vector<Bvh::Node>& out, const std::vector<Bvh::Node>& nodes, Bvh::Child& child) {
+    static void splice(Bvh::BvhNodes& out, const Bvh::BvhNodes& nodes, Bvh::Child& child) {
         const int32_t offset = int32_t(out.size());
         out.insert(out.end(), nodes.begin(), nodes.end());
         for (size_t k = size_t(offset); k < out.size(); ++k)
@@ -255,7 +256,7 @@ class Builder {
 
     int maxLeaf_;
     int threads_;
-    std::vector<PrimRef> prims_;  // in leaf order once built
+    LargeArray<PrimRef> prims_;  // in leaf order once built
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/LargeArray.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
@@ -28,7 +29,8 @@ struct Bvh {
     struct Node {
         Child child[2];
     };
-    std::vector<Node> nodes;         // nodes[0] is the root; children follow their parents
+    using BvhNodes = LargeArray<Node>;  // many megabytes for big models: huge pages
+    BvhNodes nodes;                  // nodes[0] is the root; children follow their parents
     std::vector<uint32_t> triangles; // triangle ids in leaf order: each triangle exactly once
     glm::vec3 min{-1.0f}, max{1.0f}; // the scene's box, as the grid's (accel/SceneBox.h)
     int depth = 1;                   // nodes on the longest root-to-leaf path
