@@ -632,9 +632,16 @@ class GltfReader {
             if (mirrored) std::swap(b, c);
             scene.triangles.push_back({positions[a], positions[b], positions[c]});
             scene.materialIds.push_back(material);
+            if (scene.normals.size() + 1 < scene.triangles.size()) scene.normals.resize(scene.triangles.size() - 1);
             if (!normals.empty()) {
-                if (scene.normals.size() + 1 < scene.triangles.size()) scene.normals.resize(scene.triangles.size() - 1);
                 scene.normals.push_back({normals[a], normals[b], normals[c]});
+            } else {
+                // The glTF spec: without NORMAL, flat normals (as Blender's importer, three.js and
+                // the Sample Viewer show them); a degenerate triangle keeps none.
+                const glm::vec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+                const float length = glm::length(n);
+                const glm::vec3 flat = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f);
+                scene.normals.push_back({flat, flat, flat});
             }
             if (!texcoords.empty()) {
                 scene.texcoords.resize(scene.triangles.size() - 1);
@@ -657,8 +664,7 @@ class GltfReader {
         } else {  // the spec: p_i = (v_i+1, v_i+2, v_0)
             for (size_t k = 0; k + 2 < index.size(); ++k) emit(index[k + 1], index[k + 2], index[0]);
         }
-        // Triangles of primitives without normals keep none (all zero), so that smoothing fills them.
-        if (!scene.normals.empty() && scene.normals.size() < scene.triangles.size()) scene.normals.resize(scene.triangles.size());
+
         // And those without colours white.
         if (!scene.colors.empty() && scene.colors.size() < scene.triangles.size()) scene.colors.resize(scene.triangles.size());
         // And those without tangents none (generated ones).

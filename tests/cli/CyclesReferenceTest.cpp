@@ -153,13 +153,13 @@ const Reference kDielectricSpheres{"tests/assets/cycles/dielectric_spheres.glb",
 const Reference kGlobe{"tests/assets/textures/globe.glb", "globe_cycles.exr",
                        "--size 96x96 --eye 2.0,0.6,1.7 --target 0,0,0 --fovy 45 --env scenes/sky.hdr --bounces 4", 16, 0.15};
 // The teapot (grey 0.5, roughness 1, no NORMAL: flat normals, as the glTF specification says and
-// Blender's importer does; gpurt's default would smooth them, hence --smooth off), from a low
+// Blender's importer and gpurt do), from a low
 // camera that does not look into it through the gap of its lid (single-sided: gpurt culls the
 // back faces Cycles shows there). Measured at 1024 spp: the sky agrees to 0.1%, the teapot is
 // 2-7.6% darker in gpurt (Burley's diffuse). (Region means do not tell flat from smooth
-// normals: the test passes without --smooth off too.)
+// normals.)
 const Reference kTeapot{"tests/assets/gltf/teapot.gltf", "teapot_cycles.exr",
-                        "--size 96x96 --eye 12,6,34 --target 0,0.5,0 --fovy 45 --env scenes/sky.hdr --bounces 4 --smooth off",
+                        "--size 96x96 --eye 12,6,34 --target 0,0.5,0 --fovy 45 --env scenes/sky.hdr --bounces 4",
                         16, 0.10};
 // The Cornell box (grey 0.5, roughness 1, single-sided walls facing inwards) from its open side,
 // as tests/cli do (Cycles renders both sides of every face; from there only their fronts are
