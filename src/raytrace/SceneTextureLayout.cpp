@@ -23,6 +23,8 @@ TextureTexels emptyTexture(const char* name, size_t width, size_t rows, int chan
     t.channels = channels;
     t.isFloat = isFloat;
     const size_t values = t.texels() * size_t(channels);
+    // Zeros explicitly (the padding after the last entry and the unused channels are read as 0):
+    // resize() of a LargeArray leaves its values unwritten.
     if (isFloat)
         t.floats.assign(values, 0.0f);
     else

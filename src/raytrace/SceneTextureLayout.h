@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raytrace/EmitterTable.h"
+#include "raytrace/LargeArray.h"
 #include "scene/Scene.h"
 #include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"
@@ -21,13 +22,14 @@ inline constexpr size_t kMaxTextureTriangles = (size_t(1) << 24) - 1;
 inline constexpr size_t kMaxTextureMaterials = (size_t(1) << 24) - 1;
 
 // One texture's texels, row 0 first (the order of a GL upload), `channels` 32-bit values each:
-// unsigned integers (R32UI, RG32UI) in `uints`, or floats (RGBA32F) in `floats`.
+// unsigned integers (R32UI, RG32UI) in `uints`, or floats (RGBA32F) in `floats`. Huge-page arrays
+// (LargeArray.h): a big model's triangle lists are hundreds of megabytes, written once.
 struct TextureTexels {
     std::string name;  // the sampler's name in the kernels: voxelIndex, cellTriangles, ...
     int width = 0, rows = 0, channels = 0;
     bool isFloat = false;
-    std::vector<uint32_t> uints;
-    std::vector<float> floats;
+    LargeArray<uint32_t> uints;
+    LargeArray<float> floats;
 
     size_t texels() const { return size_t(width) * size_t(rows); }
     size_t bytes() const { return texels() * size_t(channels) * 4; }

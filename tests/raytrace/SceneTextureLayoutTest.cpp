@@ -156,8 +156,8 @@ TEST(SceneTextureLayoutTest, EmitterTableSharesAreTheAreas) {
     EXPECT_EQ(table.pick(0.99999994f), 1u);
     const TextureTexels texels = emitterTexels(table);
     EXPECT_EQ(std::string(texels.formatName()), "RG32F");
-    EXPECT_EQ(texels.floats, (std::vector<float>{table.cdf[0], 1.0f, 1.0f, 3.0f}));
-    EXPECT_EQ(emitterTexels(EmitterTable{}).floats, (std::vector<float>{1.0f, -1.0f}));
+    EXPECT_EQ(texels.floats, (LargeArray<float>{table.cdf[0], 1.0f, 1.0f, 3.0f}));
+    EXPECT_EQ(emitterTexels(EmitterTable{}).floats, (LargeArray<float>{1.0f, -1.0f}));
 }
 
 // Texture coordinates as the triangles (two texels each); the images one after another with
@@ -190,8 +190,8 @@ TEST(SceneTextureLayoutTest, TexturesAreWhereSceneLayoutSays) {
     EXPECT_EQ(texels.width, GPURT_INDEX_WIDTH);
     EXPECT_EQ(std::vector<uint32_t>(texels.uints.begin(), texels.uints.begin() + 15),
               (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 100, 101, 102, 103, 104, 105, 106, 107, 108}));
-    EXPECT_EQ(textureTableTexels(scene).uints, (std::vector<uint32_t>{0, 2, 3, 1 | 2 << 8, 6, 3, 3, 1}));
-    EXPECT_EQ(textureTableTexels(Scene{}).uints, (std::vector<uint32_t>{0, 1, 1, 0}));
+    EXPECT_EQ(textureTableTexels(scene).uints, (LargeArray<uint32_t>{0, 2, 3, 1 | 2 << 8, 6, 3, 3, 1}));
+    EXPECT_EQ(textureTableTexels(Scene{}).uints, (LargeArray<uint32_t>{0, 1, 1, 0}));
     const TextureTexels srgb = srgbTableTexels();
     EXPECT_EQ(srgb.floats.front(), 0.0f);
     EXPECT_NEAR(srgb.floats.back(), 1.0f, 1e-6f);

@@ -334,9 +334,9 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
         EXPECT_EQ(gpu[k]->height(), cpu[k].rows) << cpu[k].name;
         EXPECT_EQ(gpu[k]->channels(), cpu[k].channels) << cpu[k].name;
         if (cpu[k].isFloat)
-            EXPECT_EQ(gpu[k]->download(), cpu[k].floats) << cpu[k].name;
+            EXPECT_EQ(gpu[k]->download(), std::vector<float>(cpu[k].floats.begin(), cpu[k].floats.end())) << cpu[k].name;
         else
-            EXPECT_EQ(gpu[k]->downloadUint(), cpu[k].uints) << cpu[k].name;
+            EXPECT_EQ(gpu[k]->downloadUint(), std::vector<uint32_t>(cpu[k].uints.begin(), cpu[k].uints.end())) << cpu[k].name;
         bytes += cpu[k].bytes();
     }
     EXPECT_EQ(textures.bytes() + accel.bytes(), bytes);
