@@ -11,6 +11,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 # scripts/install-deps.sh installs every package the build and the tests need, among them xvfb and
 # xdotool (the viewer's window tests), slurm and munge (the Slurm farm driver's test), parallel.
+# No test runs blender: the Cycles reference EXRs of tests/assets/cycles/ are committed, and only
+# tools/cycles-reference.py, which remakes them, needs blender (scripts/install-deps.sh --cycles).
 ./scripts/install-deps.sh
 
 mode=plain
