@@ -168,8 +168,10 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
-        if (m.model == 2 && m.transmits()) hasTransmission_ = true;  // GPURT_MODEL_GLTF
-        if (m.model == 2 && m.transmits() && m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
+        if (m.model == 2 && m.transmits()) {  // GPURT_MODEL_GLTF
+            hasTransmission_ = true;
+            if (m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
+        }
     }
     hasAlpha_ = sceneUsesAlpha(scene);
     cullsBackFaces_ = sceneCullsBackFaces(scene);

@@ -664,8 +664,7 @@ class GltfReader {
         } else {  // the spec: p_i = (v_i+1, v_i+2, v_0)
             for (size_t k = 0; k + 2 < index.size(); ++k) emit(index[k + 1], index[k + 2], index[0]);
         }
-
-        // And those without colours white.
+        // Triangles of primitives without colours white.
         if (!scene.colors.empty() && scene.colors.size() < scene.triangles.size()) scene.colors.resize(scene.triangles.size());
         // And those without tangents none (generated ones).
         if (!scene.tangents.empty() && scene.tangents.size() < scene.triangles.size()) scene.tangents.resize(scene.triangles.size());
