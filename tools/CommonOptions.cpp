@@ -156,9 +156,16 @@ Acceleration GridCliOptions::accelerate(const LoadedScene& loaded, const CameraB
 
 void TracerCliOptions::add(CLI::App& cmd) {
     cmd.add_option("--kernel", kernel,
-                   "Trace kernels: fused (traverse and intersect in one kernel, default) or split "
-                   "(the Purcell/Christen traverser and intersector pair)")
-        ->check(CLI::IsMember({"fused", "split"}));
+                   "How the passes are split (gl): megakernel (a pass takes each path through several "
+                   "bounces: trace, shading and shadow rays in one kernel), fused (a pass a stage of the "
+                   "integrator, traversal and intersection in one kernel) or split (the Purcell/Christen "
+                   "traverser and intersector pair); default: the faster on the renderer "
+                   "(docs/PERFORMANCE.md; environment variable GPURT_KERNEL=wavefront|megakernel)")
+        ->check(CLI::IsMember({"megakernel", "fused", "split"}));
+    cmd.add_option("--megakernel-bounces", megakernelBounces,
+                   "Megakernel: the bounces a pass takes each path through before the live paths are packed "
+                   "(0 = default)")
+        ->check(CLI::Range(0, 1 << 20));
     cmd.add_option("--traverse-steps", traverseSteps,
                    "Grid cells per trace pass (0 = default: whole traversal when fused, 16 when split; "
                    "1 with split = the seed)")
@@ -177,7 +184,11 @@ GpuTracerOptions TracerCliOptions::options() const {
     GpuTracerOptions options;
     if (!mask.empty() && !parseMaskMode(mask, options.mask))
         throw InputError("--mask: unknown mode '" + mask + "' (earlyz, stencil, exit)");
-    parseTraceKernel(kernel, options.kernel);
+    if (!kernel.empty()) {  // unset: the integrators' default kernels (IntegratorKernel::Auto)
+        options.integratorKernel = kernel == "megakernel" ? IntegratorKernel::Megakernel : IntegratorKernel::Wavefront;
+        parseTraceKernel(kernel == "megakernel" ? "fused" : kernel, options.kernel);
+    }
+    options.megakernelBounces = megakernelBounces;
     options.traverseSteps = traverseSteps;
     options.waitThreshold = waitThreshold;
     options.maskPaths = maskPaths;

@@ -157,7 +157,8 @@ struct GridCliOptions {
 // The GL trace loop's options of render and bench: --kernel, --traverse-steps, --mask and
 // --wait-threshold.
 struct TracerCliOptions {
-    std::string kernel = "fused";
+    std::string kernel;  // empty: the default
+    int megakernelBounces = 0;
     int traverseSteps = 0;
     std::string mask;
     float waitThreshold = 0.0f;

@@ -17,6 +17,18 @@ enum class TraceKernel {
 const char* traceKernelName(TraceKernel kernel);
 bool parseTraceKernel(const std::string& text, TraceKernel& kernel);
 
+// How an integrator's sample is split into passes (docs/PERFORMANCE.md measures both).
+enum class IntegratorKernel {
+    Auto,        // the faster of the two on the renderer (defaultIntegratorKernel)
+    Wavefront,   // a pass a stage: trace, surface, each light's shadow rays and term, bounce
+    Megakernel,  // a pass takes each path through several depths (glsl/integrators/*/megakernel.frag)
+};
+const char* integratorKernelName(IntegratorKernel kernel);
+// The kernel Auto stands for: GPURT_KERNEL (wavefront or megakernel) where it is set, else the
+// faster on the current context's renderer, as measured in docs/PERFORMANCE.md. Throws
+// EnvironmentError for any other value of GPURT_KERNEL.
+IntegratorKernel defaultIntegratorKernel();
+
 struct GpuTracerOptions {
     MaskMode mask = MaskMode::None;  // None: defaultMaskMode() of the driver
     // Grid cells per pass; 0: the kernel's default (split: 16 per traverser pass, fused: the
@@ -35,6 +47,11 @@ struct GpuTracerOptions {
     // paths (the pipeline's mask mode) rather than leaving dead paths to each kernel's early exit.
     // Off by default: slower on llvmpipe (docs/PERFORMANCE.md).
     bool maskPaths = false;
+    // The integrators' passes: a pass a stage, or megakernels (Auto: defaultIntegratorKernel).
+    IntegratorKernel integratorKernel = IntegratorKernel::Auto;
+    // The depths a path megakernel pass takes each path through before the live paths are
+    // packed; 0: the measured default.
+    int megakernelBounces = 0;
 };
 
 }  // namespace gpurt

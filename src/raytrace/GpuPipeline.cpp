@@ -40,8 +40,11 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
 
 void GpuPipeline::setCamera(const CameraBasis& c, const std::vector<GPUKernel*>& others) {
     setSample(0, 1, 0);
-    std::vector<GPUKernel*> all = accel.kernels();  // the accelerator's camera trace among them
+    // The kernels that generate camera rays: raygen, the accelerator's camera trace, and the
+    // integrators' megakernels among `others` (the others ignore the uniforms).
+    std::vector<GPUKernel*> all = accel.kernels();
     all.insert(all.end(), {&raygen, &raygenCentre});
+    all.insert(all.end(), others.begin(), others.end());
     for (GPUKernel* k : all)
         k->setUniform("eye", c.eye)
             .setUniform("forward", c.forward)
@@ -49,9 +52,8 @@ void GpuPipeline::setCamera(const CameraBasis& c, const std::vector<GPUKernel*>&
             .setUniform("upOrtho", c.upOrtho)
             .setUniform("tanHalf", c.tanHalf)
             .setUniform("aspect", c.aspect)
-            .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)));
-    all.insert(all.end(), others.begin(), others.end());
-    for (GPUKernel* k : all) k->setUniform("tileRow", c.rowBegin);
+            .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)))
+            .setUniform("tileRow", c.rowBegin);
 }
 
 void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {
@@ -59,10 +61,10 @@ void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     raygen.setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
 }
 
-void GpuPipeline::readHitAovs(RenderOutput& out) {
+void GpuPipeline::readHitAovs(RenderOutput& out, const GPUFloatArray* stepStream) {
     const size_t pixels = size_t(width) * size_t(height);
     const auto hits = hit.download();
-    const auto steps = accel.steps().downloadInt();
+    const auto steps = (stepStream ? *stepStream : accel.steps()).downloadInt();
     out.depth.resize(pixels);
     out.prim.resize(pixels);
     out.steps.resize(pixels);

@@ -85,7 +85,9 @@ struct GpuPipeline {
     // The primary rays' depth, prim and steps AOVs from the hit and step streams (before the
     // shading passes reuse them; primary rays at the step limit count in stats.overflowRays),
     // and the normal AOV after the surface pass.
-    void readHitAovs(RenderOutput& out);
+    // steps: the step counts' stream where the hits were traced elsewhere than by the
+    // accelerator's trace kernels (the megakernels), else accel.steps().
+    void readHitAovs(RenderOutput& out, const GPUFloatArray* steps = nullptr);
     void readNormalAov(RenderOutput& out);
 
   private:

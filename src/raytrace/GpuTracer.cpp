@@ -5,7 +5,9 @@
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/accel/grid/GridGl.h"
 #include "raytrace/integrators/path/PathGl.h"
+#include "raytrace/integrators/path/PathMegakernelGl.h"
 #include "raytrace/integrators/whitted/WhittedGl.h"
+#include "raytrace/integrators/whitted/WhittedMegakernelGl.h"
 
 #include "../../glsl/common/scene_layout.h"
 
@@ -15,6 +17,7 @@
 #include "stream/StreamErrors.h"
 
 #include <chrono>
+#include <cstdlib>
 
 namespace gpurt {
 
@@ -22,7 +25,11 @@ GpuTracer::GpuTracer(const Scene& scene, const UniformGrid& grid, GpuTracerOptio
     : GpuTracer(scene, std::make_unique<GridGl>(scene, grid, options), grid.rayOffset(), options) {}
 
 GpuTracer::GpuTracer(const Scene& scene, std::unique_ptr<GlAccelerator> accel, float rayOffset, GpuTracerOptions options)
-    : scene_(scene), options_(options), textures_(scene, rayOffset), accel_(std::move(accel)) {
+    : scene_(scene),
+      options_(options),
+      textures_(scene, rayOffset),
+      accel_(std::move(accel)),
+      kernel_(options.integratorKernel == IntegratorKernel::Auto ? defaultIntegratorKernel() : options.integratorKernel) {
     // Whether rays can spawn, and split in two: a question for each material the triangles use
     // (once each, not once a triangle: the dragon has 871k).
     std::vector<bool> used(scene.materials.size(), false);
@@ -38,6 +45,24 @@ GpuTracer::GpuTracer(const Scene& scene, std::unique_ptr<GlAccelerator> accel, f
 GpuTracer::~GpuTracer() = default;
 
 const char* traceKernelName(TraceKernel kernel) { return kernel == TraceKernel::Split ? "split" : "fused"; }
+
+const char* integratorKernelName(IntegratorKernel kernel) {
+    switch (kernel) {
+        case IntegratorKernel::Wavefront: return "wavefront";
+        case IntegratorKernel::Megakernel: return "megakernel";
+        default: return "auto";
+    }
+}
+
+IntegratorKernel defaultIntegratorKernel() {
+    if (const char* chosen = std::getenv("GPURT_KERNEL")) {
+        const std::string name = chosen;
+        if (name == "wavefront") return IntegratorKernel::Wavefront;
+        if (name == "megakernel") return IntegratorKernel::Megakernel;
+        throw EnvironmentError("GPURT_KERNEL=" + name + ": expected wavefront or megakernel");
+    }
+    return IntegratorKernel::Wavefront;
+}
 
 bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
     if (text == "fused") kernel = TraceKernel::Fused;
@@ -59,6 +84,8 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.sums = sums || progressive;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || whitted_->stackSlots() != stackSlots ||
         path_->paths() != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
+        pathMegakernel_.reset();
+        whittedMegakernel_.reset();
         path_.reset();
         whitted_.reset();
         pipeline_.reset();
@@ -66,6 +93,12 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
         whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
         path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
+        if (kernel_ == IntegratorKernel::Megakernel && paths) {
+            pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, paths, scene_.lights.size() + 1);
+            pathMegakernel_->setBouncesPerPass(options_.megakernelBounces);
+        }
+        if (kernel_ == IntegratorKernel::Megakernel && !paths)
+            whittedMegakernel_ = std::make_unique<WhittedMegakernelGl>(*pipeline_, textures_, stackSlots, scene_.lights.size() + 1);
         for (GPUKernel* k : accel_->kernels()) {
             textures_.bindCoverage(*k);
             if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
@@ -76,8 +109,19 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
 }
 
 GlIntegrator& GpuTracer::integrator(const RenderSettings& settings) {
-    if (settings.integrator == Integrator::Path) return *path_;
+    if (settings.integrator == Integrator::Path) {
+        if (pathMegakernel_) return *pathMegakernel_;
+        return *path_;
+    }
+    if (whittedMegakernel_) return *whittedMegakernel_;
     return *whitted_;
+}
+
+std::vector<GlIntegrator*> GpuTracer::megakernels() {
+    std::vector<GlIntegrator*> all;
+    if (pathMegakernel_) all.push_back(pathMegakernel_.get());
+    if (whittedMegakernel_) all.push_back(whittedMegakernel_.get());
+    return all;
 }
 
 std::vector<GPUKernel*> GpuTracer::allKernels() {
@@ -85,18 +129,25 @@ std::vector<GPUKernel*> GpuTracer::allKernels() {
     if (!pipeline_) return all;
     for (const std::vector<GPUKernel*>& ks : {pipeline_->kernels(), accel_->kernels(), whitted_->kernels(), path_->kernels()})
         all.insert(all.end(), ks.begin(), ks.end());
+    for (GlIntegrator* megakernel : megakernels())
+        for (GPUKernel* k : megakernel->kernels()) all.push_back(k);
     return all;
 }
 
 void GpuTracer::setCamera(const CameraBasis& camera) {
     std::vector<GPUKernel*> integrators = whitted_->kernels();
     for (GPUKernel* k : path_->kernels()) integrators.push_back(k);
+    for (GlIntegrator* megakernel : megakernels())
+        for (GPUKernel* k : megakernel->kernels()) integrators.push_back(k);
     pipeline_->setCamera(camera, integrators);
 }
 
 void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
     if (!textures_.hasAlpha()) return;
-    for (GPUKernel* k : accel_->kernels())
+    std::vector<GPUKernel*> tracing = accel_->kernels();
+    for (GlIntegrator* megakernel : megakernels())
+        for (GPUKernel* k : megakernel->kernels()) tracing.push_back(k);
+    for (GPUKernel* k : tracing)
         k->setUniform("coverageSample", s).setUniform("coverageSeed", seed).setUniform("coverageFromStream", 0);
 }
 
@@ -105,6 +156,7 @@ void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     pipeline_->setSample(s, n, seed);
     whitted_->setSample(s, n, seed);
     path_->setSample(s, n, seed);
+    for (GlIntegrator* megakernel : megakernels()) megakernel->setSample(s, n, seed);
 }
 
 // The sample loop (--spp), each sample one of the integrator's (integrators/): its rounds of

@@ -25,6 +25,8 @@ struct GpuPipeline;
 class GlIntegrator;
 class WhittedGl;
 class PathGl;
+class PathMegakernelGl;
+class WhittedMegakernelGl;
 
 class GpuTracer {
   public:
@@ -82,6 +84,8 @@ class GpuTracer {
     // and for the path integrator, which takes one direction a hit).
     int stackSlots(const RenderSettings& settings) const;
     std::vector<GPUKernel*> allKernels();
+    // The megakernel integrators built (none with the wavefront kernels).
+    std::vector<GlIntegrator*> megakernels();
 
     const Scene& scene_;
     GpuTracerOptions options_;
@@ -90,6 +94,10 @@ class GpuTracer {
     std::unique_ptr<GpuPipeline> pipeline_;
     std::unique_ptr<WhittedGl> whitted_;
     std::unique_ptr<PathGl> path_;
+    // The integrators as megakernels (when kernel_ says so; the one the pipeline's streams are for).
+    std::unique_ptr<PathMegakernelGl> pathMegakernel_;
+    std::unique_ptr<WhittedMegakernelGl> whittedMegakernel_;
+    IntegratorKernel kernel_;  // options_.integratorKernel, Auto resolved
     bool splits_ = false;  // some material may spawn two rays (glass): the ray tree needs its stacks
     bool spawns_ = false;  // some material spawns rays (mirror, glass)
     struct Progressive {

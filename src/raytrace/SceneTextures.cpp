@@ -217,10 +217,14 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     }
 }
 
-void SceneTextures::bindCoverage(GPUKernel& kernel) const {
-    if (!hasCoverage()) return;
+void SceneTextures::bindCoverageDefines(GPUKernel& kernel) const {
     if (hasAlpha_) kernel.addDefine("SCENE_ALPHA");
     if (cullsBackFaces_) kernel.addDefine("SCENE_CULL_BACK");
+}
+
+void SceneTextures::bindCoverage(GPUKernel& kernel) const {
+    if (!hasCoverage()) return;
+    bindCoverageDefines(kernel);
     if (hasTexcoords_) kernel.addDefine("SCENE_TEXTURES");
     kernel.addInput(triangles_, "triangles")
         .addInput(materials_, "materials")

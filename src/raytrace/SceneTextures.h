@@ -46,6 +46,9 @@ class SceneTextures {
     // kernel and adds what its coverage test reads (the triangles, materials, texture coordinates
     // and textures); nothing without coverage.
     void bindCoverage(GPUKernel& kernel) const;
+    // Only the defines, for a kernel that bind() gave the textures already (the megakernels,
+    // which trace inside).
+    void bindCoverageDefines(GPUKernel& kernel) const;
 
     const GPUFloatArray& triangles() const { return triangles_; }
     const GPUFloatArray& materials() const { return materials_; }

@@ -31,6 +31,9 @@ set(GPURT_RAYTRACE_GL_SOURCES
   accel/grid/GridGl.cpp
   integrators/SharedPasses.cpp
   integrators/path/PathGl.cpp
+  integrators/path/PathMegakernelGl.cpp
+  integrators/Megakernel.cpp
+  integrators/whitted/WhittedMegakernelGl.cpp
   integrators/whitted/WhittedGl.cpp)
 # Full paths, so that tests/fuzz/CMakeLists.txt can use them from its own folder.
 list(TRANSFORM GPURT_RAYTRACE_CPU_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)

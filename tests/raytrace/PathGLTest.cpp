@@ -186,6 +186,51 @@ TEST_F(Paths, MaskedRoundsAndSplitKernelsGiveTheSameImage) {
     EXPECT_EQ(a.stats.livePaths, c.stats.livePaths);
 }
 
+// The megakernels take the same paths as the wavefront chain (the same random numbers, the same
+// sums), whether a pass takes every path to its end or packs the live paths after each 1, 2 or 3
+// bounces: the path integrator under a grey sky (paths end where they leave the box) and under an
+// environment light (its next-event estimation), and Whitted's ray trees through glass and a
+// mirror. The counts of rays and live paths agree as well.
+TEST_F(Paths, MegakernelsTakeTheSamePathsAsTheWavefrontChain) {
+    struct Case {
+        const char* scene;
+        Integrator integrator;
+        int bounces;
+    };
+    for (const Case& c : {Case{"scenes/cornell_blocks.json", Integrator::Path, 6}, Case{"scenes/sky.json", Integrator::Path, 4},
+                          Case{"scenes/cornell.json", Integrator::Whitted, 6}}) {
+        SCOPED_TRACE(c.scene);
+        LoadedScene loaded = loadScene(c.scene);
+        if (std::string(c.scene) == "scenes/cornell_blocks.json") loaded.scene.background = glm::vec3(0.3f);
+        const UniformGrid grid = buildGrid(loaded.scene, GridOptions{});
+        const CameraBasis camera = makeCamera(*loaded.scene.camera, 40, 32);
+        RenderSettings settings;
+        settings.integrator = c.integrator;
+        settings.maxBounces = c.bounces;
+        settings.samples = 3;
+        GpuTracerOptions wavefront;
+        wavefront.integratorKernel = IntegratorKernel::Wavefront;
+        const RenderOutput a = GpuTracer(loaded.scene, grid, wavefront).render(camera, settings);
+        for (int perPass : {0, 1, 2, 3}) {
+            if (c.integrator == Integrator::Whitted && perPass > 0) break;  // one pass a tree
+            SCOPED_TRACE("bounces a pass " + std::to_string(perPass));
+            GpuTracerOptions megakernel;
+            megakernel.integratorKernel = IntegratorKernel::Megakernel;
+            megakernel.megakernelBounces = perPass;
+            const RenderOutput b = GpuTracer(loaded.scene, grid, megakernel).render(camera, settings);
+            ASSERT_EQ(a.color.size(), b.color.size());
+            for (size_t i = 0; i < a.color.size(); ++i)
+                ASSERT_LE(glm::compMax(glm::abs(a.color[i] - b.color[i])), 1e-5f * (1.0f + glm::compMax(a.color[i])))
+                    << "pixel " << i;
+            EXPECT_EQ(a.stats.primaryRays, b.stats.primaryRays);
+            EXPECT_EQ(a.stats.secondaryRays, b.stats.secondaryRays);
+            EXPECT_EQ(a.stats.shadowRays, b.stats.shadowRays);
+            EXPECT_EQ(a.stats.livePaths, b.stats.livePaths);
+        }
+        EXPECT_GT(a.stats.secondaryRays, 0u);
+    }
+}
+
 // The Cornell box converges: the RMS error against a long render (another seed, so its own noise
 // is independent) falls as 1 / sqrt(spp), a factor 2 for each 4 times the samples. Its sphere and
 // block are made diffuse here: the caustics of glass and mirror (light reaching the floor through

@@ -138,7 +138,23 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
         const bool fragment = path.size() > 5 && path.substr(path.size() - 5) == ".frag";
         const bool vertex = path.size() > 5 && path.substr(path.size() - 5) == ".vert";
         if (!fragment && !vertex) continue;
-        std::vector<AssembledShader> variants{library.assemble(path)};
+        // The megakernels trace inside: they need the define naming the accelerator (bindTrace).
+        const bool megakernel = path.find("megakernel.frag") != std::string::npos;
+        std::vector<AssembledShader> variants;
+        if (!megakernel) variants.push_back(library.assemble(path));
+        if (megakernel) {
+            for (const char* defines :
+                 {"#define ACCEL_GRID\n", "#define ACCEL_BVH\n#define CAMERA\n#define PIXEL_CENTRE\n#define AOVS\n",
+                  "#define ACCEL_GRID\n#define CAMERA\n#define SCENE_ALPHA\n#define SCENE_CULL_BACK\n#define SCENE_TEXTURES\n"
+                  "#define SCENE_EMITTERS\n#define SCENE_ENVIRONMENT\n#define ENVIRONMENT_LIGHT\n",
+                  "#define ACCEL_BVH\n#define SCENE_ALPHA\n#define SCENE_TEXTURES\n#define SCENE_NORMAL_MAPS\n"
+                  "#define SCENE_VERTEX_NORMALS\n#define SCENE_VERTEX_TANGENTS\n#define SCENE_VERTEX_COLORS\n"
+                  "#define SCENE_TRANSMISSION\n#define SCENE_TRANSMISSION_MAPS\n#define SCENE_MODEL_1\n#define SCENE_MODEL_2\n"})
+                variants.push_back(library.assemble(path, defines));
+            // Masked by the early exit.
+            variants.push_back(library.assemble(path, "#define ACCEL_GRID\n" + earlyExitWrapping().preamble,
+                                                earlyExitWrapping().epilogue));
+        }
         // The define variants the tracer builds (GpuPipeline, GridGl).
         if (path == "accel/grid/trace.frag")
             for (const char* defines : {"#define FROM_START\n#define TRACE_STEPS (1 << 30)\n", "#define ANY_HIT\n",
@@ -186,7 +202,7 @@ TEST(ShaderValidation, EveryKernelPassesGlslangValidator) {
                                         "#define SCENE_TEXTURES\n#define SCENE_NORMAL_MAPS\n#define SCENE_VERTEX_NORMALS\n"
                                         "#define SCENE_VERTEX_TANGENTS\n#define PATH\n"})
                 variants.push_back(library.assemble(path, defines));
-        if (fragment && path.rfind("stream/", 0) != 0)  // the framework's own passes are never masked
+        if (fragment && path.rfind("stream/", 0) != 0 && !megakernel)  // the framework's own passes are never masked
             variants.push_back(library.assemble(path, earlyExitWrapping().preamble, earlyExitWrapping().epilogue));
         for (size_t v = 0; v < variants.size(); ++v) {
             const fs::path out = dir / (std::to_string(validated) + (fragment ? ".frag" : ".vert"));

@@ -43,6 +43,9 @@ class GlAccelerator {
     // Bytes of its scene textures; bytes per ray of its per-ray streams.
     virtual size_t bytes() const = 0;
     virtual size_t bytesPerRay() const = 0;
+    // Its textures and uniforms, and the define naming it, on a kernel of another pass that
+    // traces inside (glsl/accel/trace.glsl: the integrators' megakernels).
+    virtual void bindTrace(GPUKernel& kernel) const = 0;
     // Its kernels (statistics, the image row of the streams' row 0, camera uniforms).
     virtual std::vector<GPUKernel*> kernels() = 0;
 };

@@ -10,6 +10,8 @@ std::vector<std::string> passDefines(unsigned flags) {
     if (flags & kLastRound) defines.push_back("LAST_ROUND");
     if (flags & kPixelCentre) defines.push_back("PIXEL_CENTRE");
     if (flags & kEnvironmentPass) defines.push_back("ENVIRONMENT");
+    if (flags & kCameraPass) defines.push_back("CAMERA");
+    if (flags & kAovPass) defines.push_back("AOVS");
     return defines;
 }
 

@@ -19,6 +19,8 @@ enum PassFlag : unsigned {
     kLastRound = 8,     // LAST_ROUND: Whitted's bounce when no ray can follow
     kPixelCentre = 16,  // PIXEL_CENTRE: raygen through the pixel centres
     kEnvironmentPass = 32,  // ENVIRONMENT: for the environment light's sample direction (path)
+    kCameraPass = 64,   // CAMERA: a megakernel's first pass, from the camera rays it makes itself
+    kAovPass = 128,     // AOVS: a megakernel's first pass writes the primary hits' AOVs as well
 };
 std::vector<std::string> passDefines(unsigned flags);
 

@@ -34,14 +34,8 @@ struct BvhGl::Passes {
           traceMasked("traceMasked", "accel/bvh/trace.frag"),
           traceAnyMasked("traceAnyMasked", "accel/bvh/trace.frag", {"ANY_HIT"}),
           traceCamera("traceCamera", "accel/bvh/trace.frag", {"CAMERA"}) {
-        glm::vec3 boxMin, boxStep;
-        bvh.bvh_.quantisation(boxMin, boxStep);
         for (GPUKernel* k : all()) {
-            k->addInput(bvh.nodes_, "bvhNodes")
-                .setUniform("bvhBoxMin", boxMin)
-                .setUniform("bvhBoxStep", boxStep)
-                .addInput(bvh.triangles_, "bvhTriangles")
-                .setUniform("maxNodeSteps", bvh.stepLimit());
+            bvh.bind(*k);
             if (k != &traceCamera) k->addInput(*rays.origin, "rayOrigin").addInput(*rays.dir, "rayDir");
             k->addOutput(steps).addOutput(*rays.hit);
         }
@@ -53,6 +47,21 @@ BvhGl::BvhGl(const Scene& scene, const Bvh& bvh, const GpuTracerOptions& options
     : bvh_(bvh), options_(options), nodes_(makeNodes(bvh)), triangles_(makeTriangles(scene, bvh)) {}
 
 BvhGl::~BvhGl() = default;
+
+void BvhGl::bind(GPUKernel& kernel) const {
+    glm::vec3 boxMin, boxStep;
+    bvh_.quantisation(boxMin, boxStep);
+    kernel.addInput(nodes_, "bvhNodes")
+        .setUniform("bvhBoxMin", boxMin)
+        .setUniform("bvhBoxStep", boxStep)
+        .addInput(triangles_, "bvhTriangles")
+        .setUniform("maxNodeSteps", stepLimit());
+}
+
+void BvhGl::bindTrace(GPUKernel& kernel) const {
+    kernel.addDefine("ACCEL_BVH");
+    bind(kernel);
+}
 
 void BvhGl::attach(const GlRayStreams& rays, MaskMode) { passes_ = std::make_unique<Passes>(*this, rays); }
 

@@ -31,8 +31,12 @@ class BvhGl final : public GlAccelerator {
     size_t bytes() const override;
     size_t bytesPerRay() const override { return 16; }  // the steps stream
     std::vector<GPUKernel*> kernels() override;
+    void bindTrace(GPUKernel& kernel) const override;
 
   private:
+    // The tree's textures and uniforms as inputs of `kernel` (bvhNodes, bvhTriangles, bvhBoxMin,
+    // bvhBoxStep, maxNodeSteps).
+    void bind(GPUKernel& kernel) const;
     struct Passes;
 
     const Bvh& bvh_;

@@ -66,6 +66,11 @@ void GridGl::bind(GPUKernel& kernel) const {
         .setUniform("maxCellSteps", stepLimit());
 }
 
+void GridGl::bindTrace(GPUKernel& kernel) const {
+    kernel.addDefine("ACCEL_GRID");
+    bind(kernel);
+}
+
 bool GridGl::onePass() const { return options_.kernel == TraceKernel::Fused && options_.traverseSteps <= 0; }
 
 int GridGl::stepLimit() const { return options_.maxCellSteps > 0 ? options_.maxCellSteps : grid_.maxCellSteps(); }

@@ -33,6 +33,7 @@ class GridGl final : public GlAccelerator {
     size_t bytes() const override;
     size_t bytesPerRay() const override;
     std::vector<GPUKernel*> kernels() override;
+    void bindTrace(GPUKernel& kernel) const override;
 
     // The grid's textures and uniforms as inputs of `kernel` (voxelIndex, cellTriangles, gridMin,
     // gridMax, cellSize, gridRes, cellTolerance, maxCellSteps).

@@ -1,0 +1,69 @@
+#include "raytrace/integrators/Megakernel.h"
+
+#include "stream/StreamErrors.h"
+
+#include <algorithm>
+#include <span>
+#include <string>
+
+namespace gpurt {
+
+namespace {
+// glsl/integrators/megakernel.glsl's counters: packed paths, shadow rays, then the paths whose last
+// ray in the pass was at each depth (the last depth counted takes the deeper ones).
+constexpr int kCountPacked = 0;
+constexpr int kCountShadow = 1;
+constexpr int kCountDepth = 2;
+constexpr int kCountedDepths = 256;
+}  // namespace
+
+MegakernelInputs::MegakernelInputs(size_t maxLights)
+    : maxLights_(std::max<size_t>(1, maxLights)),
+      counters_(kCountDepth + kCountedDepths, 1, GPUFormat::R32UI, "megakernelCounters"),
+      pointLights_(int(2 * maxLights_), 1, 4, "pointLights") {}
+
+void MegakernelInputs::declare(GPUKernel& k, const SceneTextures& textures, const GlAccelerator& accel) {
+    textures.bind(k);
+    textures.bindCoverageDefines(k);
+    if (textures.environmentTable().sampled) k.addDefine("ENVIRONMENT_LIGHT");
+    accel.bindTrace(k);
+    k.addInput(pointLights_, "pointLights").addImage(counters_, "counters");
+}
+
+void MegakernelInputs::setLights(const std::vector<PointLight>& lights, const std::vector<GPUKernel*>& kernels) {
+    if (lights.size() > maxLights_)
+        throw UsageError("megakernel: " + std::to_string(lights.size()) + " point lights, made for " +
+                         std::to_string(maxLights_));
+    for (GPUKernel* k : kernels) k->setUniform("pointLightCount", int(lights.size()));
+    auto same = [](const PointLight& a, const PointLight& b) {
+        return a.position == b.position && a.color == b.color && a.intensity == b.intensity;
+    };
+    if (std::equal(lights.begin(), lights.end(), uploaded_.begin(), uploaded_.end(), same)) return;
+    std::vector<float> texels(8 * maxLights_, 0.0f);
+    for (size_t k = 0; k < lights.size(); ++k) {
+        const PointLight& l = lights[k];
+        const float light[8] = {l.position.x, l.position.y, l.position.z, l.intensity, l.color.r, l.color.g, l.color.b, 0.0f};
+        std::copy(light, light + 8, texels.begin() + std::ptrdiff_t(8 * k));
+    }
+    pointLights_.upload(texels);
+    uploaded_ = lights;
+}
+
+uint64_t MegakernelInputs::run(GPUKernel& k, int firstDepth, bool livePaths, RenderStats& stats) {
+    const std::vector<uint32_t> zeros(size_t(counters_.width()), 0u);
+    counters_.upload(std::span<const uint32_t>(zeros));
+    k.dispatch();
+    const std::vector<uint32_t> counts = counters_.downloadUint();
+    // The paths whose last ray was at depth b or deeper traced a ray at depth b.
+    uint64_t rays = 0;
+    for (int b = kCountedDepths - 1; b >= firstDepth; --b) {
+        rays += counts[size_t(kCountDepth + b)];
+        if (rays == 0) continue;
+        if (livePaths) stats.addLivePaths(size_t(b), rays);
+        (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
+    }
+    stats.shadowRays += counts[kCountShadow];
+    return counts[kCountPacked];
+}
+
+}  // namespace gpurt

@@ -1,0 +1,39 @@
+// What the megakernel integrators (integrators/path/PathMegakernelGl, whitted/WhittedMegakernelGl)
+// share: a megakernel pass's scene, accelerator and light inputs, the point lights' texture, and
+// the pass's counters (glsl/integrators/megakernel.glsl) read into RenderStats.
+#pragma once
+
+#include "raytrace/RenderTypes.h"
+#include "raytrace/SceneTextures.h"
+#include "raytrace/accel/GlAccelerator.h"
+#include "stream/GPUFloatArray.h"
+#include "stream/GPUKernel.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gpurt {
+
+class MegakernelInputs {
+  public:
+    // maxLights: the most point lights a sample is given.
+    explicit MegakernelInputs(size_t maxLights);
+
+    // The scene's textures and defines, the accelerator traced inside, the point lights and the
+    // counters as inputs of megakernel pass `k`.
+    void declare(GPUKernel& k, const SceneTextures& textures, const GlAccelerator& accel);
+    // The lights of the sample into the texture (when they changed) and their count into `kernels`.
+    // Throws UsageError for more than maxLights.
+    void setLights(const std::vector<PointLight>& lights, const std::vector<GPUKernel*>& kernels);
+    // Runs pass `k` with the counters zeroed and reads them: the rays of each depth from
+    // `firstDepth` on (primary at depth 0, secondary deeper; with livePaths, also per depth as the
+    // path integrator's live paths) and the shadow rays into stats. Returns the paths it packed.
+    uint64_t run(GPUKernel& k, int firstDepth, bool livePaths, RenderStats& stats);
+
+  private:
+    size_t maxLights_;
+    GPUFloatArray counters_, pointLights_;
+    std::vector<PointLight> uploaded_;
+};
+
+}  // namespace gpurt

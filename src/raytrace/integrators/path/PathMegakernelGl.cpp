@@ -1,0 +1,100 @@
+#include "raytrace/integrators/path/PathMegakernelGl.h"
+
+#include "raytrace/integrators/SharedPasses.h"
+
+#include "../../../../glsl/common/scene_layout.h"
+
+#include <algorithm>
+
+namespace gpurt {
+
+namespace {
+// A stream of the paths' size, or 1 x 1 where the render does not use the integrator.
+GPUFloatArray pathStream(const GpuPipeline& p, bool paths, int channels, const char* name) {
+    return GPUFloatArray(paths ? p.width : 1, paths ? p.height : 1, channels, name);
+}
+}  // namespace
+
+PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, bool paths, size_t maxLights)
+    : p_(pipeline),
+      inputs_(maxLights),
+      origin_(pathStream(p_, paths, 4, "megaOrigin")),
+      dir_(pathStream(p_, paths, 4, "megaDir")),
+      weight_(pathStream(p_, paths, 4, "megaWeight")),
+      state_(pathStream(p_, paths, 4, "megaState")),
+      color_(pathStream(p_, paths, 4, "megaColor")),
+      pixelColor_(pathStream(p_, paths, 4, "megaPixelColor")),
+      lives_(pathStream(p_, paths, 1, "megaLives")),
+      aovSteps_(paths ? p_.width : 1, paths ? p_.height : 1, GPUFormat::RGBA32I, "megaSteps"),
+      camera_("pathMegakernel", "integrators/path/megakernel.frag", passDefines(kCameraPass)),
+      cameraCentre_("pathMegakernel", "integrators/path/megakernel.frag", passDefines(kCameraPass | kPixelCentre)),
+      cameraAovs_("pathMegakernel", "integrators/path/megakernel.frag",
+                  passDefines(kCameraPass | kPixelCentre | kAovPass)),
+      fromPipeline_("pathMegakernel", "integrators/path/megakernel.frag"),
+      fromOwn_("pathMegakernel", "integrators/path/megakernel.frag"),
+      accumulate_("pathMegakernelAccumulate", "integrators/accumulate.frag") {
+    const PathStreams pipelineSet{&p_.rayOrigin, &p_.rayDir, &p_.weight, &p_.pathState, &p_.color};
+    const PathStreams ownSet{&origin_, &dir_, &weight_, &state_, &color_};
+    for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_}) declarePass(*k, textures, nullptr, pipelineSet);
+    declarePass(fromPipeline_, textures, &pipelineSet, ownSet);
+    declarePass(fromOwn_, textures, &ownSet, pipelineSet);
+    cameraAovs_.addOutput(p_.hit).addOutput(p_.surfaceNormal).addOutput(aovSteps_);
+    declareAccumulatePass(accumulate_, p_, pixelColor_);
+}
+
+// A pass's streams: the scene, its accelerator, the lights, the live paths it reads (none: the
+// camera's) and those it packs, each pixel's colour and the counters.
+void PathMegakernelGl::declarePass(GPUKernel& k, const SceneTextures& textures, const PathStreams* in,
+                                   const PathStreams& out) {
+    inputs_.declare(k, textures, p_.accel);
+    if (in) {
+        k.addInput(*in->origin, "rayOrigin").addInput(*in->dir, "rayDir").addInput(*in->weight, "weightState");
+        k.addInput(*in->state, "pathStateIn").addInput(*in->color, "colorState");
+    }
+    k.addImage(*out.origin, "nextOrigin").addImage(*out.dir, "nextDir").addImage(*out.weight, "nextWeight");
+    k.addImage(*out.state, "nextState").addImage(*out.color, "nextColor");
+    k.addImage(pixelColor_, "pixelColor");
+    k.addOutput(lives_);
+    k.setUniform("packWidth", p_.width);
+}
+
+std::vector<GPUKernel*> PathMegakernelGl::kernels() {
+    return {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_, &accumulate_};
+}
+
+void PathMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
+    for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_})
+        k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
+    sampleCount_ = n;
+}
+
+// The first pass starts every pixel's path at its camera ray; each pass takes the live paths
+// through bouncesPerPass depths (all of them when 0) and packs those still alive for the next,
+// whose count ends the loop. Each path leaves its colour in its pixel's element when it ends.
+void PathMegakernelGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderOutput* aovs,
+                              RenderStats& stats) {
+    const std::vector<GPUKernel*> passes = {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_};
+    inputs_.setLights(lights, passes);
+    const int perPass = bouncesPerPass_ > 0 ? bouncesPerPass_ : maxDepth + 1;
+    for (GPUKernel* k : passes) k->setUniform("bounces", perPass).setUniform("maxDepth", maxDepth);
+    GPUKernel& first = aovs ? cameraAovs_ : sampleCount_ == 1 ? cameraCentre_ : camera_;
+    uint64_t live = runPass(first, 0, p_.height, stats);
+    if (aovs) {
+        p_.readHitAovs(*aovs, &aovSteps_);
+        p_.readNormalAov(*aovs);
+    }
+    bool fromPipeline = true;
+    for (int depth = perPass; live > 0 && depth <= maxDepth; depth += perPass) {
+        GPUKernel& k = fromPipeline ? fromPipeline_ : fromOwn_;
+        k.setUniform("paths", unsigned(live));
+        live = runPass(k, depth, int((live + uint64_t(p_.width) - 1) / uint64_t(p_.width)), stats);
+        fromPipeline = !fromPipeline;
+    }
+}
+
+uint64_t PathMegakernelGl::runPass(GPUKernel& k, int depth, int rows, RenderStats& stats) {
+    k.setUniform("depth", depth).setRect(StreamRect{0, 0, p_.width, rows});
+    return inputs_.run(k, depth, true, stats);
+}
+
+}  // namespace gpurt

@@ -1,0 +1,34 @@
+// Whitted's integrator on the gl backend as a megakernel (--kernel megakernel): one pass takes
+// each pixel's whole ray tree (glsl/integrators/whitted/megakernel.frag: trace, shading, shadow
+// rays and the tree's pending rays in registers, as WhittedCpu does per pixel). Same rays, same
+// order and same sums as the wavefront chain (WhittedGl).
+#pragma once
+
+#include "raytrace/GpuPipeline.h"
+#include "raytrace/integrators/GlIntegrator.h"
+#include "raytrace/integrators/Megakernel.h"
+
+namespace gpurt {
+
+class WhittedMegakernelGl final : public GlIntegrator {
+  public:
+    // stackSlots: the pending rays a tree keeps (GpuTracer::stackSlots); maxLights: the most
+    // point lights a sample is given.
+    WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots, size_t maxLights);
+
+    void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
+    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    const GPUFloatArray& colour() const override { return colour_; }
+    void accumulate() override { accumulate_.dispatch(); }
+    std::vector<GPUKernel*> kernels() override;
+
+  private:
+    GpuPipeline& p_;
+    MegakernelInputs inputs_;
+    GPUFloatArray colour_, aovSteps_;
+    uint32_t sampleCount_ = 1;
+    // Through the sample points, through the pixel centres, and the latter with the AOVs.
+    GPUKernel samples_, centres_, centresAovs_, accumulate_;
+};
+
+}  // namespace gpurt
