@@ -15,15 +15,16 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       rayDir(w, h, 4, "rayDir"),
       hit(w, h, 4, "hit"),
       accel(accelerator),
-      surfacePoint(w, h, 4, "surfacePoint"),
-      surfaceNormal(w, h, 4, "surfaceNormal"),
-      surfaceView(w, h, 4, "surfaceView"),
-      surfaceShading(w, h, 4, "surfaceShading"),
-      localColor(w, h, 4, "localColor"),
-      color(w, h, 4, "color"),
-      weight(w, h, 4, "weight"),
+      surfacePoint(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfacePoint"),
+      surfaceNormal(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfaceNormal"),
+      surfaceView(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfaceView"),
+      surfaceShading(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfaceShading"),
+      localColor(needs.stages ? w : 1, needs.stages ? h : 1, 4, "localColor"),
+      color(needs.stages || paths ? w : 1, needs.stages || paths ? h : 1, 4, "color"),
+      weight(needs.stages || paths ? w : 1, needs.stages || paths ? h : 1, 4, "weight"),
       sampleSum(needs.sums ? w : 1, needs.sums ? h : 1, 4, "sampleSum"),
-      lightSample(needs.emitters || needs.environment ? w : 1, needs.emitters || needs.environment ? h : 1, 4, "lightSample"),
+      lightSample(needs.stages && (needs.emitters || needs.environment) ? w : 1,
+                  needs.stages && (needs.emitters || needs.environment) ? h : 1, 4, "lightSample"),
       pathState(needs.pathState || paths ? w : 1, needs.pathState || paths ? h : 1, 4, "pathState"),
       progressive(progressiveAovs),
       aovHit(progressive ? w : 1, progressive ? h : 1, 4, "aovHit"),
@@ -79,8 +80,8 @@ void GpuPipeline::readHitAovs(RenderOutput& out, const GPUFloatArray* stepStream
     }
 }
 
-void GpuPipeline::readNormalAov(RenderOutput& out) {
-    out.normal = downloadVectors<glm::vec3>(surfaceNormal);
+void GpuPipeline::readNormalAov(RenderOutput& out, const GPUFloatArray* normals) {
+    out.normal = downloadVectors<glm::vec3>(normals ? *normals : surfaceNormal);
     for (size_t i = 0; i < out.normal.size(); ++i)
         if (out.prim[i] < 0.0f) out.normal[i] = glm::vec3(0.0f);
 }

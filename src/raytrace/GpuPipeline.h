@@ -25,6 +25,10 @@ struct StreamNeeds {
     bool environment = false;  // lightSample: the environment's sample directions (path)
     bool pathState = true;  // pathState: rays that spawn (Whitted's bounce) or the path integrator
     bool sums = true;       // sampleSum: more than one sample, or the viewer's progressive sums
+    // The wavefront rounds' streams: surface records, local colours, light samples (false: the
+    // integrators are megakernels, which keep them in registers; the colour, weight and ray
+    // streams are then the path megakernel's live paths, full size only with `paths`).
+    bool stages = true;
     bool operator==(const StreamNeeds&) const = default;
 };
 
@@ -88,7 +92,7 @@ struct GpuPipeline {
     // steps: the step counts' stream where the hits were traced elsewhere than by the
     // accelerator's trace kernels (the megakernels), else accel.steps().
     void readHitAovs(RenderOutput& out, const GPUFloatArray* steps = nullptr);
-    void readNormalAov(RenderOutput& out);
+    void readNormalAov(RenderOutput& out, const GPUFloatArray* normals = nullptr);
 
   private:
     uint32_t sampleCount_ = 1;

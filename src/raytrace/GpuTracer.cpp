@@ -76,29 +76,44 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
     return std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
+                                 bool integrating) {
+    // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
+    // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
+    // pass of their own takes the pixel centres' AOVs.
+    const bool megakernel = integrating && kernel_ == IntegratorKernel::Megakernel;
     GpuPipeline::Needs needs;
     needs.emitters = !textures_.emitterTable().empty();
     needs.environment = paths && textures_.environmentTable().sampled;
-    needs.pathState = paths || spawns_;
+    needs.pathState = paths || (spawns_ && !megakernel);
     needs.sums = sums || progressive;
-    if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || whitted_->stackSlots() != stackSlots ||
-        path_->paths() != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
+    needs.stages = !megakernel;
+    if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
+        paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
+        megakernelAovs_.reset();
         pathMegakernel_.reset();
         whittedMegakernel_.reset();
         path_.reset();
         whitted_.reset();
         pipeline_.reset();
+        stackSlots_ = stackSlots;
+        paths_ = paths;
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
-        whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
-        path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
-        if (kernel_ == IntegratorKernel::Megakernel && paths) {
-            pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, paths, scene_.lights.size() + 1);
-            pathMegakernel_->setBouncesPerPass(options_.megakernelBounces);
+        if (!megakernel) {
+            whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
+            path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
+        } else {
+            const size_t lights = scene_.lights.size() + 1;  // the scene's, or the headlight
+            megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
+            if (paths) {
+                pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, lights, *megakernelAovs_);
+                pathMegakernel_->setBouncesPerPass(options_.megakernelBounces);
+            } else {
+                whittedMegakernel_ = std::make_unique<WhittedMegakernelGl>(*pipeline_, textures_, stackSlots, lights,
+                                                                           *megakernelAovs_);
+            }
         }
-        if (kernel_ == IntegratorKernel::Megakernel && !paths)
-            whittedMegakernel_ = std::make_unique<WhittedMegakernelGl>(*pipeline_, textures_, stackSlots, scene_.lights.size() + 1);
         for (GPUKernel* k : accel_->kernels()) {
             textures_.bindCoverage(*k);
             if (textures_.hasAlpha())  // the packed paths' pixels (scene/alpha.glsl coveragePixels)
@@ -106,6 +121,13 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         }
     }
     return *pipeline_;
+}
+
+// The AOVs of the pixel centres' rays (several samples a pixel, the viewer): Whitted's first round
+// (its trace and surface passes), or with megakernels a pass of its own.
+void GpuTracer::pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats) {
+    if (megakernelAovs_) megakernelAovs_->trace(out, stats);
+    else whitted_->sample(lights, -1, out, stats);
 }
 
 GlIntegrator& GpuTracer::integrator(const RenderSettings& settings) {
@@ -117,36 +139,34 @@ GlIntegrator& GpuTracer::integrator(const RenderSettings& settings) {
     return *whitted_;
 }
 
-std::vector<GlIntegrator*> GpuTracer::megakernels() {
-    std::vector<GlIntegrator*> all;
-    if (pathMegakernel_) all.push_back(pathMegakernel_.get());
-    if (whittedMegakernel_) all.push_back(whittedMegakernel_.get());
+std::vector<GPUKernel*> GpuTracer::integratorKernels() {
+    std::vector<GPUKernel*> all;
+    if (megakernelAovs_) all = megakernelAovs_->kernels();
+    for (GlIntegrator* integrator : {static_cast<GlIntegrator*>(whitted_.get()), static_cast<GlIntegrator*>(path_.get()),
+                                     static_cast<GlIntegrator*>(pathMegakernel_.get()),
+                                     static_cast<GlIntegrator*>(whittedMegakernel_.get())})
+        if (integrator)
+            for (GPUKernel* k : integrator->kernels()) all.push_back(k);
     return all;
 }
 
 std::vector<GPUKernel*> GpuTracer::allKernels() {
     std::vector<GPUKernel*> all;
     if (!pipeline_) return all;
-    for (const std::vector<GPUKernel*>& ks : {pipeline_->kernels(), accel_->kernels(), whitted_->kernels(), path_->kernels()})
+    for (const std::vector<GPUKernel*>& ks : {pipeline_->kernels(), accel_->kernels(), integratorKernels()})
         all.insert(all.end(), ks.begin(), ks.end());
-    for (GlIntegrator* megakernel : megakernels())
-        for (GPUKernel* k : megakernel->kernels()) all.push_back(k);
     return all;
 }
 
 void GpuTracer::setCamera(const CameraBasis& camera) {
-    std::vector<GPUKernel*> integrators = whitted_->kernels();
-    for (GPUKernel* k : path_->kernels()) integrators.push_back(k);
-    for (GlIntegrator* megakernel : megakernels())
-        for (GPUKernel* k : megakernel->kernels()) integrators.push_back(k);
-    pipeline_->setCamera(camera, integrators);
+    pipeline_->setCamera(camera, integratorKernels());
 }
 
 void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
     if (!textures_.hasAlpha()) return;
     std::vector<GPUKernel*> tracing = accel_->kernels();
-    for (GlIntegrator* megakernel : megakernels())
-        for (GPUKernel* k : megakernel->kernels()) tracing.push_back(k);
+    if (megakernelAovs_)
+        for (GPUKernel* k : integratorKernels()) tracing.push_back(k);  // the megakernels trace
     for (GPUKernel* k : tracing)
         k->setUniform("coverageSample", s).setUniform("coverageSeed", seed).setUniform("coverageFromStream", 0);
 }
@@ -154,9 +174,10 @@ void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
 void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     setCoverageSample(s, seed);
     pipeline_->setSample(s, n, seed);
-    whitted_->setSample(s, n, seed);
-    path_->setSample(s, n, seed);
-    for (GlIntegrator* megakernel : megakernels()) megakernel->setSample(s, n, seed);
+    if (whitted_) whitted_->setSample(s, n, seed);
+    if (path_) path_->setSample(s, n, seed);
+    if (pathMegakernel_) pathMegakernel_->setSample(s, n, seed);
+    if (whittedMegakernel_) whittedMegakernel_->setSample(s, n, seed);
 }
 
 // The sample loop (--spp), each sample one of the integrator's (integrators/): its rounds of
@@ -168,7 +189,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const auto start = std::chrono::steady_clock::now();
     const bool paths = settings.integrator == Integrator::Path;
     const uint32_t samples = std::max(1u, settings.samples);
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true);
     GlIntegrator& chosen = integrator(settings);
     RenderOutput out;
     out.width = camera.width;
@@ -178,7 +199,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
     setCamera(camera);
     setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)
-    if (samples > 1) whitted_->sample(lights, -1, &out, out.stats);  // pixel centres: the AOVs only
+    if (samples > 1) pixelCentreAovs(lights, &out, out.stats);
     const int bounces = std::max(0, settings.maxBounces);
     if (samples == 1) {  // the sample is the image: no sum to accumulate into
         setSample(0, 1, settings.seed);
@@ -210,16 +231,16 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 
 void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true, false, true);
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
     for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
     setCamera(camera);
     setCoverageSample(0, settings.seed);
-    whitted_->sample(progressive_.lights, -1, nullptr, progressive_.output.stats);  // pixel centres
+    pixelCentreAovs(progressive_.lights, nullptr, progressive_.output.stats);
     p.aovHit.copyFrom(p.hit);
-    p.aovCells.copyFrom(accel_->steps());
-    p.aovNormal.copyFrom(p.surfaceNormal);
+    p.aovCells.copyFrom(megakernelAovs_ ? megakernelAovs_->steps() : accel_->steps());
+    p.aovNormal.copyFrom(megakernelAovs_ ? megakernelAovs_->normals() : p.surfaceNormal);
     p.sampleSum.fill(0.0f);
 }
 

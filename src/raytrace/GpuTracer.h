@@ -27,6 +27,7 @@ class WhittedGl;
 class PathGl;
 class PathMegakernelGl;
 class WhittedMegakernelGl;
+class MegakernelAovs;
 
 class GpuTracer {
   public:
@@ -71,8 +72,12 @@ class GpuTracer {
   private:
     // The pipeline and integrators for this size, ray stacks and integrator (paths: the path
     // integrator's streams; progressive: the viewer's AOV copies; sums: more than one sample).
+    // integrating: for the integrators' samples (render, the viewer), which may be megakernels;
+    // false: for the accelerator's traces alone (gpurt bench).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
-                          bool sums = false);
+                          bool sums = false, bool integrating = false);
+    // The pixel centres' AOVs into `out` (when given) and the rays into stats.
+    void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator `settings` asks for.
     GlIntegrator& integrator(const RenderSettings& settings);
     // Sets the camera on the pipeline and every integrator's kernels (the tile's first row).
@@ -84,19 +89,23 @@ class GpuTracer {
     // and for the path integrator, which takes one direction a hit).
     int stackSlots(const RenderSettings& settings) const;
     std::vector<GPUKernel*> allKernels();
-    // The megakernel integrators built (none with the wavefront kernels).
-    std::vector<GlIntegrator*> megakernels();
+    // The integrators' kernels (the wavefront chain's or the megakernels').
+    std::vector<GPUKernel*> integratorKernels();
 
     const Scene& scene_;
     GpuTracerOptions options_;
     SceneTextures textures_;
     std::unique_ptr<GlAccelerator> accel_;
     std::unique_ptr<GpuPipeline> pipeline_;
+    // The integrators as the wavefront chain (unless kernel_ asks for megakernels).
     std::unique_ptr<WhittedGl> whitted_;
     std::unique_ptr<PathGl> path_;
     // The integrators as megakernels (when kernel_ says so; the one the pipeline's streams are for).
     std::unique_ptr<PathMegakernelGl> pathMegakernel_;
     std::unique_ptr<WhittedMegakernelGl> whittedMegakernel_;
+    std::unique_ptr<MegakernelAovs> megakernelAovs_;
+    int stackSlots_ = -1;  // the pipeline's: the stack slots and integrator it was made for
+    bool paths_ = false;
     IntegratorKernel kernel_;  // options_.integratorKernel, Auto resolved
     bool splits_ = false;  // some material may spawn two rays (glass): the ray tree needs its stacks
     bool spawns_ = false;  // some material spawns rays (mirror, glass)

@@ -66,4 +66,21 @@ uint64_t MegakernelInputs::run(GPUKernel& k, int firstDepth, bool livePaths, Ren
     return counts[kCountPacked];
 }
 
+MegakernelAovs::MegakernelAovs(GpuPipeline& pipeline, const SceneTextures& textures)
+    : p_(pipeline),
+      inputs_(0),
+      steps_(p_.width, p_.height, GPUFormat::RGBA32I, "megakernelSteps"),
+      normals_(p_.width, p_.height, 4, "megakernelNormals"),
+      kernel_("aovs", "integrators/aovs.frag") {
+    inputs_.declare(kernel_, textures, p_.accel);
+    kernel_.addOutput(p_.hit).addOutput(normals_).addOutput(steps_);
+}
+
+void MegakernelAovs::trace(RenderOutput* out, RenderStats& stats) {
+    inputs_.run(kernel_, 0, false, stats);
+    if (!out) return;
+    p_.readHitAovs(*out, &steps_);
+    p_.readNormalAov(*out, &normals_);
+}
+
 }  // namespace gpurt

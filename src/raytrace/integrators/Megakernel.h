@@ -3,6 +3,7 @@
 // the pass's counters (glsl/integrators/megakernel.glsl) read into RenderStats.
 #pragma once
 
+#include "raytrace/GpuPipeline.h"
 #include "raytrace/RenderTypes.h"
 #include "raytrace/SceneTextures.h"
 #include "raytrace/accel/GlAccelerator.h"
@@ -34,6 +35,27 @@ class MegakernelInputs {
     size_t maxLights_;
     GPUFloatArray counters_, pointLights_;
     std::vector<PointLight> uploaded_;
+};
+
+// The pixel centres' primary AOVs in one pass (glsl/integrators/aovs.frag) for the renders whose
+// integrators are megakernels, where no wavefront round traces and shades them: the hits into
+// the pipeline's hit stream, the facing normals into normals(), the step counts into steps().
+class MegakernelAovs {
+  public:
+    MegakernelAovs(GpuPipeline& pipeline, const SceneTextures& textures);
+    // Traces them (counted as primary rays); with `out`, reads them into it as well.
+    void trace(RenderOutput* out, RenderStats& stats);
+    // The step counts (RGBA32I, w) and the facing normals, also the megakernels' AOV variants'
+    // outputs.
+    GPUFloatArray& steps() { return steps_; }
+    GPUFloatArray& normals() { return normals_; }
+    std::vector<GPUKernel*> kernels() { return {&kernel_}; }
+
+  private:
+    GpuPipeline& p_;
+    MegakernelInputs inputs_;
+    GPUFloatArray steps_, normals_;
+    GPUKernel kernel_;
 };
 
 }  // namespace gpurt

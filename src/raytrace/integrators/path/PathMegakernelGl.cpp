@@ -8,24 +8,18 @@
 
 namespace gpurt {
 
-namespace {
-// A stream of the paths' size, or 1 x 1 where the render does not use the integrator.
-GPUFloatArray pathStream(const GpuPipeline& p, bool paths, int channels, const char* name) {
-    return GPUFloatArray(paths ? p.width : 1, paths ? p.height : 1, channels, name);
-}
-}  // namespace
-
-PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, bool paths, size_t maxLights)
+PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights,
+                                   MegakernelAovs& aovs)
     : p_(pipeline),
       inputs_(maxLights),
-      origin_(pathStream(p_, paths, 4, "megaOrigin")),
-      dir_(pathStream(p_, paths, 4, "megaDir")),
-      weight_(pathStream(p_, paths, 4, "megaWeight")),
-      state_(pathStream(p_, paths, 4, "megaState")),
-      color_(pathStream(p_, paths, 4, "megaColor")),
-      pixelColor_(pathStream(p_, paths, 4, "megaPixelColor")),
-      lives_(pathStream(p_, paths, 1, "megaLives")),
-      aovSteps_(paths ? p_.width : 1, paths ? p_.height : 1, GPUFormat::RGBA32I, "megaSteps"),
+      origin_(p_.width, p_.height, 4, "megakernelOrigin"),
+      dir_(p_.width, p_.height, 4, "megakernelDir"),
+      weight_(p_.width, p_.height, 4, "megakernelWeight"),
+      state_(p_.width, p_.height, 4, "megakernelState"),
+      color_(p_.width, p_.height, 4, "megakernelColor"),
+      pixelColor_(p_.width, p_.height, 4, "megakernelPixelColor"),
+      lives_(p_.width, p_.height, 1, "megakernelLives"),
+      aovs_(aovs),
       camera_("pathMegakernel", "integrators/path/megakernel.frag", passDefines(kCameraPass)),
       cameraCentre_("pathMegakernel", "integrators/path/megakernel.frag", passDefines(kCameraPass | kPixelCentre)),
       cameraAovs_("pathMegakernel", "integrators/path/megakernel.frag",
@@ -38,7 +32,7 @@ PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& t
     for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_}) declarePass(*k, textures, nullptr, pipelineSet);
     declarePass(fromPipeline_, textures, &pipelineSet, ownSet);
     declarePass(fromOwn_, textures, &ownSet, pipelineSet);
-    cameraAovs_.addOutput(p_.hit).addOutput(p_.surfaceNormal).addOutput(aovSteps_);
+    cameraAovs_.addOutput(p_.hit).addOutput(aovs_.normals()).addOutput(aovs_.steps());
     declareAccumulatePass(accumulate_, p_, pixelColor_);
 }
 
@@ -80,8 +74,8 @@ void PathMegakernelGl::sample(const std::vector<PointLight>& lights, int maxDept
     GPUKernel& first = aovs ? cameraAovs_ : sampleCount_ == 1 ? cameraCentre_ : camera_;
     uint64_t live = runPass(first, 0, p_.height, stats);
     if (aovs) {
-        p_.readHitAovs(*aovs, &aovSteps_);
-        p_.readNormalAov(*aovs);
+        p_.readHitAovs(*aovs, &aovs_.steps());
+        p_.readNormalAov(*aovs, &aovs_.normals());
     }
     bool fromPipeline = true;
     for (int depth = perPass; live > 0 && depth <= maxDepth; depth += perPass) {

@@ -13,9 +13,9 @@ namespace gpurt {
 
 class PathMegakernelGl final : public GlIntegrator {
   public:
-    // paths: the render uses this integrator (its streams full size, else 1 x 1); maxLights: the
-    // most point lights a sample is given.
-    PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, bool paths, size_t maxLights);
+    // maxLights: the most point lights a sample is given; aovs: the streams the first pass
+    // writes the primary AOVs to when it takes them.
+    PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights, MegakernelAovs& aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
     void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
@@ -42,7 +42,8 @@ class PathMegakernelGl final : public GlIntegrator {
     // The second set of path streams (the pipeline's ray, weight, path state and colour streams
     // are the first): the passes read one set and pack into the other.
     GPUFloatArray origin_, dir_, weight_, state_, color_;
-    GPUFloatArray pixelColor_, lives_, aovSteps_;
+    GPUFloatArray pixelColor_, lives_;
+    MegakernelAovs& aovs_;  // its streams: the AOV variant's outputs
     // The first pass from the camera rays (sample points or pixel centres; with AOVs), and the
     // passes from each stream set into the other.
     GPUKernel camera_, cameraCentre_, cameraAovs_, fromPipeline_, fromOwn_, accumulate_;

@@ -5,11 +5,11 @@
 namespace gpurt {
 
 WhittedMegakernelGl::WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots,
-                                         size_t maxLights)
+                                         size_t maxLights, MegakernelAovs& aovs)
     : p_(pipeline),
       inputs_(maxLights),
       colour_(p_.width, p_.height, 4, "whittedColour"),
-      aovSteps_(p_.width, p_.height, GPUFormat::RGBA32I, "whittedSteps"),
+      aovs_(aovs),
       samples_("whittedMegakernel", "integrators/whitted/megakernel.frag"),
       centres_("whittedMegakernel", "integrators/whitted/megakernel.frag", passDefines(kPixelCentre)),
       centresAovs_("whittedMegakernel", "integrators/whitted/megakernel.frag", passDefines(kPixelCentre | kAovPass)),
@@ -18,7 +18,7 @@ WhittedMegakernelGl::WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextu
         inputs_.declare(*k, textures, p_.accel);
         k->addOutput(colour_).setUniform("stackSlots", stackSlots);
     }
-    centresAovs_.addOutput(p_.hit).addOutput(p_.surfaceNormal).addOutput(aovSteps_);
+    centresAovs_.addOutput(p_.hit).addOutput(aovs_.normals()).addOutput(aovs_.steps());
     declareAccumulatePass(accumulate_, p_, colour_);
 }
 
@@ -40,8 +40,8 @@ void WhittedMegakernelGl::sample(const std::vector<PointLight>& lights, int maxB
     k.setUniform("maxBounces", std::max(0, maxBounces));
     inputs_.run(k, 0, false, stats);
     if (aovs) {
-        p_.readHitAovs(*aovs, &aovSteps_);
-        p_.readNormalAov(*aovs);
+        p_.readHitAovs(*aovs, &aovs_.steps());
+        p_.readNormalAov(*aovs, &aovs_.normals());
     }
 }
 

@@ -13,8 +13,10 @@ namespace gpurt {
 class WhittedMegakernelGl final : public GlIntegrator {
   public:
     // stackSlots: the pending rays a tree keeps (GpuTracer::stackSlots); maxLights: the most
-    // point lights a sample is given.
-    WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots, size_t maxLights);
+    // point lights a sample is given; aovs: the streams the pass writes the
+    // primary AOVs to when it takes them.
+    WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots, size_t maxLights,
+                        MegakernelAovs& aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
     void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
@@ -25,7 +27,8 @@ class WhittedMegakernelGl final : public GlIntegrator {
   private:
     GpuPipeline& p_;
     MegakernelInputs inputs_;
-    GPUFloatArray colour_, aovSteps_;
+    GPUFloatArray colour_;
+    MegakernelAovs& aovs_;  // its streams: the AOV variant's outputs
     uint32_t sampleCount_ = 1;
     // Through the sample points, through the pixel centres, and the latter with the AOVs.
     GPUKernel samples_, centres_, centresAovs_, accumulate_;
