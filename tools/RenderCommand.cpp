@@ -392,7 +392,8 @@ int runRender(const RenderOptions& o) {
     TileInfo tile;
     const bool tiled = !o.tile.empty();
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
-    const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
+    RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
+    settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
 
     const auto start = std::chrono::steady_clock::now();
     const Acceleration accel = o.grid.accelerate(loaded, cameras.front());

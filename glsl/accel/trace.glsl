@@ -2,7 +2,9 @@
 // uniforms (GlAccelerator::bindTrace adds them with the define that names it) and
 //   int accelTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float t, out float u,
 //                  out float v, out int steps, out int state)
-// the closest hit (any hit with anyHit) of o + t d with 0 < t < tLimit: the triangle id or -1.
+// the closest hit (any hit with anyHit) of o + t d with 0 < t < tLimit: the triangle id or -1, and
+//   int accelStepLimit()
+// the cells or nodes a ray may visit (steps reaching it: the ray overflowed, or ended there).
 // Alpha coverage and culling test each candidate with the key in rayCoverageKey.
 // Files are included once, whatever #if they sit in: the files both accelerators include come first.
 #include "scene/pixel.glsl"

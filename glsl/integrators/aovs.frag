@@ -12,7 +12,7 @@ void main() {
     setPixelCoverage(imagePixel());
     vec3 d = primaryDirection();
     int steps;
-    vec4 h = traceClosest(eye, d, GPURT_FAR, steps);
+    vec4 h = traceClosest(eye, d, GPURT_FAR, true, steps);
     hitOut = h;
     stepsOut = ivec4(0, 0, 0, steps);
     normalOut = vec4(0.0f);

@@ -19,11 +19,13 @@ uniform vec3 background;  // what a ray that misses sees without an environment
 layout(r32ui) uniform uimage2D counters;
 #define GPURT_COUNT_PACKED 0
 #define GPURT_COUNT_SHADOW 1
-#define GPURT_COUNT_DEPTH 2
+#define GPURT_COUNT_OVERFLOW 2  // camera rays stopped at the step limit (as the wavefront chain counts)
+#define GPURT_COUNT_DEPTH 3
 #define GPURT_COUNTED_DEPTHS 256  // deeper rays count at the last depth counted
 
-// The stream element's shadow rays.
+// The stream element's shadow rays, and whether its camera ray reached the step limit.
 int shadowRays = 0;
+bool cameraOverflow = false;
 
 // The coverage key of the rays of `pixel` (alpha: scene/alpha.glsl's coverageSample and seed).
 
@@ -33,11 +35,14 @@ void setPixelCoverage(uvec2 pixel) {
 #endif
 }
 
-// The closest hit of o + t d, as the trace kernels write it: (t, u, v, triangle | -1).
-vec4 traceClosest(vec3 o, vec3 d, float tLimit, out int steps) {
+// The closest hit of o + t d, as the trace kernels write it: (t, u, v, triangle | -1). camera:
+// the ray is the element's camera ray (its overflow is counted).
+vec4 traceClosest(vec3 o, vec3 d, float tLimit, bool camera, out int steps) {
     float t, u, v;
     int state;
     int id = accelTrace(o, d, tLimit, false, t, u, v, steps, state);
+    // As GpuPipeline::readHitAovs counts: the rays whose steps reached the limit.
+    if (camera && steps >= accelStepLimit()) cameraOverflow = true;
     return vec4(id >= 0 ? t : GPURT_FAR, u, v, float(id));
 }
 
@@ -110,10 +115,11 @@ bool emitterVisible(uvec2 pixel, int depth, vec3 p, vec3 n, out vec3 q, out int 
     return unblocked(o, d, limit);
 }
 
-// Adds the element's counters to the pass's: its shadow rays, and that its last ray in the pass
-// was at depth `last`. (Overflows are counted as the wavefront chain counts them: the primary
-// rays', from the steps AOV.)
+// Adds the element's counters to the pass's: its shadow rays, its camera ray's overflow, and that
+// its last ray in the pass was at depth `last`. (Overflows are counted as the wavefront chain
+// counts them: the camera rays'.)
 void countRays(int last) {
     imageAtomicAdd(counters, ivec2(GPURT_COUNT_DEPTH + min(last, GPURT_COUNTED_DEPTHS - 1), 0), 1u);
     if (shadowRays > 0) imageAtomicAdd(counters, ivec2(GPURT_COUNT_SHADOW, 0), uint(shadowRays));
+    if (cameraOverflow) imageAtomicAdd(counters, ivec2(GPURT_COUNT_OVERFLOW, 0), 1u);
 }

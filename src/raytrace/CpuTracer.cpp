@@ -136,10 +136,12 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                                  // element (i, j - rowBegin) of the output)
     const size_t pixels = size_t(camera.width) * size_t(out.height);
     out.color.assign(pixels, glm::vec3(0.0f));
-    out.depth.assign(pixels, std::numeric_limits<float>::infinity());
-    out.prim.assign(pixels, -1.0f);
-    out.normal.assign(pixels, glm::vec3(0.0f));
-    out.steps.assign(pixels, 0.0f);
+    if (settings.aovs) {
+        out.depth.assign(pixels, std::numeric_limits<float>::infinity());
+        out.prim.assign(pixels, -1.0f);
+        out.normal.assign(pixels, glm::vec3(0.0f));
+        out.steps.assign(pixels, 0.0f);
+    }
 
     const bool path = settings.integrator == Integrator::Path;
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, path);
@@ -148,10 +150,10 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const uint32_t samples = std::max(1u, settings.samples);
     auto shadePixel = [&](int i, int j, RenderStats& stats) {
         const size_t pixel = size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i);
-        if (samples > 1)
+        if (samples > 1 && settings.aovs)
             whittedSample(*this, {i, j, 0, 1, settings.seed}, camera.eye, primaryDirection(camera, i, j), lights, -1,
                           stackSlots, {&out, pixel}, stats);
-        const PixelAovs aovs = samples == 1 ? PixelAovs{&out, pixel} : PixelAovs{};
+        const PixelAovs aovs = samples == 1 && settings.aovs ? PixelAovs{&out, pixel} : PixelAovs{};
         glm::vec3 sum(0.0f);
         for (uint32_t s = 0; s < samples; ++s) {
             const PixelSample px{i, j, s, samples, settings.seed};

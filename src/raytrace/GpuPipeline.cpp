@@ -11,9 +11,10 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
     : width(w),
       height(h),
       needs(needed),
-      rayOrigin(w, h, 4, "rayOrigin"),
-      rayDir(w, h, 4, "rayDir"),
-      hit(w, h, 4, "hit"),
+      // Without the stages: the path megakernel's live paths, and the AOVs' hits.
+      rayOrigin(needed.stages || paths ? w : 1, needed.stages || paths ? h : 1, 4, "rayOrigin"),
+      rayDir(needed.stages || paths ? w : 1, needed.stages || paths ? h : 1, 4, "rayDir"),
+      hit(needed.stages || needed.aovs ? w : 1, needed.stages || needed.aovs ? h : 1, 4, "hit"),
       accel(accelerator),
       surfacePoint(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfacePoint"),
       surfaceNormal(needs.stages ? w : 1, needs.stages ? h : 1, 4, "surfaceNormal"),
@@ -32,7 +33,7 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       aovNormal(progressive ? w : 1, progressive ? h : 1, 4, "aovNormal"),
       raygen("raygen", "integrators/raygen.frag"),
       raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)) {  // a variant: the same pass in --stats
-    accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
+    if (needs.stages) accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
     for (GPUKernel* k : kernels()) {
         textures.bind(*k);
         k->addOutput(rayOrigin).addOutput(rayDir);
@@ -62,7 +63,7 @@ void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     raygen.setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
 }
 
-void GpuPipeline::readHitAovs(RenderOutput& out, const GPUFloatArray* stepStream) {
+void GpuPipeline::readHitAovs(RenderOutput& out, const GPUFloatArray* stepStream, bool countOverflow) {
     const size_t pixels = size_t(width) * size_t(height);
     const auto hits = hit.download();
     const auto steps = (stepStream ? *stepStream : accel.steps()).downloadInt();
@@ -76,7 +77,7 @@ void GpuPipeline::readHitAovs(RenderOutput& out, const GPUFloatArray* stepStream
         out.steps[i] = float(steps[i * 4 + 3]);
         // Overflow, counted for primary rays (their step counts are read back anyway): with the
         // accelerator's limit, reaching it is the only way to visit that many cells.
-        if (steps[i * 4 + 3] >= accel.stepLimit()) ++out.stats.overflowRays;
+        if (countOverflow && steps[i * 4 + 3] >= accel.stepLimit()) ++out.stats.overflowRays;
     }
 }
 

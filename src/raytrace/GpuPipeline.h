@@ -29,6 +29,9 @@ struct StreamNeeds {
     // integrators are megakernels, which keep them in registers; the colour, weight and ray
     // streams are then the path megakernel's live paths, full size only with `paths`).
     bool stages = true;
+    // The primary AOVs (RenderSettings::aovs, the viewer's display modes): without the stages,
+    // the hit stream is full size only for them.
+    bool aovs = true;
     bool operator==(const StreamNeeds&) const = default;
 };
 
@@ -68,8 +71,9 @@ struct GpuPipeline {
     // The camera rays (raygen.frag): through the sample's point of each pixel, or its centre.
     GPUKernel raygen, raygenCentre;
 
-    // The accelerator's passes are attached to the ray streams. paths: the path integrator's
-    // per-ray state (pathState) even where `needed` says no ray spawns.
+    // The accelerator's passes are attached to the ray streams (not without the stages: the
+    // megakernels trace inside). paths: the path integrator's per-ray state (pathState) even
+    // where `needed` says no ray spawns.
     GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelerator& accelerator, MaskMode mask,
                 bool paths = false, bool progressiveAovs = false, Needs needed = {});
 
@@ -91,7 +95,9 @@ struct GpuPipeline {
     // and the normal AOV after the surface pass.
     // steps: the step counts' stream where the hits were traced elsewhere than by the
     // accelerator's trace kernels (the megakernels), else accel.steps().
-    void readHitAovs(RenderOutput& out, const GPUFloatArray* steps = nullptr);
+    // countOverflow: the primary rays at the step limit count in out.stats (the megakernels count
+    // them themselves).
+    void readHitAovs(RenderOutput& out, const GPUFloatArray* steps = nullptr, bool countOverflow = true);
     void readNormalAov(RenderOutput& out, const GPUFloatArray* normals = nullptr);
 
   private:

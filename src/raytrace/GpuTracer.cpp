@@ -12,6 +12,7 @@
 #include "../../glsl/common/scene_layout.h"
 
 
+#include "stream/GLContext.h"
 #include "stream/GPUKernel.h"
 #include "stream/KernelChain.h"
 #include "stream/StreamErrors.h"
@@ -61,7 +62,11 @@ IntegratorKernel defaultIntegratorKernel() {
         if (name == "megakernel") return IntegratorKernel::Megakernel;
         throw EnvironmentError("GPURT_KERNEL=" + name + ": expected wavefront or megakernel");
     }
-    return IntegratorKernel::Wavefront;
+    // Measured on llvmpipe (docs/PERFORMANCE.md, issue 24): the megakernels are faster on every
+    // render measured (Whitted 1.2-1.9x, path 1.3x), the wavefront chain's passes spending their
+    // time in memory traffic and stream allocation. Not measured on a GPU yet: the wavefront chain
+    // stays the default there until a run of scripts/bench-kernels.py on one decides.
+    return isSoftwareRenderer() ? IntegratorKernel::Megakernel : IntegratorKernel::Wavefront;
 }
 
 bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
@@ -77,7 +82,7 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
 }
 
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
-                                 bool integrating) {
+                                 bool integrating, bool aovs) {
     // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
     // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
     // pass of their own takes the pixel centres' AOVs.
@@ -88,6 +93,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.pathState = paths || (spawns_ && !megakernel);
     needs.sums = sums || progressive;
     needs.stages = !megakernel;
+    needs.aovs = aovs || progressive;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
         paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
         megakernelAovs_.reset();
@@ -105,13 +111,13 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
             path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
         } else {
             const size_t lights = scene_.lights.size() + 1;  // the scene's, or the headlight
-            megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
+            if (needs.aovs) megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
             if (paths) {
-                pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, lights, *megakernelAovs_);
+                pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, lights, megakernelAovs_.get());
                 pathMegakernel_->setBouncesPerPass(options_.megakernelBounces);
             } else {
                 whittedMegakernel_ = std::make_unique<WhittedMegakernelGl>(*pipeline_, textures_, stackSlots, lights,
-                                                                           *megakernelAovs_);
+                                                                           megakernelAovs_.get());
             }
         }
         for (GPUKernel* k : accel_->kernels()) {
@@ -126,7 +132,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
 // The AOVs of the pixel centres' rays (several samples a pixel, the viewer): Whitted's first round
 // (its trace and surface passes), or with megakernels a pass of its own.
 void GpuTracer::pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats) {
-    if (megakernelAovs_) megakernelAovs_->trace(out, stats);
+    if (!pipeline_->needs.stages) megakernelAovs_->trace(out, stats);
     else whitted_->sample(lights, -1, out, stats);
 }
 
@@ -165,7 +171,7 @@ void GpuTracer::setCamera(const CameraBasis& camera) {
 void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
     if (!textures_.hasAlpha()) return;
     std::vector<GPUKernel*> tracing = accel_->kernels();
-    if (megakernelAovs_)
+    if (!pipeline_->needs.stages)
         for (GPUKernel* k : integratorKernels()) tracing.push_back(k);  // the megakernels trace
     for (GPUKernel* k : tracing)
         k->setUniform("coverageSample", s).setUniform("coverageSeed", seed).setUniform("coverageFromStream", 0);
@@ -189,7 +195,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const auto start = std::chrono::steady_clock::now();
     const bool paths = settings.integrator == Integrator::Path;
     const uint32_t samples = std::max(1u, settings.samples);
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true, settings.aovs);
     GlIntegrator& chosen = integrator(settings);
     RenderOutput out;
     out.width = camera.width;
@@ -199,11 +205,11 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
     setCamera(camera);
     setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)
-    if (samples > 1) pixelCentreAovs(lights, &out, out.stats);
+    if (samples > 1 && settings.aovs) pixelCentreAovs(lights, &out, out.stats);
     const int bounces = std::max(0, settings.maxBounces);
     if (samples == 1) {  // the sample is the image: no sum to accumulate into
         setSample(0, 1, settings.seed);
-        chosen.sample(lights, bounces, &out, out.stats);
+        chosen.sample(lights, bounces, settings.aovs ? &out : nullptr, out.stats);
         out.color = downloadVectors<glm::vec3>(chosen.colour());
     } else {
         p.sampleSum.fill(0.0f);

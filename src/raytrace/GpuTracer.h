@@ -75,7 +75,7 @@ class GpuTracer {
     // integrating: for the integrators' samples (render, the viewer), which may be megakernels;
     // false: for the accelerator's traces alone (gpurt bench).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
-                          bool sums = false, bool integrating = false);
+                          bool sums = false, bool integrating = false, bool aovs = true);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
     void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator `settings` asks for.

@@ -30,6 +30,10 @@ struct RenderSettings {
     // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
     uint32_t samples = 1;
     uint32_t seed = 0;
+    // The primary AOVs (depth, prim, normal, steps) in RenderOutput, from the pixel centres' rays;
+    // false: the colour alone (gpurt render without --aov), and no pixel-centre rays of their own
+    // for several samples a pixel.
+    bool aovs = true;
     // Called with the fraction of the render done (0..1, rising; 1 once it is done) after each
     // sample (gl) or image row (cpu), from the rendering thread or a worker (never two at once).
     // Nothing of the image depends on it.

@@ -111,8 +111,11 @@ TEST_F(Cli, RenderWritesPngAndAovs) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 5);
 }
 
+// Under each kernel form: the wavefront chain's first pass is raygen, the megakernel's its own.
 TEST_F(Cli, StatsJsonHasTheContractFields) {
-    const Result r = gpurt("render " + kTeapot + " -o " + path("out.png") + " --size 32x32 --stats=json");
+  for (const char* kernel : {"fused", "megakernel"}) {
+    SCOPED_TRACE(kernel);
+    const Result r = gpurt("render " + kTeapot + " -o " + path("out.png") + " --size 32x32 --stats=json --kernel " + kernel);
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"width", "height", "triangles", "grid", "rays", "passes", "total_ms", "mrays_per_s"})
@@ -121,8 +124,9 @@ TEST_F(Cli, StatsJsonHasTheContractFields) {
     EXPECT_EQ(j["triangles"], 992);
     EXPECT_EQ(j["rays"]["primary"], 32 * 32);
     EXPECT_EQ(j["grid"].size(), 3u);
-    EXPECT_EQ(j["passes"]["raygen"]["calls"], 1);
-    EXPECT_EQ(j["passes"]["raygen"]["fragments"], 32 * 32);
+    const char* first = std::string(kernel) == "fused" ? "raygen" : "whittedMegakernel";
+    EXPECT_EQ(j["passes"][first]["calls"], 1);
+    EXPECT_EQ(j["passes"][first]["fragments"], 32 * 32);
     // The phase breakdown: every phase, none negative; the passes' phases are the passes' times.
     double passes = 0.0, traced = 0.0;
     for (const auto& [name, p] : j["passes"].items()) {
@@ -141,6 +145,7 @@ TEST_F(Cli, StatsJsonHasTheContractFields) {
     const double render = ph["compile"].get<double>() + ph["trace"].get<double>() + ph["shade"].get<double>() +
                           ph["read_back"].get<double>() + ph["other"].get<double>();
     EXPECT_LE(render + ph["grid"].get<double>(), j["total_ms"].get<double>() * 1.001 + 0.01);
+  }
 }
 
 // The path integrator's statistics: samples, samples per second and the paths of each round,

@@ -27,6 +27,9 @@ uniform int maxNodeSteps;            // more nodes than a ray can visit: RAY_OVE
 #define GPURT_BVH_BOX_STEP bvhBoxStep
 #include "common/bvh.h"
 
+// The nodes a ray may visit (accel/trace.glsl).
+int accelStepLimit() { return maxNodeSteps; }
+
 // The accelerator's trace for accel/trace.glsl: the closest hit (any hit with anyHit) of o + t d
 // with 0 < t < tLimit, its id or -1, with t, u, v; steps counts the nodes visited.
 int accelTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float t, out float u, out float v, out int steps,

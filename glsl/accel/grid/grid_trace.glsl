@@ -68,6 +68,9 @@ int gridTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float bestT, out fl
     return bestId;
 }
 
+// The cells a ray may visit (accel/trace.glsl).
+int accelStepLimit() { return maxCellSteps; }
+
 // The accelerator's trace for accel/trace.glsl.
 int accelTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float t, out float u, out float v, out int steps,
                out int state) {

@@ -107,7 +107,7 @@ void main() {
     int last = depth + bounces - 1;
     for (;; ++b) {
         int steps;
-        vec4 h = traceClosest(o, d, GPURT_FAR, steps);
+        vec4 h = traceClosest(o, d, GPURT_FAR, b == 0, steps);
 #ifdef AOVS
         if (b == 0) {
             hitOut = h;

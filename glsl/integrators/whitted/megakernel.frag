@@ -65,7 +65,7 @@ void main() {
     int round = 0;
     for (;; ++round) {  // the ray's place in the tree's order: its wavefront round
         int steps;
-        vec4 h = traceClosest(o, d, GPURT_FAR, steps);
+        vec4 h = traceClosest(o, d, GPURT_FAR, round == 0, steps);
 #ifdef AOVS
         if (round == 0) {
             hitOut = h;

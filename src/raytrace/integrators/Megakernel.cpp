@@ -13,7 +13,8 @@ namespace {
 // ray in the pass was at each depth (the last depth counted takes the deeper ones).
 constexpr int kCountPacked = 0;
 constexpr int kCountShadow = 1;
-constexpr int kCountDepth = 2;
+constexpr int kCountOverflow = 2;
+constexpr int kCountDepth = 3;
 constexpr int kCountedDepths = 256;
 }  // namespace
 
@@ -63,6 +64,7 @@ uint64_t MegakernelInputs::run(GPUKernel& k, int firstDepth, bool livePaths, Ren
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
     }
     stats.shadowRays += counts[kCountShadow];
+    stats.overflowRays += counts[kCountOverflow];
     return counts[kCountPacked];
 }
 
@@ -79,7 +81,7 @@ MegakernelAovs::MegakernelAovs(GpuPipeline& pipeline, const SceneTextures& textu
 void MegakernelAovs::trace(RenderOutput* out, RenderStats& stats) {
     inputs_.run(kernel_, 0, false, stats);
     if (!out) return;
-    p_.readHitAovs(*out, &steps_);
+    p_.readHitAovs(*out, &steps_, false);
     p_.readNormalAov(*out, &normals_);
 }
 

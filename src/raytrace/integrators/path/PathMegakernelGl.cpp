@@ -1,6 +1,7 @@
 #include "raytrace/integrators/path/PathMegakernelGl.h"
 
 #include "raytrace/integrators/SharedPasses.h"
+#include "stream/StreamErrors.h"
 
 #include "../../../../glsl/common/scene_layout.h"
 
@@ -9,7 +10,7 @@
 namespace gpurt {
 
 PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights,
-                                   MegakernelAovs& aovs)
+                                   MegakernelAovs* aovs)
     : p_(pipeline),
       inputs_(maxLights),
       origin_(p_.width, p_.height, 4, "megakernelOrigin"),
@@ -32,7 +33,7 @@ PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& t
     for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_}) declarePass(*k, textures, nullptr, pipelineSet);
     declarePass(fromPipeline_, textures, &pipelineSet, ownSet);
     declarePass(fromOwn_, textures, &ownSet, pipelineSet);
-    cameraAovs_.addOutput(p_.hit).addOutput(aovs_.normals()).addOutput(aovs_.steps());
+    if (aovs_) cameraAovs_.addOutput(p_.hit).addOutput(aovs_->normals()).addOutput(aovs_->steps());
     declareAccumulatePass(accumulate_, p_, pixelColor_);
 }
 
@@ -71,11 +72,12 @@ void PathMegakernelGl::sample(const std::vector<PointLight>& lights, int maxDept
     inputs_.setLights(lights, passes);
     const int perPass = bouncesPerPass_ > 0 ? bouncesPerPass_ : maxDepth + 1;
     for (GPUKernel* k : passes) k->setUniform("bounces", perPass).setUniform("maxDepth", maxDepth);
+    if (aovs && !aovs_) throw UsageError("PathMegakernelGl: AOVs asked of a pipeline made without them");
     GPUKernel& first = aovs ? cameraAovs_ : sampleCount_ == 1 ? cameraCentre_ : camera_;
     uint64_t live = runPass(first, 0, p_.height, stats);
     if (aovs) {
-        p_.readHitAovs(*aovs, &aovs_.steps());
-        p_.readNormalAov(*aovs, &aovs_.normals());
+        p_.readHitAovs(*aovs, &aovs_->steps(), false);
+        p_.readNormalAov(*aovs, &aovs_->normals());
     }
     bool fromPipeline = true;
     for (int depth = perPass; live > 0 && depth <= maxDepth; depth += perPass) {

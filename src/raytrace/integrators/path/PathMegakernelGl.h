@@ -14,8 +14,8 @@ namespace gpurt {
 class PathMegakernelGl final : public GlIntegrator {
   public:
     // maxLights: the most point lights a sample is given; aovs: the streams the first pass
-    // writes the primary AOVs to when it takes them.
-    PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights, MegakernelAovs& aovs);
+    // writes the primary AOVs to when it takes them (none: renders without AOVs).
+    PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights, MegakernelAovs* aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
     void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
@@ -43,7 +43,7 @@ class PathMegakernelGl final : public GlIntegrator {
     // are the first): the passes read one set and pack into the other.
     GPUFloatArray origin_, dir_, weight_, state_, color_;
     GPUFloatArray pixelColor_, lives_;
-    MegakernelAovs& aovs_;  // its streams: the AOV variant's outputs
+    MegakernelAovs* aovs_;  // its streams: the AOV variant's outputs (none: no AOVs)
     // The first pass from the camera rays (sample points or pixel centres; with AOVs), and the
     // passes from each stream set into the other.
     GPUKernel camera_, cameraCentre_, cameraAovs_, fromPipeline_, fromOwn_, accumulate_;

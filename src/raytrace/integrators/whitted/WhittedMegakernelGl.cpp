@@ -1,11 +1,12 @@
 #include "raytrace/integrators/whitted/WhittedMegakernelGl.h"
 
 #include "raytrace/integrators/SharedPasses.h"
+#include "stream/StreamErrors.h"
 
 namespace gpurt {
 
 WhittedMegakernelGl::WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots,
-                                         size_t maxLights, MegakernelAovs& aovs)
+                                         size_t maxLights, MegakernelAovs* aovs)
     : p_(pipeline),
       inputs_(maxLights),
       colour_(p_.width, p_.height, 4, "whittedColour"),
@@ -18,7 +19,7 @@ WhittedMegakernelGl::WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextu
         inputs_.declare(*k, textures, p_.accel);
         k->addOutput(colour_).setUniform("stackSlots", stackSlots);
     }
-    centresAovs_.addOutput(p_.hit).addOutput(aovs_.normals()).addOutput(aovs_.steps());
+    if (aovs_) centresAovs_.addOutput(p_.hit).addOutput(aovs_->normals()).addOutput(aovs_->steps());
     declareAccumulatePass(accumulate_, p_, colour_);
 }
 
@@ -36,12 +37,13 @@ void WhittedMegakernelGl::sample(const std::vector<PointLight>& lights, int maxB
                                  RenderStats& stats) {
     const std::vector<GPUKernel*> passes = {&samples_, &centres_, &centresAovs_};
     inputs_.setLights(lights, passes);
+    if (aovs && !aovs_) throw UsageError("WhittedMegakernelGl: AOVs asked of a pipeline made without them");
     GPUKernel& k = aovs ? centresAovs_ : sampleCount_ == 1 ? centres_ : samples_;
     k.setUniform("maxBounces", std::max(0, maxBounces));
     inputs_.run(k, 0, false, stats);
     if (aovs) {
-        p_.readHitAovs(*aovs, &aovs_.steps());
-        p_.readNormalAov(*aovs, &aovs_.normals());
+        p_.readHitAovs(*aovs, &aovs_->steps(), false);
+        p_.readNormalAov(*aovs, &aovs_->normals());
     }
 }
 

@@ -14,9 +14,9 @@ class WhittedMegakernelGl final : public GlIntegrator {
   public:
     // stackSlots: the pending rays a tree keeps (GpuTracer::stackSlots); maxLights: the most
     // point lights a sample is given; aovs: the streams the pass writes the
-    // primary AOVs to when it takes them.
+    // primary AOVs to when it takes them (none: renders without AOVs).
     WhittedMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, int stackSlots, size_t maxLights,
-                        MegakernelAovs& aovs);
+                        MegakernelAovs* aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
     void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
@@ -28,7 +28,7 @@ class WhittedMegakernelGl final : public GlIntegrator {
     GpuPipeline& p_;
     MegakernelInputs inputs_;
     GPUFloatArray colour_;
-    MegakernelAovs& aovs_;  // its streams: the AOV variant's outputs
+    MegakernelAovs* aovs_;  // its streams: the AOV variant's outputs (none: no AOVs)
     uint32_t sampleCount_ = 1;
     // Through the sample points, through the pixel centres, and the latter with the AOVs.
     GPUKernel samples_, centres_, centresAovs_, accumulate_;
