@@ -102,10 +102,7 @@ Scene testMesh(int side, uint32_t seed) {
     std::vector<float> height(size_t((side + 1) * (side + 1)));
     for (float& h : height) h = bump(rng);
     auto at = [&](int i, int j) {
-        glm::vec3 p(float(i - side / 2), height[size_t(j * (side + 1) + i)], float(j - side / 2));
-        if (p.x == 0.0f && (i + j) % 2) p.x = -0.0f;  // the same position as +0
-        if (p.z == 0.0f && j % 3 == 0) p.z = -0.0f;
-        return p;
+        return glm::vec3(float(i - side / 2), height[size_t(j * (side + 1) + i)], float(j - side / 2));
     };
     Scene scene;
     for (int j = 0; j < side; ++j)
@@ -117,8 +114,12 @@ Scene testMesh(int side, uint32_t seed) {
     scene.triangles.push_back({at(0, 0), glm::vec3(INFINITY, 0, 0), at(1, 1)});  // not finite
     scene.triangles.push_back({at(2, 2), at(2, 2) + glm::vec3(1, 0, 0), at(2, 2) + glm::vec3(2, 0, 0)});  // a line
     std::shuffle(scene.triangles.begin(), scene.triangles.end(), rng);
-    for (Triangle& t : scene.triangles)
+    for (Triangle& t : scene.triangles) {
         if (rng() % 2) std::swap(t.v1, t.v2);
+        for (glm::vec3* p : {&t.v0, &t.v1, &t.v2})  // -0 for some of a position's zeros: the same position
+            for (int a = 0; a < 3; a += 2)
+                if ((*p)[a] == 0.0f && rng() % 2) (*p)[a] = -0.0f;
+    }
     scene.normals.assign(scene.triangles.size(), TriangleNormals{});
     for (size_t t = 0; t < scene.triangles.size(); t += 7)
         scene.normals[t] = {glm::vec3(0, 1, 0), glm::vec3(0, 0.6f, 0.8f), glm::vec3(1, 0, 0)};
