@@ -42,35 +42,50 @@ bool usable(const TriangleNormals& n) {
 
 const glm::vec3& corner(const Triangle& t, uint32_t k) { return k == 0 ? t.v0 : (k == 1 ? t.v1 : t.v2); }
 
-// Positions to ids, the part of them whose hash's top bits are `part`: linear probing.
+// Positions to ids, linear probing; the table doubles when half full.
 class PositionTable {
   public:
     explicit PositionTable(size_t expected) {
         size_t capacity = 64;
         while (capacity < expected * 2) capacity *= 2;
-        mask_ = capacity - 1;
-        slots_.resize(capacity);
-        std::fill(slots_.begin(), slots_.end(), Slot{glm::vec3(0.0f), kNone});
+        resize(capacity);
     }
     // The id of p, a new one (next) if p is new.
     uint32_t id(const glm::vec3& p, uint64_t hash, uint32_t& next) {
+        if (2 * (count_ + 1) > slots_.size()) grow();
         for (size_t i = size_t(hash) & mask_;; i = (i + 1) & mask_) {
             Slot& s = slots_[i];
             if (s.id == kNone) {
-                s = Slot{p, next};
+                s = Slot{p, next, hash};
                 ++count_;
                 return next++;
             }
             if (s.position == p) return s.id;
         }
     }
-    size_t count() const { return count_; }
 
   private:
     struct Slot {
         glm::vec3 position;
         uint32_t id;
+        uint64_t hash;
     };
+    void resize(size_t capacity) {
+        slots_.resize(capacity);
+        std::fill(slots_.begin(), slots_.end(), Slot{glm::vec3(0.0f), kNone, 0});
+        mask_ = capacity - 1;
+    }
+    void grow() {
+        LargeArray<Slot> old;
+        old.swap(slots_);
+        resize(old.size() * 2);
+        for (const Slot& s : old) {
+            if (s.id == kNone) continue;
+            size_t i = size_t(s.hash) & mask_;
+            while (slots_[i].id != kNone) i = (i + 1) & mask_;
+            slots_[i] = s;
+        }
+    }
     LargeArray<Slot> slots_;
     size_t mask_ = 0;
     size_t count_ = 0;
@@ -128,7 +143,7 @@ void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
     std::vector<uint32_t> partCount(parts, 0);
     auto partOf = [&](uint64_t hash) { return size_t((hash >> 40) % parts); };
     parallelChunks(parts, 1, threads, [&](size_t part, size_t, size_t) {
-        PositionTable table(3 * n / parts / 4 + 16);  // a mesh's positions are shared by ~6 corners
+        PositionTable table(3 * n / parts / 4 + 16);  // a mesh shares a position among ~6 corners; a soup grows it
         uint32_t next = 0;
         for (size_t t = 0; t < n; ++t) {
             if (degenerate(t)) {

@@ -149,6 +149,26 @@ TEST(SmoothNormals, ThreadsGiveTheSerialPassesNormalsBitForBit) {
         }
 }
 
+// A triangle soup (no position shared): three times as many positions as a mesh of as many
+// triangles, past the tables' first size.
+TEST(SmoothNormals, ATriangleSoupAsTheSerialPass) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> pos(-1.0f, 1.0f);
+    Scene soup;
+    for (int t = 0; t < 20000; ++t) soup.triangles.push_back({{pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}});
+    soup.materialIds.assign(soup.triangles.size(), 0);
+    soup.materials.push_back(Material{});
+    for (const int threads : {1, 2, 5}) {
+        Scene expected = soup, got = soup;
+        referenceSmoothNormals(expected, kDefaultCreaseDegrees);
+        smoothNormals(got, kDefaultCreaseDegrees, threads);
+        ASSERT_EQ(got.normals.size(), expected.normals.size());
+        for (size_t t = 0; t < got.normals.size(); ++t)
+            ASSERT_TRUE(sameBits(got.normals[t].n0, expected.normals[t].n0) && sameBits(got.normals[t].n2, expected.normals[t].n2))
+                << "triangle " << t << ", " << threads << " threads";
+    }
+}
+
 TEST(SmoothNormals, AMeshWithEveryNormalGivenKeepsThem) {
     Scene mesh = testMesh(4, 1);
     for (TriangleNormals& n : mesh.normals) n = {glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
