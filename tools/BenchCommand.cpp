@@ -9,7 +9,7 @@
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/Renderer.h"
-#include "raytrace/Parallel.h"
+#include "base/Parallel.h"
 #include "raytrace/SceneLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/KernelStats.h"

@@ -4,6 +4,7 @@
 #include "scene/SmoothNormals.h"
 #include "stream/StreamErrors.h"
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -309,10 +310,13 @@ void applyEnvironmentOptions(Scene& scene, const PictureCliOptions::Values& valu
 }
 
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
-                              int& scaleExponent) {
+                              int& scaleExponent, double* normalsMs) {
     LoadedScene loaded = loadScene(path);
     turnSceneUp(loaded, upAxisOption);
+    const auto normalsStart = std::chrono::steady_clock::now();
     smoothNormals(loaded.scene, crease);
+    if (normalsMs)
+        *normalsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - normalsStart).count();
     scaleExponent = renderScaleExponent(loaded.scene);
     rescaleScene(loaded.scene, scaleExponent);
     if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);

@@ -128,8 +128,9 @@ struct PictureCliOptions {
 // The scene as render and view trace it: loaded, turned up (turnSceneUp), with smooth normals for the crease angle
 // (--smooth; < 0: faceted), and, far from unit size where float32 tracing would over- or
 // underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
+// `normalsMs`, if given, gets the smooth normals' share of the time (--stats' normals phase).
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
-                              int& scaleExponent);
+                              int& scaleExponent, double* normalsMs = nullptr);
 
 // The environment light of render and view (CONTRACT.md): --env FILE replaces the scene's,
 // --env none removes it and the default light; otherwise a scene without a light of its own gets

@@ -102,13 +102,14 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
     return hex;
 }
 
-// Where a render's wall time goes (--stats): the phases in order, in milliseconds. trace and shade
+// Where a render's wall time goes (--stats): the phases in order, in milliseconds (load: reading
+// the scene; normals: smooth normals; grid: the accelerator's build or choice). trace and shade
 // are the kernel passes (traversal and intersection, the rest), compile the GL programs' builds
 // (llvmpipe generates a kernel's machine code at its first pass, which counts in that pass), other
 // the render's time outside passes, builds and read-backs (stream fills and copies, syncs); the
 // CPU backend's render is all trace.
 struct Phases {
-    double load = 0, grid = 0, context = 0, upload = 0, compile = 0, trace = 0, shade = 0, readBack = 0,
+    double load = 0, normals = 0, grid = 0, context = 0, upload = 0, compile = 0, trace = 0, shade = 0, readBack = 0,
            other = 0, write = 0;
 };
 
@@ -122,7 +123,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
                 const RenderOutput& out, double totalMs, const Phases& ph,
                 std::optional<int> frame, uint32_t spp) {
     const std::pair<const char*, double> phases[] = {
-        {"load", ph.load},       {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
+        {"load", ph.load},       {"normals", ph.normals}, {"grid", ph.grid},   {"context", ph.context}, {"upload", ph.upload},
         {"compile", ph.compile}, {"trace", ph.trace}, {"shade", ph.shade},     {"read_back", ph.readBack},
         {"other", ph.other},     {"write", ph.write}};
     const RenderStats& s = out.stats;
@@ -381,9 +382,9 @@ int runRender(const RenderOptions& o) {
     Phases phases;
     auto phaseStart = std::chrono::steady_clock::now();
     int scaleExponent = 0;  // depths are scaled back below
-    LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent);
+    LoadedScene loaded = loadSceneToRender(o.scene, o.camera.upAxis, picture.crease, scaleExponent, &phases.normals);
     applyEnvironmentOptions(loaded.scene, picture);
-    phases.load = msSince(phaseStart);
+    phases.load = msSince(phaseStart) - phases.normals;
     const Scene& scene = loaded.scene;
     if (frames.animated && !scene.animation)
         throw InputError("--frames: " + o.scene + " has no camera animation (a JSON scene's \"animation\")");

@@ -14,7 +14,7 @@
 #include "raytrace/accel/grid/GridCpu.h"
 #include "raytrace/integrators/path/PathCpu.h"
 #include "raytrace/integrators/whitted/WhittedCpu.h"
-#include "raytrace/Parallel.h"
+#include "base/Parallel.h"
 #include "raytrace/RayMath.h"
 
 namespace gpurt {

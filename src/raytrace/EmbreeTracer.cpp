@@ -1,6 +1,6 @@
 #include "raytrace/EmbreeTracer.h"
 
-#include "raytrace/Parallel.h"
+#include "base/Parallel.h"
 #include "raytrace/RenderTypes.h"
 #include "stream/StreamErrors.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "raytrace/Parallel.h"
+#include "base/Parallel.h"
 #include "raytrace/RayMath.h"
 
 namespace gpurt {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raytrace/EmitterTable.h"
-#include "raytrace/LargeArray.h"
+#include "base/LargeArray.h"
 #include "scene/Scene.h"
 #include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"

@@ -1,9 +1,11 @@
 // PLY reading: the header into elements and properties, then the data through one reader per
 // encoding (ASCII tokens with line numbers, or binary values of either byte order), every count
-// checked against the bytes that are left before anything is allocated.
+// checked against the bytes that are left before anything is allocated. An ASCII file of one
+// element a line is read on all cores first (ParallelAsciiReader), the serial reader its fallback.
 #include "scene/PlyLoader.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -16,8 +18,11 @@
 #include <string_view>
 #include <vector>
 
+#include "base/LargeArray.h"
+#include "base/Parallel.h"
 #include "image/Colour.h"
 #include "image/InputError.h"
+#include "scene/DecimalNumber.h"
 #include "scene/SceneFile.h"
 
 namespace gpurt {
@@ -51,6 +56,19 @@ size_t sizeOf(Type t) {
 }
 
 bool isInteger(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+// Whether the integer v is within the range of `type`.
+bool fits(Type type, double v) {
+    switch (type) {
+        case Type::Int8: return v >= -128 && v <= 127;
+        case Type::UInt8: return v >= 0 && v <= 255;
+        case Type::Int16: return v >= -32768 && v <= 32767;
+        case Type::UInt16: return v >= 0 && v <= 65535;
+        case Type::Int32: return v >= -2147483648.0 && v <= 2147483647.0;
+        case Type::UInt32: return v >= 0 && v <= 4294967295.0;
+        default: return true;
+    }
+}
 
 struct Property {
     std::string name;
@@ -100,15 +118,15 @@ std::string shown(std::string_view text) {
     return out + (text.size() > 40 ? "...'" : "'");
 }
 
-Header readHeader(const std::string& bytes, const std::string& name) {
+Header readHeader(std::string_view bytes, const std::string& name) {
     auto fail = [&](size_t line, const std::string& what) { failAt(FileLoc{name, line}, what); };
-    if (!looksLikePly(bytes)) failAt(FileLoc{name}, "not a PLY file (it does not start with 'ply')");
+    if (!looksLikePly(std::string(bytes.substr(0, 5)))) failAt(FileLoc{name}, "not a PLY file (it does not start with 'ply')");
     Header header;
     bool haveFormat = false;
     size_t pos = 0, line = 0;
     while (true) {
         const size_t end = bytes.find('\n', pos);
-        if (end == std::string::npos) fail(line + 1, "the header has no end_header line");
+        if (end == std::string_view::npos) fail(line + 1, "the header has no end_header line");
         ++line;
         std::string_view text(bytes.data() + pos, end - pos);
         if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
@@ -179,7 +197,7 @@ Header readHeader(const std::string& bytes, const std::string& name) {
 // Values of the data, in order, whatever the encoding; `fail` names the place in messages.
 class DataReader {
   public:
-    DataReader(const std::string& bytes, const Header& header, const std::string& name)
+    DataReader(std::string_view bytes, const Header& header, const std::string& name)
         : bytes_(bytes), format_(header.format), pos_(header.dataStart), line_(header.lines + 1), name_(name) {}
 
     // "FILE:LINE: what" (ASCII), "FILE: ELEMENT INDEX (byte B): what" (binary).
@@ -255,18 +273,6 @@ class DataReader {
         return type == Type::Float32 ? double(float(v)) : v;
     }
 
-    static bool fits(Type type, double v) {
-        switch (type) {
-            case Type::Int8: return v >= -128 && v <= 127;
-            case Type::UInt8: return v >= 0 && v <= 255;
-            case Type::Int16: return v >= -32768 && v <= 32767;
-            case Type::UInt16: return v >= 0 && v <= 65535;
-            case Type::Int32: return v >= -2147483648.0 && v <= 2147483647.0;
-            case Type::UInt32: return v >= 0 && v <= 4294967295.0;
-            default: return true;
-        }
-    }
-
     double binaryValue(Type type) {
         const size_t n = sizeOf(type);
         if (bytes_.size() - pos_ < n) fail("the data ends early (the header declares more)");
@@ -287,7 +293,7 @@ class DataReader {
         return 0;
     }
 
-    const std::string& bytes_;
+    std::string_view bytes_;
     Format format_;
     size_t pos_;
     size_t line_;
@@ -458,7 +464,7 @@ void readElement(DataReader& in, const Element& e, uint64_t i, const MeshLayout&
 
 // The data, element by element in header order; each element's count is checked against the
 // bytes left before anything is sized by it.
-MeshData readData(const std::string& bytes, const Header& header, const MeshLayout& layout, const std::string& name) {
+MeshData readData(std::string_view bytes, const Header& header, const MeshLayout& layout, const std::string& name) {
     MeshData data;
     DataReader in(bytes, header, name);
     for (const Element& e : header.elements) {
@@ -560,16 +566,230 @@ Scene meshScene(const MeshData& data, const MeshLayout& layout, const std::strin
     return scene;
 }
 
-}  // namespace
+// ---- The ASCII data on all cores ----
+// The common layout of an ASCII PLY: one element a line, in header order. The data is cut into
+// chunks at line starts; the workers count each chunk's lines, then read each line as the element
+// its number says (vertices straight into their place, faces into the chunk's lists), then write
+// the faces' triangles at the offsets the chunks' counts give. A file this cannot read exactly as
+// the serial reader would without complaint (a blank line or an element over two lines, a value
+// or face the serial reader refuses, an index out of range, strips) is read again by the serial
+// reader, which then gives its triangles or its error: the two agree on every file.
 
-bool looksLikePly(const std::string& head) {
-    return head.compare(0, 4, "ply\n") == 0 || head.compare(0, 5, "ply\r\n") == 0;
+// The text's value as the serial reader's asciiValue reads it; false where that would refuse it.
+bool asciiNumber(const char* first, const char* last, Type type, double& out) {
+    if (isInteger(type)) {
+        long long v = 0;
+        const auto [p, ec] = std::from_chars(first, last, v);
+        if (ec != std::errc() || p != last || !fits(type, double(v))) return false;
+        out = double(v);
+        return true;
+    }
+    double v = 0;
+    if (!parseDecimal(first, last, v)) return false;
+    out = type == Type::Float32 ? double(float(v)) : v;
+    return true;
 }
 
-Scene parsePly(const std::string& bytes, const std::string& name) {
+bool isLineSpace(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// The next value of the line [p, end) as `type`; false at the line's end or for a refused value.
+bool nextValue(const char*& p, const char* end, Type type, double& out) {
+    while (p < end && isLineSpace(*p)) ++p;
+    if (p == end) return false;
+    const char* first = p;
+    while (p < end && !isLineSpace(*p)) ++p;
+    return asciiNumber(first, p, type, out);
+}
+
+struct AsciiChunk {
+    size_t begin = 0, end = 0;  // bytes; begin is a line's start
+    size_t firstLine = 0, lines = 0;
+    std::vector<uint32_t> faceSizes, faceIndices;
+    size_t triangles = 0, firstTriangle = 0;
+};
+
+class ParallelAsciiReader {
+  public:
+    ParallelAsciiReader(std::string_view bytes, const Header& header, const MeshLayout& layout, const PlyReadOptions& options)
+        : bytes_(bytes), header_(header), layout_(layout), threads_(resolveThreads(options.threads)),
+          chunkBytes_(std::max<size_t>(1, options.chunkBytes)) {}
+
+    std::optional<Scene> read() {
+        if (layout_.strips) return std::nullopt;
+        cutChunks();
+        size_t lines = 0;
+        for (AsciiChunk& c : chunks_) {
+            c.firstLine = lines;
+            lines += c.lines;
+        }
+        // Each element with properties takes one line (those without take no bytes).
+        size_t expected = 0;
+        for (const Element& e : header_.elements) {
+            if (e.properties.empty()) continue;
+            if (e.count > bytes_.size()) return std::nullopt;  // more lines than bytes: the serial reader says so
+            firstLine_.push_back({&e, expected});
+            expected += size_t(e.count);
+        }
+        if (lines < expected) return std::nullopt;  // the serial reader says where the data ends
+        expectedLines_ = expected;
+        vertexCount_ = size_t(layout_.vertex->count);
+        positions_.resize(vertexCount_);
+        if (layout_.hasNormals) normals_.resize(vertexCount_);
+        if (layout_.hasColors) colors_.resize(vertexCount_);
+        std::atomic<bool> ok{true};
+        parallelChunks(chunks_.size(), 1, threads_, [&](size_t c, size_t, size_t) {
+            if (ok && !readChunk(chunks_[c])) ok = false;
+        });
+        if (!ok) return std::nullopt;
+        return scene();
+    }
+
+  private:
+    void cutChunks() {
+        const size_t size = bytes_.size();
+        for (size_t begin = header_.dataStart; begin < size;) {
+            size_t end = std::min(size, begin + chunkBytes_);
+            if (end < size) {
+                const void* nl = std::memchr(bytes_.data() + end - 1, '\n', size - (end - 1));
+                end = nl ? size_t(static_cast<const char*>(nl) - bytes_.data()) + 1 : size;
+            }
+            chunks_.push_back(AsciiChunk{begin, end});
+            begin = end;
+        }
+        parallelChunks(chunks_.size(), 1, threads_, [&](size_t c, size_t, size_t) {
+            AsciiChunk& chunk = chunks_[c];
+            const char* p = bytes_.data() + chunk.begin;
+            const char* end = bytes_.data() + chunk.end;
+            size_t lines = 0;
+            while (const void* nl = std::memchr(p, '\n', size_t(end - p))) {
+                ++lines;
+                p = static_cast<const char*>(nl) + 1;
+            }
+            chunk.lines = lines + (p < end ? 1 : 0);  // a last line without its line end
+        });
+    }
+
+    bool readChunk(AsciiChunk& chunk) {
+        const char* p = bytes_.data() + chunk.begin;
+        const char* end = bytes_.data() + chunk.end;
+        size_t line = chunk.firstLine;
+        size_t element = std::upper_bound(firstLine_.begin(), firstLine_.end(), line,
+                                          [](size_t l, const auto& f) { return l < f.second; }) - firstLine_.begin();
+        while (p < end) {
+            const char* nl = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
+            const char* lineEnd = nl ? nl : end;
+            if (line < expectedLines_) {
+                while (element < firstLine_.size() && line >= firstLine_[element].second) ++element;
+                const auto& [e, first] = firstLine_[element - 1];
+                if (!readLine(p, lineEnd, *e, line - first, chunk)) return false;
+            } else {
+                for (const char* q = p; q < lineEnd; ++q)
+                    if (!isLineSpace(*q)) return false;  // data after the last element
+            }
+            ++line;
+            p = nl ? nl + 1 : end;
+        }
+        return true;
+    }
+
+    // One line as element i of e; false where it is not exactly that, read without complaint.
+    bool readLine(const char* p, const char* end, const Element& e, size_t i, AsciiChunk& chunk) {
+        const bool isVertex = &e == layout_.vertex, isFace = &e == layout_.face;
+        double v = 0;
+        for (size_t k = 0; k < e.properties.size(); ++k) {
+            const Property& prop = e.properties[k];
+            if (prop.list) {
+                if (!nextValue(p, end, prop.countType, v) || v < 0) return false;
+                const size_t n = size_t(v);
+                if (isFace && int(k) == layout_.indices) {
+                    if (n < 3) return false;
+                    chunk.faceSizes.push_back(uint32_t(n));
+                    chunk.triangles += n - 2;
+                    for (size_t j = 0; j < n; ++j) {
+                        if (!nextValue(p, end, prop.type, v) || !(v >= 0) || v >= double(vertexCount_)) return false;
+                        chunk.faceIndices.push_back(uint32_t(v));
+                    }
+                } else {
+                    for (size_t j = 0; j < n; ++j)
+                        if (!nextValue(p, end, prop.type, v)) return false;
+                }
+                continue;
+            }
+            if (!nextValue(p, end, prop.type, v)) return false;
+            if (!isVertex) continue;
+            for (int a = 0; a < 3; ++a) {
+                if (int(k) == layout_.position[a]) {
+                    if (!std::isfinite(float(v))) return false;
+                    positions_[i][a] = float(v);
+                }
+                if (int(k) == layout_.normal[a]) {
+                    if (!std::isfinite(float(v))) return false;
+                    normals_[i][a] = float(v);
+                }
+                if (int(k) == layout_.color[a]) {
+                    if (!std::isfinite(float(v))) return false;
+                    colors_[i][a] = colorChannel(v, prop.type);
+                }
+            }
+        }
+        for (; p < end; ++p)
+            if (!isLineSpace(*p)) return false;  // more values than the element has
+        return true;
+    }
+
+    // The faces' triangles (fans around their first vertex), as TriangleBuilder makes them.
+    Scene scene() {
+        Scene scene;
+        scene.materials.push_back(Material{});
+        if (layout_.hasColors)
+            parallelChunks(colors_.size(), 65536, threads_, [&](size_t begin, size_t end, size_t) {
+                for (size_t v = begin; v < end; ++v)
+                    for (int c = 0; c < 3; ++c) colors_[v][c] = decodeSrgb(colors_[v][c]);
+            });
+        size_t triangles = 0;
+        for (AsciiChunk& c : chunks_) {
+            c.firstTriangle = triangles;
+            triangles += c.triangles;
+        }
+        scene.triangles.resize(triangles);
+        scene.materialIds.resize(triangles);
+        if (layout_.hasNormals) scene.normals.resize(triangles);
+        if (layout_.hasColors) scene.colors.resize(triangles);
+        parallelChunks(chunks_.size(), 1, threads_, [&](size_t c, size_t, size_t) {
+            const AsciiChunk& chunk = chunks_[c];
+            size_t t = chunk.firstTriangle, at = 0;
+            for (const uint32_t n : chunk.faceSizes) {
+                const uint32_t* v = chunk.faceIndices.data() + at;
+                for (size_t j = 1; j + 1 < n; ++j, ++t) {
+                    const uint32_t a = v[0], b = v[j], d = v[j + 1];
+                    scene.triangles[t] = {positions_[a], positions_[b], positions_[d]};
+                    scene.materialIds[t] = 0;
+                    if (layout_.hasNormals) scene.normals[t] = {normals_[a], normals_[b], normals_[d]};
+                    if (layout_.hasColors) scene.colors[t] = {colors_[a], colors_[b], colors_[d]};
+                }
+                at += n;
+            }
+        });
+        return scene;
+    }
+
+    std::string_view bytes_;
+    const Header& header_;
+    const MeshLayout& layout_;
+    int threads_;
+    size_t chunkBytes_;
+    std::vector<AsciiChunk> chunks_;
+    std::vector<std::pair<const Element*, size_t>> firstLine_;  // elements with properties: their first line
+    size_t expectedLines_ = 0, vertexCount_ = 0;
+    LargeArray<glm::vec3> positions_, normals_, colors_;
+};
+
+Scene parsePlyBytes(std::string_view bytes, const std::string& name, const PlyReadOptions& options) {
     const Header header = readHeader(bytes, name);
     const MeshLayout layout = meshLayout(header, name);
-    Scene scene = meshScene(readData(bytes, header, layout, name), layout, name);
+    std::optional<Scene> fast;
+    if (header.format == Format::Ascii && options.parallel) fast = ParallelAsciiReader(bytes, header, layout, options).read();
+    Scene scene = fast ? std::move(*fast) : meshScene(readData(bytes, header, layout, name), layout, name);
     if (const std::string unused = unusedParts(header, layout); !unused.empty())
         warnAt(FileLoc{name}, "not used: " + unused);
     if (scene.triangles.empty())
@@ -580,8 +800,19 @@ Scene parsePly(const std::string& bytes, const std::string& name) {
     return scene;
 }
 
+}  // namespace
+
+bool looksLikePly(const std::string& head) {
+    return head.compare(0, 4, "ply\n") == 0 || head.compare(0, 5, "ply\r\n") == 0;
+}
+
+Scene parsePly(const std::string& bytes, const std::string& name, const PlyReadOptions& options) {
+    return parsePlyBytes(bytes, name, options);
+}
+
 Scene loadPly(const std::filesystem::path& path) {
-    return parsePly(readSceneFile(path), path.string());
+    const LargeArray<char> bytes = readSceneBytes(path);
+    return parsePlyBytes(std::string_view(bytes.data(), bytes.size()), path.string(), PlyReadOptions{});
 }
 
 }  // namespace gpurt

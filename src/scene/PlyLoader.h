@@ -6,6 +6,7 @@
 // trailing bytes), which gpurt must refuse with the file's name.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -28,8 +29,17 @@ namespace gpurt {
 // index out of range and non-finite positions, normals or colours.
 Scene loadPly(const std::filesystem::path& path);
 
+// How parsePly reads an ASCII file: on `threads` threads (0: all cores) in chunks of about
+// `chunkBytes` cut at line starts, or (parallel false) with the serial reader alone. The result,
+// and the error for a bad file, are the same either way (the tests cut at awkward places).
+struct PlyReadOptions {
+    bool parallel = true;
+    int threads = 0;
+    size_t chunkBytes = size_t(1) << 20;
+};
+
 // loadPly on bytes already in memory; `name` names the file in messages (the fuzz target).
-Scene parsePly(const std::string& bytes, const std::string& name);
+Scene parsePly(const std::string& bytes, const std::string& name, const PlyReadOptions& options = {});
 
 // Whether `bytes` start like a PLY file ("ply" and a line end).
 bool looksLikePly(const std::string& head);

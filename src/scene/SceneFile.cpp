@@ -1,11 +1,13 @@
 #include "scene/SceneFile.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "image/AtomicFile.h"
 #include "image/InputError.h"
@@ -28,15 +30,52 @@ void checkSceneFile(const std::filesystem::path& path) {
     if (!isReadableKind(status)) failAt(file, "is a device or socket, not a scene file");
 }
 
-std::string readSceneFile(const std::filesystem::path& path) {
+namespace {
+
+// Reads the whole of `path` into `out` (resized by `resize`): a regular file in one read of its
+// size, a pipe in pieces.
+template <typename Bytes, typename Resize>
+void readWhole(const std::filesystem::path& path, Bytes& out, const Resize& resize) {
     checkSceneFile(path);
     const FileLoc file{path.string()};
-    std::ifstream in(path, std::ios::binary);
-    if (!in) failAt(file, std::string("cannot read (") + std::strerror(errno) + ")");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) failAt(file, "cannot read");
-    return buffer.str();
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) failAt(file, std::string("cannot read (") + std::strerror(errno) + ")");
+    std::error_code ec;
+    size_t size = 0;  // a pipe's is unknown
+    if (std::filesystem::is_regular_file(path, ec)) {
+        const uintmax_t fileSize = std::filesystem::file_size(path, ec);
+        if (!ec) size = size_t(fileSize);
+    }
+    size_t got = 0;
+    if (size > 0) {
+        resize(out, size_t(size));
+        got = std::fread(out.data(), 1, size, f);
+    }
+    if (got == size) {  // a pipe (size 0) or a file that grew: read on in pieces
+        char piece[1 << 16];
+        for (size_t n; (n = std::fread(piece, 1, sizeof piece, f)) > 0; got += n) {
+            resize(out, got + n);
+            std::memcpy(out.data() + got, piece, n);
+        }
+    }
+    const bool bad = std::ferror(f);
+    std::fclose(f);
+    if (bad) failAt(file, "cannot read");
+    resize(out, got);
+}
+
+}  // namespace
+
+std::string readSceneFile(const std::filesystem::path& path) {
+    std::string bytes;
+    readWhole(path, bytes, [](std::string& s, size_t n) { s.resize(n); });
+    return bytes;
+}
+
+LargeArray<char> readSceneBytes(const std::filesystem::path& path) {
+    LargeArray<char> bytes;
+    readWhole(path, bytes, [](LargeArray<char>& s, size_t n) { s.resize(n); });
+    return bytes;
 }
 
 std::string printable(std::string_view text) {

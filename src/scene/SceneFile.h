@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "base/LargeArray.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
@@ -22,6 +23,10 @@ void checkSceneFile(const std::filesystem::path& path);
 // checkSceneFile, then the whole file (its real size sizes the buffer, never a field of it).
 // Throws InputError "FILE: cannot read (...)".
 std::string readSceneFile(const std::filesystem::path& path);
+
+// readSceneFile into an array of huge pages (LargeArray.h), for a big mesh's bytes: no zeroing
+// and no 4 KiB page faults before the file's own bytes are written.
+LargeArray<char> readSceneBytes(const std::filesystem::path& path);
 
 // Text or file bytes as one line of ASCII: other bytes as \xNN.
 std::string printable(std::string_view text);

@@ -14,7 +14,8 @@ inline constexpr float kDefaultCreaseDegrees = 60.0f;
 
 // creaseDegrees < 0 (--smooth off): every triangle faceted, the file's normals dropped too.
 // Otherwise fills scene.normals (one per triangle) where the file gave none. Normals that are
-// not finite or zero from the file are treated as none.
-void smoothNormals(Scene& scene, float creaseDegrees);
+// not finite or zero from the file are treated as none. Runs on `threads` threads (0: all cores);
+// the normals are the same whatever the count.
+void smoothNormals(Scene& scene, float creaseDegrees, int threads = 0);
 
 }  // namespace gpurt

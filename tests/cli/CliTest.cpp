@@ -134,7 +134,7 @@ TEST_F(Cli, StatsJsonHasTheContractFields) {
         if (name.find("race") != std::string::npos) traced += p["ms"].get<double>();
     }
     const auto& ph = j["phases_ms"];
-    for (const char* key : {"load", "grid", "context", "upload", "compile", "trace", "shade", "read_back", "other", "write"}) {
+    for (const char* key : {"load", "normals", "grid", "context", "upload", "compile", "trace", "shade", "read_back", "other", "write"}) {
         ASSERT_TRUE(ph.contains(key)) << key;
         EXPECT_GE(ph[key].get<double>(), 0.0) << key;
     }

@@ -1,5 +1,7 @@
 #include "raytrace/accel/Acceleration.h"
 
+#include <future>
+
 #include "raytrace/accel/SceneBox.h"
 #include "raytrace/accel/bvh/BvhCpu.h"
 #include "raytrace/accel/grid/GridCpu.h"
@@ -65,6 +67,13 @@ Acceleration chooseAcceleration(const Scene& scene, AccelChoice choice, std::opt
     Acceleration a;
     a.kind = choice == AccelChoice::Bvh ? AccelKind::Bvh : AccelKind::Grid;
     a.source = (choice == AccelChoice::Grid && grid) || (choice == AccelChoice::Bvh && bvh) ? "packed" : "built";
+    if (choice == AccelChoice::Auto && !grid && !bvh) {
+        // Both at once: the grid's serial steps (the counting sort's prefix sums, the skip
+        // distances) run beside the BVH's build rather than after it.
+        std::future<UniformGrid> built = std::async(std::launch::async, [&] { return buildGrid(scene, gridOptions); });
+        bvh = buildBvh(scene, BvhOptions{gridOptions.threads});
+        grid = built.get();
+    }
     if (choice != AccelChoice::Bvh && !grid) grid = buildGrid(scene, gridOptions);
     if (choice != AccelChoice::Grid && !bvh) bvh = buildBvh(scene, BvhOptions{gridOptions.threads});
     if (choice == AccelChoice::Auto) {

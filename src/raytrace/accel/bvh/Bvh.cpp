@@ -14,8 +14,8 @@
 #include <optional>
 
 #include "image/InputError.h"
-#include "raytrace/LargeArray.h"
-#include "raytrace/Parallel.h"
+#include "base/LargeArray.h"
+#include "base/Parallel.h"
 #include "raytrace/accel/SceneBox.h"
 
 namespace gpurt {

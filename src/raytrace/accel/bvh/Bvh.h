@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/LargeArray.h"
+#include "base/LargeArray.h"
 #include "scene/Scene.h"
 
 namespace gpurt {

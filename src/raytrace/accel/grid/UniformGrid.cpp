@@ -8,6 +8,7 @@
 #include "raytrace/accel/SceneBox.h"
 
 #include <algorithm>
+#include <atomic>
 #include <tuple>
 #include <cmath>
 #include <exception>
@@ -15,6 +16,7 @@
 #include <thread>
 #include <utility>
 
+#include "base/Parallel.h"
 #include "image/InputError.h"
 
 namespace gpurt {
@@ -156,20 +158,36 @@ References collectAllReferences(const Scene& scene, const UniformGrid& grid, int
     return references;
 }
 
-// cellStart and cellTriangles from the pairs: a counting sort by cell.
-void sortByCell(const References& references, UniformGrid& grid) {
+// cellStart and cellTriangles from the pairs: a counting sort by cell, on `threadOption` threads.
+// The counts are added up by all threads at once (atomic increments); the fill gives each thread a
+// range of cells with about as many references as the others, and each thread goes through all
+// the lists in order, writing the pairs of its cells: each cell's ids stay in the lists' order
+// (ascending), as in a serial pass.
+void sortByCell(const References& references, UniformGrid& grid, int threadOption) {
     size_t total = 0;
     for (const auto& list : references) total += list.size();
     if (total >= UINT32_MAX)
         throw InputError("scene: the grid would need more than 2^32 triangle references");
-    grid.cellStart.assign(grid.cells() + 1, 0);
-    for (const auto& list : references)
-        for (const auto& [cell, id] : list) ++grid.cellStart[cell + 1];
-    for (size_t c = 0; c < grid.cells(); ++c) grid.cellStart[c + 1] += grid.cellStart[c];
+    const size_t cells = grid.cells();
+    grid.cellStart.assign(cells + 1, 0);
+    uint32_t* start = grid.cellStart.data();
+    parallelChunks(references.size(), 1, threadOption, [&](size_t l, size_t, size_t) {
+        for (const auto& [cell, id] : references[l]) std::atomic_ref<uint32_t>(start[cell + 1]).fetch_add(1, std::memory_order_relaxed);
+    });
+    for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
     grid.cellTriangles.resize(total);
+    const size_t threads = std::clamp<size_t>(size_t(resolveThreads(threadOption)), 1, std::max<size_t>(1, total / 4096));
+    std::vector<size_t> firstCell(threads + 1, cells);
+    for (size_t t = 0; t < threads; ++t)  // the first cell whose references start at or after t/threads of them
+        firstCell[t] = size_t(std::lower_bound(start, start + cells, uint32_t(total * t / threads)) - start);
+    firstCell[0] = 0;
     std::vector<uint32_t> cursor(grid.cellStart.begin(), grid.cellStart.end() - 1);
-    for (const auto& list : references)
-        for (const auto& [cell, id] : list) grid.cellTriangles[cursor[cell]++] = id;
+    parallelChunks(threads, 1, int(threads), [&](size_t t, size_t, size_t) {
+        const uint32_t lo = uint32_t(firstCell[t]), hi = uint32_t(firstCell[t + 1]);
+        for (const auto& list : references)
+            for (const auto& [cell, id] : list)
+                if (cell >= lo && cell < hi) grid.cellTriangles[cursor[cell]++] = id;
+    });
 }
 
 }  // namespace
@@ -191,7 +209,7 @@ UniformGrid buildGrid(const Scene& scene, const GridOptions& options) {
     std::tie(grid.min, grid.max) = sceneBox(scene);
     grid.resolution = chooseResolution(scene, options, grid.max - grid.min);
     grid.cellSize = (grid.max - grid.min) / glm::vec3(grid.resolution);
-    sortByCell(collectAllReferences(scene, grid, options.threads), grid);
+    sortByCell(collectAllReferences(scene, grid, options.threads), grid, options.threads);
     if (options.skip) computeSkip(grid);
     return grid;
 }
@@ -207,26 +225,43 @@ void computeSkip(UniformGrid& grid) {
     skip.assign(grid.cells(), 255);
     for (size_t c = 0; c < grid.cells(); ++c)
         if (grid.cellStart[c + 1] != grid.cellStart[c]) skip[c] = 0;
-    // Forward pass: the 13 neighbours before a cell in raster order; backward: the 13 after.
+    // The 13 neighbours before a cell in raster order (after it, negated).
+    std::vector<glm::ivec3> before;
+    for (int dz = -1; dz <= 0; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (!(dz == 0 && (dy > 0 || (dy == 0 && dx >= 0)))) before.push_back({dx, dy, dz});
+    const ptrdiff_t row = r.x, slab = ptrdiff_t(r.x) * r.y;
+    // Forward pass: the 13 neighbours before a cell in raster order; backward: the 13 after. A
+    // cell away from the grid's faces reads its neighbours at fixed offsets, unchecked; the result
+    // is the checked loop's, in the same order.
     auto pass = [&](int sign) {
+        ptrdiff_t offsets[13];
+        for (size_t k = 0; k < before.size(); ++k)
+            offsets[k] = sign * (before[k].x + before[k].y * row + before[k].z * slab);
         const int z0 = sign > 0 ? 0 : r.z - 1, y0 = sign > 0 ? 0 : r.y - 1, x0 = sign > 0 ? 0 : r.x - 1;
         for (int z = z0; z >= 0 && z < r.z; z += sign)
-            for (int y = y0; y >= 0 && y < r.y; y += sign)
+            for (int y = y0; y >= 0 && y < r.y; y += sign) {
+                const bool innerRow = z > 0 && z < r.z - 1 && y > 0 && y < r.y - 1;
                 for (int x = x0; x >= 0 && x < r.x; x += sign) {
-                    uint8_t& d = skip[size_t(grid.cellIndex({x, y, z}))];
+                    const size_t index = size_t(grid.cellIndex({x, y, z}));
+                    uint8_t& d = skip[index];
                     if (d == 0) continue;
                     int best = d;
-                    for (int dz = -1; dz <= 0; ++dz)
-                        for (int dy = -1; dy <= 1; ++dy)
-                            for (int dx = -1; dx <= 1; ++dx) {
-                                if (dz == 0 && (dy > 0 || (dy == 0 && dx >= 0))) continue;
-                                const glm::ivec3 v(x + sign * dx, y + sign * dy, z + sign * dz);
-                                if (v.x < 0 || v.y < 0 || v.z < 0 || v.x >= r.x || v.y >= r.y || v.z >= r.z)
-                                    continue;
-                                best = std::min(best, skip[size_t(grid.cellIndex(v))] + 1);
-                            }
+                    if (innerRow && x > 0 && x < r.x - 1) {
+                        const uint8_t* at = skip.data() + index;
+                        for (const ptrdiff_t o : offsets) best = std::min(best, at[o] + 1);
+                    } else {
+                        for (const glm::ivec3& n : before) {
+                            const glm::ivec3 v(x + sign * n.x, y + sign * n.y, z + sign * n.z);
+                            if (v.x < 0 || v.y < 0 || v.z < 0 || v.x >= r.x || v.y >= r.y || v.z >= r.z)
+                                continue;
+                            best = std::min(best, skip[size_t(grid.cellIndex(v))] + 1);
+                        }
+                    }
                     d = uint8_t(std::min(best, 255));
                 }
+            }
     };
     pass(1);
     pass(-1);
