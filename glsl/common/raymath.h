@@ -148,7 +148,9 @@ GPURT_FN bool ddaAdvance(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
 // paper's double-precision recomputation when U, V or W is 0 (which removes such extra hits) is
 // left out, as Embree does: GLSL would pay for doubles on every lane, and it does not change
 // whether the test is watertight. GPURT_PRECISE keeps the kernels' compiler from fusing the
-// products into fused multiply-adds, which would break the exact negation.
+// products into fused multiply-adds or reordering them, which would break the exact negation, and
+// keeps every kernel that inlines the test (trace kernels, megakernels) computing the same hits as
+// C++, which compiles without contraction.
 //
 // The per-ray part, made once before a traversal: the axis kz of the largest |d| component, kx
 // and ky after it (swapped when d[kz] < 0, keeping the triangles' winding), and the shear.
@@ -172,7 +174,7 @@ GPURT_FN WatertightRay watertightRay(vec3 o, vec3 d) {
         r.kx = r.ky;
         r.ky = k;
     }
-    float sz = 1.0f / d[r.kz];
+    GPURT_PRECISE float sz = 1.0f / d[r.kz];
     r.shear = vec3(d[r.kx] * sz, d[r.ky] * sz, sz);
     return r;
 }
@@ -182,9 +184,9 @@ GPURT_FN WatertightRay watertightRay(vec3 o, vec3 d) {
 // degenerate triangles and triangles seen edge-on (U + V + W == 0) are never hit.
 GPURT_FN bool intersectTriangle(WatertightRay r, vec3 v0, vec3 v1, vec3 v2, GPURT_OUT(float) t,
                                 GPURT_OUT(float) u, GPURT_OUT(float) v) {
-    vec3 a = v0 - r.o;
-    vec3 b = v1 - r.o;
-    vec3 c = v2 - r.o;
+    GPURT_PRECISE vec3 a = v0 - r.o;
+    GPURT_PRECISE vec3 b = v1 - r.o;
+    GPURT_PRECISE vec3 c = v2 - r.o;
     GPURT_PRECISE float ax = a[r.kx] - r.shear.x * a[r.kz];
     GPURT_PRECISE float ay = a[r.ky] - r.shear.y * a[r.kz];
     GPURT_PRECISE float bx = b[r.kx] - r.shear.x * b[r.kz];
@@ -196,12 +198,15 @@ GPURT_FN bool intersectTriangle(WatertightRay r, vec3 v0, vec3 v1, vec3 v2, GPUR
     GPURT_PRECISE float ew = bx * ay - by * ax;  // W: the edge v0 v1, the weight of v2
     bool negative = eu < 0.0f || ev < 0.0f || ew < 0.0f;
     bool positive = eu > 0.0f || ev > 0.0f || ew > 0.0f;
-    float det = eu + ev + ew;
-    float tScaled = eu * a[r.kz] + ev * b[r.kz] + ew * c[r.kz];
-    float invDet = 1.0f / det;
-    t = tScaled * r.shear.z * invDet;
-    u = ev * invDet;
-    v = ew * invDet;
+    GPURT_PRECISE float det = eu + ev + ew;
+    GPURT_PRECISE float tScaled = eu * a[r.kz] + ev * b[r.kz] + ew * c[r.kz];
+    GPURT_PRECISE float invDet = 1.0f / det;
+    GPURT_PRECISE float tHit = tScaled * r.shear.z * invDet;
+    GPURT_PRECISE float uHit = ev * invDet;
+    GPURT_PRECISE float vHit = ew * invDet;
+    t = tHit;
+    u = uHit;
+    v = vHit;
     return det != 0.0f && !(negative && positive);
 }
 
