@@ -4,7 +4,7 @@
 //   GPURT_BVH_PARAMS    leading parameters of bvhTrace (empty in GLSL: the samplers are uniforms)
 //   GPURT_BVH_NODE(i)   texel i (uvec4) of the nodes: two a node, one per child (bvhChildTexel)
 //   GPURT_BVH_TRI(i)    texel i (vec4) of the leaf-ordered triangle list: three an entry, (v0, id),
-//                       (e1, coverage flags), (e2, 0), as the grid's cell lists
+//                       (v1, coverage flags), (v2, 0), as the grid's cell lists
 //   GPURT_BVH_BOX_MIN   the scene box's corner and the size of one quantisation step on each axis
 //   GPURT_BVH_BOX_STEP  (vec3 each): a child's box is stored in 16-bit steps of the scene box
 //   GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2)  whether a candidate hit of triangle id at (u, v)
@@ -45,6 +45,7 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
                       GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV,
                       GPURT_OUT(int) steps, GPURT_OUT(int) tests, GPURT_OUT(int) state) {
     vec3 invD = 1.0f / mix(d, vec3(1e-30f), equal(d, vec3(0.0f)));
+    WatertightRay ray = watertightRay(o, d);  // the triangle test's per-ray part
     int stack[GPURT_BVH_STACK];
     int top = 0;
     int node = 0;
@@ -88,14 +89,15 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
             int k = i < count0 ? first0 + i : first1 + (i - count0);
             tests += 1;
             vec4 tri = GPURT_BVH_TRI(3 * k);
-            vec4 e1Flags = GPURT_BVH_TRI(3 * k + 1);
-            vec3 e1 = vec3(e1Flags);
-            vec3 e2 = vec3(GPURT_BVH_TRI(3 * k + 2));
+            vec4 v1Flags = GPURT_BVH_TRI(3 * k + 1);
+            vec3 v0 = vec3(tri);
+            vec3 v1 = vec3(v1Flags);
+            vec3 v2 = vec3(GPURT_BVH_TRI(3 * k + 2));
             float t;
             float u;
             float v;
-            if (intersectTriangle(o, d, vec3(tri), e1, e2, t, u, v) && t > 0.0f && t < bestT &&
-                GPURT_BVH_COVERED(int(tri.w), e1Flags.w, u, v, d, e1, e2)) {
+            if (intersectTriangle(ray, v0, v1, v2, t, u, v) && t > 0.0f && t < bestT &&
+                GPURT_BVH_COVERED(int(tri.w), v1Flags.w, u, v, d, v1 - v0, v2 - v0)) {
                 bestT = t;
                 bestU = u;
                 bestV = v;

@@ -9,10 +9,12 @@
 #define GPURT_FN inline
 #define GPURT_OUT(T) T&
 #define GPURT_INOUT(T) T&
+#define GPURT_PRECISE
 #else
 #define GPURT_FN
 #define GPURT_OUT(T) out T
 #define GPURT_INOUT(T) inout T
+#define GPURT_PRECISE precise
 #endif
 
 // Ray states (Christen 2005, table 5.2).
@@ -132,25 +134,85 @@ GPURT_FN bool ddaAdvance(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
     return true;
 }
 
-// Moller-Trumbore ray/triangle test (Moller & Trumbore 1997) with precomputed edges
-// e1 = v1 - v0, e2 = v2 - v0. Returns true with t, u, v on a hit (edges inclusive, any facing);
-// degenerate triangles (det == 0) are never hit.
-GPURT_FN bool intersectTriangle(vec3 o, vec3 d, vec3 v0, vec3 e1, vec3 e2, GPURT_OUT(float) t,
+// The watertight ray/triangle test (Woop, Benthin and Wald 2013, "Watertight Ray/Triangle
+// Intersection", as Embree and pbrt-v4 use it). The triangle is moved into the ray's frame: the
+// ray's origin to 0, its direction sheared onto +z (after the axes are permuted so that z is the
+// largest component of |d|), so that the test is 2D: the signs of the three edge functions
+// U, V, W at the origin. Each vertex's sheared coordinates depend on that vertex and the ray only,
+// and a shared edge's function in the two triangles is the same two products subtracted the other
+// way round (an exact negation), so a ray through a shared edge or vertex of a closed mesh meets
+// at least one of its triangles: no ray passes between them (Moller-Trumbore, with edges stored
+// as rounded differences, lets a few through). Rounding keeps each product's order
+// (monotonic), so a computed edge function never has the wrong sign, only sometimes 0; 0 counts
+// as on the edge (inclusive), which can add a hit next to an edge but never loses one. The
+// paper's double-precision recomputation when U, V or W is 0 (which removes such extra hits) is
+// left out, as Embree does: GLSL would pay for doubles on every lane, and it does not change
+// whether the test is watertight. GPURT_PRECISE keeps the kernels' compiler from fusing the
+// products into fused multiply-adds or reordering them, which would break the exact negation, and
+// keeps every kernel that inlines the test (trace kernels, megakernels) computing the same hits as
+// C++, which compiles without contraction.
+//
+// The per-ray part, made once before a traversal: the axis kz of the largest |d| component, kx
+// and ky after it (swapped when d[kz] < 0, keeping the triangles' winding), and the shear.
+struct WatertightRay {
+    vec3 o;      // the ray's origin
+    int kx;      // the axes of the ray's frame: z = kz is the largest component of |d|
+    int ky;
+    int kz;
+    vec3 shear;  // (d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz])
+};
+
+GPURT_FN WatertightRay watertightRay(vec3 o, vec3 d) {
+    WatertightRay r;
+    r.o = o;
+    vec3 a = abs(d);
+    r.kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+    r.kx = r.kz == 2 ? 0 : r.kz + 1;
+    r.ky = r.kx == 2 ? 0 : r.kx + 1;
+    if (d[r.kz] < 0.0f) {
+        int k = r.kx;
+        r.kx = r.ky;
+        r.ky = k;
+    }
+    GPURT_PRECISE float sz = 1.0f / d[r.kz];
+    r.shear = vec3(d[r.kx] * sz, d[r.ky] * sz, sz);
+    return r;
+}
+
+// The test of the ray r (watertightRay) against the triangle v0, v1, v2: true with t (along the
+// ray's d), u (the weight of v1) and v (of v2) on a hit (edges inclusive, any facing);
+// degenerate triangles and triangles seen edge-on (U + V + W == 0) are never hit.
+GPURT_FN bool intersectTriangle(WatertightRay r, vec3 v0, vec3 v1, vec3 v2, GPURT_OUT(float) t,
                                 GPURT_OUT(float) u, GPURT_OUT(float) v) {
-    vec3 p = cross(d, e2);
-    float det = dot(e1, p);
-    float invDet = 1.0f / det;
-    vec3 s = o - v0;
-    u = dot(s, p) * invDet;
-    vec3 q = cross(s, e1);
-    v = dot(d, q) * invDet;
-    t = dot(e2, q) * invDet;
-    return det != 0.0f && u >= 0.0f && u <= 1.0f && v >= 0.0f && u + v <= 1.0f;
+    GPURT_PRECISE vec3 a = v0 - r.o;
+    GPURT_PRECISE vec3 b = v1 - r.o;
+    GPURT_PRECISE vec3 c = v2 - r.o;
+    GPURT_PRECISE float ax = a[r.kx] - r.shear.x * a[r.kz];
+    GPURT_PRECISE float ay = a[r.ky] - r.shear.y * a[r.kz];
+    GPURT_PRECISE float bx = b[r.kx] - r.shear.x * b[r.kz];
+    GPURT_PRECISE float by = b[r.ky] - r.shear.y * b[r.kz];
+    GPURT_PRECISE float cx = c[r.kx] - r.shear.x * c[r.kz];
+    GPURT_PRECISE float cy = c[r.ky] - r.shear.y * c[r.kz];
+    GPURT_PRECISE float eu = cx * by - cy * bx;  // U: the edge v1 v2, the weight of v0
+    GPURT_PRECISE float ev = ax * cy - ay * cx;  // V: the edge v2 v0, the weight of v1
+    GPURT_PRECISE float ew = bx * ay - by * ax;  // W: the edge v0 v1, the weight of v2
+    bool negative = eu < 0.0f || ev < 0.0f || ew < 0.0f;
+    bool positive = eu > 0.0f || ev > 0.0f || ew > 0.0f;
+    GPURT_PRECISE float det = eu + ev + ew;
+    GPURT_PRECISE float tScaled = eu * a[r.kz] + ev * b[r.kz] + ew * c[r.kz];
+    GPURT_PRECISE float invDet = 1.0f / det;
+    GPURT_PRECISE float tHit = tScaled * r.shear.z * invDet;
+    GPURT_PRECISE float uHit = ev * invDet;
+    GPURT_PRECISE float vHit = ew * invDet;
+    t = tHit;
+    u = uHit;
+    v = vHit;
+    return det != 0.0f && !(negative && positive);
 }
 
 // Whether a ray of direction d meets the back face of the triangle of edges e1 = v1 - v0,
 // e2 = v2 - v0: the front is the side from which v0, v1, v2 run counter-clockwise (glTF), i.e.
-// the side cross(e1, e2) points to. (intersectTriangle's det is -dot(d, cross(e1, e2)).)
+// the side cross(e1, e2) points to.
 GPURT_FN bool backFacing(vec3 d, vec3 e1, vec3 e2) {
     return dot(d, cross(e1, e2)) > 0.0f;
 }

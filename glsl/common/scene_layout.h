@@ -10,9 +10,11 @@
 // 1D (texel c here, 3k + i for list entry k); the rows are the layout of `gpurt pack --dump`.
 #define GPURT_INDEX_WIDTH 4096
 // Grid element lists ("cell triangles"): RGBA32F, the triangles of every cell's list in list
-// order, three texels each as in the triangle texture but with w = the triangle id:
-// (v0.xyz, id), (e1, coverage flags: common/alpha.h GPURT_COVER_*), (e2, 0); this many references
-// a row (3 x 4096 texels).
+// order, three texels each: the vertices themselves, with w = the triangle id and its coverage
+// flags: (v0.xyz, id), (v1.xyz, coverage flags: common/alpha.h GPURT_COVER_*), (v2.xyz, 0). The
+// vertices, not edges rounded to floats: the watertight triangle test (common/raymath.h) needs a
+// shared edge's vertices to be the same numbers in both of its triangles. This many references a
+// row (3 x 4096 texels).
 #define GPURT_REFS_PER_ROW 4096
 // BVH nodes (accel/bvh): RGBA32UI buffer texture, two texels a node (common/bvh.h), this many
 // nodes a row in `gpurt pack --dump`; its leaf-ordered triangle list is laid out as the cell lists.

@@ -9,7 +9,7 @@ namespace gpurt {
 namespace {
 
 // Scenes whose largest coordinate is within these bounds render as they are. Above 2^28 the
-// cubic numerator of Moller-Trumbore's t can overflow for rays from a camera a few scene sizes
+// cubic numerator of the triangle test's t can overflow for rays from a camera a few scene sizes
 // away; below 2^-28 the quadratic determinant of typical triangles approaches the denormals,
 // which llvmpipe flushes to zero. (Tiny triangles in a scene of ordinary size are not a reason
 // to rescale: it would push the rest of the scene, lights included, towards overflow; their

@@ -1,5 +1,5 @@
 // Rendering scenes far from unit size. Both backends trace in float32, and some of their values
-// grow with a power of the coordinates: Moller-Trumbore's t is a ratio of cubic terms, the
+// grow with a power of the coordinates: the triangle test's t is a ratio of cubic terms, the
 // normal's squared length is quartic. A scene at 1e10 loses its normals to overflow, one at 1e15
 // or 1e-15 all its hits, and the default camera of one at 1e20 cannot even be set up.
 // Multiplying every position by a power of two is exact, and so is every float operation of the

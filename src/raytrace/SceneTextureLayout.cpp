@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/glm.hpp>
 
@@ -57,12 +58,12 @@ TextureTexels voxelIndexTexels(const UniformGrid& grid) {
 }
 
 namespace {
-// Three texels for triangle t at `out`: (v0, w), (e1, w1), (e2, 0), with the same float edges as
-// the CPU backend (e = v - v0, rounded once).
-void writeTriangle(const Triangle& tri, float w, float w1, float* out) {
+// Three texels for triangle t at `out` (the triangle texture, for shading): (v0, w), (e1, 0),
+// (e2, 0), with the same float edges as the CPU backend (e = v - v0, rounded once).
+void writeTriangle(const Triangle& tri, float w, float* out) {
     const vec3 e1 = tri.v1 - tri.v0;
     const vec3 e2 = tri.v2 - tri.v0;
-    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, w1), vec4(e2, 0.0f)};
+    const vec4 texel[3] = {vec4(tri.v0, w), vec4(e1, 0.0f), vec4(e2, 0.0f)};
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 4; ++c) out[k * 4 + c] = texel[k][c];
 }
@@ -73,7 +74,9 @@ static float coverageFlags(const Material& m) {
     return float((m.cullsBackFaces() ? GPURT_COVER_CULL : 0) | (m.hasAlpha() ? GPURT_COVER_ALPHA : 0));
 }
 
-// An accelerator's triangle list: triangle ids[k] at entry k, (v0, id), (e1, coverage flags), (e2, 0).
+// An accelerator's triangle list: triangle ids[k] at entry k, (v0, id), (v1, coverage flags), (v2, 0):
+// the vertices as the scene holds them, so that a shared edge is the same numbers in both of its
+// triangles (the watertight triangle test, common/raymath.h).
 static TextureTexels listTriangleTexels(const Scene& scene, const std::vector<uint32_t>& ids, const char* name) {
     const size_t refs = ids.size();
     TextureTexels list = emptyTexture(name, 3 * GPURT_REFS_PER_ROW, textureRowsFor(refs, GPURT_REFS_PER_ROW), 4, true);
@@ -81,7 +84,10 @@ static TextureTexels listTriangleTexels(const Scene& scene, const std::vector<ui
     for (size_t m = 0; m < flags.size(); ++m) flags[m] = coverageFlags(scene.materials[m]);
     for (size_t k = 0; k < refs; ++k) {
         const uint32_t id = ids[k];
-        writeTriangle(scene.triangles[id], float(id), flags[scene.materialIds[id]], &list.floats[k * 12]);
+        const Triangle& tri = scene.triangles[id];
+        const glm::vec4 texel[3] = {glm::vec4(tri.v0, float(id)), glm::vec4(tri.v1, flags[scene.materialIds[id]]),
+                                    glm::vec4(tri.v2, 0.0f)};
+        std::memcpy(&list.floats[k * 12], texel, sizeof(texel));
     }
     return list;
 }
@@ -144,7 +150,7 @@ TextureTexels triangleTexels(const Scene& scene) {
     TextureTexels triangles = emptyTexture("triangles", 3 * GPURT_TRIANGLES_PER_ROW,
                                            textureRowsFor(n, GPURT_TRIANGLES_PER_ROW), 4, true);
     for (size_t t = 0; t < n; ++t)  // rows hold whole triangles: texel 3t is row-major too
-        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), 0.0f, &triangles.floats[t * 12]);
+        writeTriangle(scene.triangles[t], float(scene.materialIds[t]), &triangles.floats[t * 12]);
     return triangles;
 }
 

@@ -44,7 +44,7 @@ size_t textureRowsFor(size_t count, size_t perRow);
 // empty cell.
 TextureTexels voxelIndexTexels(const UniformGrid& grid);
 // RGBA32F, the cells' lists in order with each triangle in place of its id, three texels an
-// entry: (v0, triangle id), (v1 - v0, 0), (v2 - v0, 0); GPURT_REFS_PER_ROW entries a row.
+// entry: (v0, triangle id), (v1, coverage flags), (v2, 0); GPURT_REFS_PER_ROW entries a row.
 TextureTexels cellTriangleTexels(const Scene& scene, const UniformGrid& grid);
 // RGBA32UI, the BVH's nodes, two texels each, one per child: its box in 16-bit steps of
 // Bvh::quantisation, rounded outwards, and its reference (glsl/common/bvh.h bvhChildBox);

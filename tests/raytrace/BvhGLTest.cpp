@@ -56,12 +56,15 @@ TEST_F(BvhGL, BothBackendsFindTheSameHitsAndPictures) {
         const Acceleration bvh = accelerate(v, AccelChoice::Bvh);
         const RenderOutput gl = render(v, bvh, Backend::Gl, Integrator::Whitted, 1);
         const RenderOutput cpu = render(v, bvh, Backend::Cpu, Integrator::Whitted, 1);
-        // As the grid's backends: equal but where the kernels' float rounding of a triangle test
-        // differs from C++'s on a ray through an edge (a few in a million, the performance issue's
-        // watertight test).
+        // As the grid's backends: equal but where the kernels' float rounding differs from C++'s
+        // on a ray through an edge.
         EXPECT_GE(double(samePrims(gl, cpu)) / double(gl.prim.size()), 0.999) << path;
         EXPECT_EQ(gl.stats.overflowRays, 0u) << path;
-        EXPECT_EQ(gl.stats.shadowRays, cpu.stats.shadowRays) << path;
+        // The shadow rays within expectSamePictures's 0.1%, not equal: the kernels' t differs from
+        // C++'s in the last bits on about a tenth of the pixels (with Moller-Trumbore as with the
+        // watertight test: room.json at 96x96, 885 and 855 of 9216 depths), so a shadow ray whose
+        // light lies almost in the surface's plane can exist on one backend only (cornell_blocks:
+        // 6051 and 6052 with the watertight test).
         expectSamePictures(gl, cpu, path);
     }
 }

@@ -141,10 +141,11 @@ TEST(BvhTest, CheckRefusesDamagedTrees) {
 std::pair<float, int> bruteForce(const Scene& scene, glm::vec3 o, glm::vec3 d, float tLimit) {
     float best = tLimit;
     int id = -1;
+    const raymath::WatertightRay ray = raymath::watertightRay(o, d);
     for (size_t k = 0; k < scene.triangles.size(); ++k) {
         const Triangle& tr = scene.triangles[k];
         float t, u, v;
-        if (raymath::intersectTriangle(o, d, tr.v0, tr.v1 - tr.v0, tr.v2 - tr.v0, t, u, v) && t > 0.0f && t < best) {
+        if (raymath::intersectTriangle(ray, tr.v0, tr.v1, tr.v2, t, u, v) && t > 0.0f && t < best) {
             best = t;
             id = int(k);
         }

@@ -73,11 +73,11 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
         }
         const uint32_t id = grid.cellTriangles[k];
         const Triangle& tri = scene.triangles[id];
-        const vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+        // The vertices themselves (the watertight test needs a shared edge's vertices exactly).
         // The second texel's w: the coverage flags, culling 1 + alpha 2 (material id % 3: 0, 1, 3).
         const float flags[3] = {0.0f, 1.0f, 3.0f};
-        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(id), e1.x, e1.y, e1.z, flags[id % 3],
-                                    e2.x, e2.y, e2.z, 0.0f};
+        const float expected[12] = {tri.v0.x, tri.v0.y, tri.v0.z, float(id),    tri.v1.x, tri.v1.y,
+                                    tri.v1.z, flags[id % 3],      tri.v2.x, tri.v2.y, tri.v2.z, 0.0f};
         for (int c = 0; c < 12; ++c) ASSERT_EQ(texel[c], expected[c]) << "entry " << k << " value " << c;
     }
     // The BVH's leaves carry the same entries in leaf order.

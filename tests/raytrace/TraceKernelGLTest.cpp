@@ -1,5 +1,5 @@
 // The GL tracer's kernels one by one against the CPU reference (the contract's camera, the
-// raymath.h DDA and Moller-Trumbore, brute force over all triangles), on random inputs.
+// raymath.h DDA and triangle test, brute force over all triangles), on random inputs.
 #include "../common/GLTest.h"
 
 #include "raytrace/Camera.h"
@@ -244,7 +244,7 @@ TEST_F(TraceKernels, TraversalVisitsTheSameCellSequenceAsTheCpuDda) {
     EXPECT_EQ(mismatches, 0u) << "of " << entering << " rays entering the grid";
 }
 
-TEST_F(TraceKernels, IntersectorFindsTheClosestMollerTrumboreHit) {
+TEST_F(TraceKernels, IntersectorFindsTheClosestWatertightHit) {
     // One cell holding every triangle: one intersector pass tests them all.
     const Scene scene = randomTriangles(300, 3);
     GridOptions options;
@@ -272,10 +272,11 @@ TEST_F(TraceKernels, IntersectorFindsTheClosestMollerTrumboreHit) {
         float best = 1e30f;
         int bestId = -1;
         const bool enters = dirs[k * 4 + 3] != kMissedBox;
+        const raymath::WatertightRay ray = raymath::watertightRay(rays[k].first, rays[k].second);
         for (size_t t = 0; enters && t < scene.triangles.size(); ++t) {
             const Triangle& tri = scene.triangles[t];
             float tt, u, v;
-            if (raymath::intersectTriangle(rays[k].first, rays[k].second, tri.v0, tri.v1 - tri.v0, tri.v2 - tri.v0, tt, u, v) &&
+            if (raymath::intersectTriangle(ray, tri.v0, tri.v1, tri.v2, tt, u, v) &&
                 tt > 0.0f && tt < best) {
                 best = tt;
                 bestId = int(t);

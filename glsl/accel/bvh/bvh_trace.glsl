@@ -17,7 +17,7 @@ uint rayCoverageKey = 0u;
 uniform usamplerBuffer bvhNodes;     // two texels a node, one per child (common/bvh.h)
 uniform vec3 bvhBoxMin;              // the nodes' quantisation frame: corner and step
 uniform vec3 bvhBoxStep;
-uniform samplerBuffer bvhTriangles;  // the leaves' triangles: v0 + id, e1, e2
+uniform samplerBuffer bvhTriangles;  // the leaves' triangles: v0 + id, v1 + coverage flags, v2
 uniform int maxNodeSteps;            // more nodes than a ray can visit: RAY_OVERFLOW
 
 #define GPURT_BVH_PARAMS

@@ -3,7 +3,7 @@
 #include "scene/pixel.glsl"
 
 uniform usamplerBuffer voxelIndex;   // (list start, count) per cell
-uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, e1, e2
+uniform samplerBuffer cellTriangles; // the cells' lists: v0 + id, v1 + coverage flags, v2
 
 uniform vec3 gridMin;
 uniform vec3 gridMax;
@@ -20,15 +20,15 @@ uvec2 cellRange(ivec3 v) {
     return texelFetch(voxelIndex, int(c)).xy;
 }
 
-// Triangle `k` of the concatenated cell lists: its vertex 0, edges and id.
-int fetchListTriangle(uint k, out vec3 v0, out vec3 e1, out vec3 e2, out float flags) {
+// Triangle `k` of the concatenated cell lists: its vertices, coverage flags and id.
+int fetchListTriangle(uint k, out vec3 v0, out vec3 v1, out vec3 v2, out float flags) {
     int at = int(3u * k);
     vec4 a = texelFetch(cellTriangles, at);
     v0 = a.xyz;
     vec4 b = texelFetch(cellTriangles, at + 1);
-    e1 = b.xyz;
+    v1 = b.xyz;
     flags = b.w;
-    e2 = texelFetch(cellTriangles, at + 2).xyz;
+    v2 = texelFetch(cellTriangles, at + 2).xyz;
     return int(a.w);
 }
 

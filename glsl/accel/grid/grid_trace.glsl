@@ -16,18 +16,18 @@ uint rayCoverageKey = 0u;
 #define GRID_COVERED(id, flags, u, v, d, e1, e2) true
 #endif
 
-// The triangles of the cell of list range `range` (exit parameter tExit) against o + t d: the
-// closest hit in the cell nearer than bestT replaces (bestT, bestId, bestU, bestV); with anyHit
-// the first hit nearer than bestT.
-void gridCellHits(uvec2 range, vec3 o, vec3 d, float tExit, bool anyHit, inout float bestT, inout int bestId,
-                  inout float bestU, inout float bestV) {
+// The triangles of the cell of list range `range` (exit parameter tExit) against the ray o + t d
+// (ray: its watertightRay): the closest hit in the cell nearer than bestT replaces (bestT, bestId,
+// bestU, bestV); with anyHit the first hit nearer than bestT.
+void gridCellHits(uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit, inout float bestT,
+                  inout int bestId, inout float bestU, inout float bestV) {
     for (uint k = range.x; k < range.x + range.y; ++k) {
-        vec3 v0, e1, e2;
+        vec3 v0, v1, v2;
         float flags;
-        int id = fetchListTriangle(k, v0, e1, e2, flags);
+        int id = fetchListTriangle(k, v0, v1, v2, flags);
         float t, u, w;
-        if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            (anyHit || t <= tExit + cellTolerance) && GRID_COVERED(id, flags, u, w, d, e1, e2)) {
+        if (intersectTriangle(ray, v0, v1, v2, t, u, w) && t > 0.0f && t < bestT &&
+            (anyHit || t <= tExit + cellTolerance) && GRID_COVERED(id, flags, u, w, d, v1 - v0, v2 - v0)) {
             bestT = t;
             bestId = id;
             bestU = u;
@@ -52,6 +52,7 @@ int gridTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float bestT, out fl
     ivec3 cell;
     vec3 tMax;
     ddaSetup(o, d, tEnter, gridMin, cellSize, gridRes, cell, tMax);
+    WatertightRay ray = watertightRay(o, d);
     int bestId = -1;
     while (true) {
         if (steps >= maxCellSteps) {
@@ -61,7 +62,7 @@ int gridTrace(vec3 o, vec3 d, float tLimit, bool anyHit, out float bestT, out fl
         steps += 1;  // this cell is visited
         float tExit = ddaCellExit(tMax);
         uvec2 range = cellRange(cell);
-        gridCellHits(range, o, d, tExit, anyHit, bestT, bestId, bestU, bestV);
+        gridCellHits(range, ray, d, tExit, anyHit, bestT, bestId, bestU, bestV);
         int skip = range.y == 0u ? int(range.x) : 1;  // an empty cell's skip distance
         if (bestId >= 0 || tExit > tLimit || !ddaAdvance(o, d, gridMin, cellSize, gridRes, skip, cell, tMax)) break;
     }

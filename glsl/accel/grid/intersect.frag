@@ -1,4 +1,5 @@
-// Intersector (Purcell et al. 2002, 4.3; Christen 2005, 5.4.4): Moller-Trumbore against every
+// Intersector (Purcell et al. 2002, 4.3; Christen 2005, 5.4.4): the watertight triangle test
+// (common/raymath.h intersectTriangle) against every
 // triangle of the WAIT ray's cell. A hit counts only inside the current cell (up to its exit
 // parameter plus a small tolerance): a triangle that spans several cells must not end the ray
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
@@ -38,13 +39,14 @@ void main() {
     float bestT = tLimit;
     int bestId = -1;
     float bestU = 0.0f, bestV = 0.0f;
+    WatertightRay ray = watertightRay(o, d);
     for (uint i = range.x; i < range.x + range.y; ++i) {
-        vec3 v0, e1, e2;
+        vec3 v0, v1, v2;
         float flags;
-        int id = fetchListTriangle(i, v0, e1, e2, flags);
+        int id = fetchListTriangle(i, v0, v1, v2, flags);
         float t, u, w;
-        if (intersectTriangle(o, d, v0, e1, e2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance && GRID_COVERED(id, flags, u, w, d, e1, e2)) {
+        if (intersectTriangle(ray, v0, v1, v2, t, u, w) && t > 0.0f && t < bestT &&
+            t <= tExit + cellTolerance && GRID_COVERED(id, flags, u, w, d, v1 - v0, v2 - v0)) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -80,6 +80,7 @@ void main() {
     float bestT = tLimit;
     int bestId = -1;
     float bestU = 0.0f, bestV = 0.0f;
+    WatertightRay ray = watertightRay(o, d);
     for (int i = 0; i < TRACE_STEPS; ++i) {
         if (steps >= maxCellSteps) {
             state = RAY_OVERFLOW;
@@ -88,7 +89,7 @@ void main() {
         steps += 1;  // this cell is visited
         float tExit = ddaCellExit(tMax);
         uvec2 range = cellRange(cell);
-        gridCellHits(range, o, d, tExit, TRACE_ANY_HIT, bestT, bestId, bestU, bestV);
+        gridCellHits(range, ray, d, tExit, TRACE_ANY_HIT, bestT, bestId, bestU, bestV);
         int skip = range.y == 0u ? int(range.x) : 1;  // an empty cell's skip distance
         if (bestId >= 0 || tExit > tLimit || !ddaAdvance(o, d, gridMin, cellSize, gridRes, skip, cell, tMax)) {
             state = RAY_DEAD;

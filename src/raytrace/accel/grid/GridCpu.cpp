@@ -18,7 +18,7 @@ GridCpu::GridCpu(const Scene& scene, const UniformGrid& grid)
     : grid_(grid), hitTolerance_(grid.hitTolerance()), maxSteps_(grid.maxCellSteps()),
       coverage_(AlphaCoverage::of(scene)) {
     triangles_.reserve(scene.triangles.size());
-    for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
+    for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1, t.v2});
 }
 
 // glsl/accel/grid/trace.frag is this function as one kernel.
@@ -34,6 +34,7 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t cove
     glm::ivec3 voxel;
     glm::vec3 tMax;
     ddaSetup(o, d, tEnter, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax);
+    const WatertightRay ray = watertightRay(o, d);  // the triangle test's per-ray part
     hit.state = RAY_ACTIVE;
 
     while (true) {
@@ -54,9 +55,9 @@ TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t cove
                 hit.tests += 1;
                 const PreparedTriangle& tri = triangles_[id];
                 float t, u, v;
-                if (!intersectTriangle(o, d, tri.v0, tri.e1, tri.e2, t, u, v)) continue;
+                if (!intersectTriangle(ray, tri.v0, tri.v1, tri.v2, t, u, v)) continue;
                 if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t &&
-                    hitCovered(coverage_.get(), int(id), u, v, coverageKey, d, tri.e1, tri.e2)) {
+                    hitCovered(coverage_.get(), int(id), u, v, coverageKey, d, tri.v1 - tri.v0, tri.v2 - tri.v0)) {
                     hit.t = t;
                     hit.prim = static_cast<int>(id);
                     hit.u = u;

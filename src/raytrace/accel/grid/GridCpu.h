@@ -29,7 +29,7 @@ class GridCpu final : public CpuAccelerator {
     TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const;
 
     struct PreparedTriangle {
-        glm::vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0 in float, as the GL side stores them
+        glm::vec3 v0, v1, v2;  // the vertices, as the GL side's cell lists hold them
     };
 
     const UniformGrid& grid_;
