@@ -99,15 +99,7 @@ bool lightVisible(vec3 p, vec3 n, vec3 position) {
 // The emitter point of the pixel's sample in dimension GPURT_DIM_EMITTER + depth, q on triangle
 // `id`, when it is in front of p and unblocked (shadowgen.frag EMITTER; CpuTracer::emitterVisible).
 bool emitterVisible(uvec2 pixel, int depth, vec3 p, vec3 n, out vec3 q, out int id) {
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + uint(depth)));
-    int k = pickEmitter(u.x);
-    vec2 entry = texelFetch(emitters, k).xy;
-    float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;
-    vec3 v0, e1, e2;
-    int material;
-    id = int(entry.y);
-    fetchTriangle(id, v0, e1, e2, material);
-    q = emitterPoint(v0, e1, e2, vec2(remapToUnit(u.x, lower, entry.x), u.y));
+    q = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, uint(depth), id);
     if (!lightInFront(p, n, q)) return false;
     vec3 o, d;
     float limit;

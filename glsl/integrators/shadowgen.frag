@@ -70,16 +70,10 @@ void main() {
 #else
     uvec2 pixel = imagePixel();
 #endif
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + bounce));
-    int k = pickEmitter(u.x);
-    vec2 entry = texelFetch(emitters, k).xy;
-    float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;
-    vec3 v0, e1, e2;
-    int material;
-    fetchTriangle(int(entry.y), v0, e1, e2, material);
-    vec3 lightPosition = emitterPoint(v0, e1, e2, vec2(remapToUnit(u.x, lower, entry.x), u.y));
+    int id;
+    vec3 lightPosition = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, bounce, id);
     if (!lightInFront(s.xyz, n, lightPosition)) return;
-    lightSample = vec4(lightPosition, entry.y);
+    lightSample = vec4(lightPosition, float(id));
     vec3 o, d;
     float tLimit;
     emitterShadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);

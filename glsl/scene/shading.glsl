@@ -7,6 +7,22 @@
 
 uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
 
+#include "../common/sampling.h"
+// The emitters' point of a pixel's sample (s of n, seed) in dimension GPURT_DIM_EMITTER + depth,
+// uniform by area (the emitter by a binary search of the area table, EmitterTable::pick): q on
+// triangle `id` (CpuTracer::emitterVisible).
+vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint depth, out int id) {
+    vec2 u = cmjSample(s, n, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + depth));
+    int k = pickEmitter(u.x);
+    vec2 entry = texelFetch(emitters, k).xy;
+    float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;
+    vec3 v0, e1, e2;
+    int material;
+    id = int(entry.y);
+    fetchTriangle(id, v0, e1, e2, material);
+    return emitterPoint(v0, e1, e2, vec2(remapToUnit(u.x, lower, entry.x), u.y));
+}
+
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
 // What a scene lacks is compiled out (SceneTextures::bind defines SCENE_TEXTURES,
 // SCENE_VERTEX_NORMALS, SCENE_VERTEX_COLORS, SCENE_EMITTERS): llvmpipe runs both sides of a branch under masks.

@@ -23,7 +23,6 @@ enum class IntegratorKernel {
     Wavefront,   // a pass a stage: trace, surface, each light's shadow rays and term, bounce
     Megakernel,  // a pass takes each path through several depths (glsl/integrators/*/megakernel.frag)
 };
-const char* integratorKernelName(IntegratorKernel kernel);
 // The kernel Auto stands for: GPURT_KERNEL (wavefront or megakernel) where it is set, else the
 // faster on the current context's renderer, as measured in docs/PERFORMANCE.md. Throws
 // EnvironmentError for any other value of GPURT_KERNEL.

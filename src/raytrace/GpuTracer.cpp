@@ -47,14 +47,6 @@ GpuTracer::~GpuTracer() = default;
 
 const char* traceKernelName(TraceKernel kernel) { return kernel == TraceKernel::Split ? "split" : "fused"; }
 
-const char* integratorKernelName(IntegratorKernel kernel) {
-    switch (kernel) {
-        case IntegratorKernel::Wavefront: return "wavefront";
-        case IntegratorKernel::Megakernel: return "megakernel";
-        default: return "auto";
-    }
-}
-
 IntegratorKernel defaultIntegratorKernel() {
     if (const char* chosen = std::getenv("GPURT_KERNEL")) {
         const std::string name = chosen;

@@ -33,7 +33,6 @@ void declareDepositPass(GPUKernel& k, GpuPipeline& p, GPUFloatArray& pixelColor,
 
 PathGl::PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode mask, bool paths, bool maskPaths)
     : p_(pipeline),
-      paths_(paths),
       masked_(maskPaths && (mask == MaskMode::EarlyZ || mask == MaskMode::Stencil)),
       nextOrigin_(paths ? p_.width : 1, paths ? p_.height : 1, 4, "nextOrigin"),
       nextDir_(paths ? p_.width : 1, paths ? p_.height : 1, 4, "nextDir"),

@@ -24,7 +24,6 @@ class PathGl final : public GlIntegrator {
     const GPUFloatArray& colour() const override { return pixelColor_; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;
-    bool paths() const { return paths_; }
 
   private:
     void startPaths();
@@ -40,7 +39,6 @@ class PathGl final : public GlIntegrator {
     void maskPasses(bool on);
 
     GpuPipeline& p_;
-    bool paths_;
     bool masked_;  // the rounds run under masks (a mask mode with a mask pass, and maskPaths)
     int rows_ = 0;  // the rows that hold the live paths
     // The live paths packed for the next round (ray, throughput, path state, colour so far),

@@ -42,7 +42,6 @@ WhittedGl::WhittedGl(GpuPipeline& pipeline, const SceneTextures& textures, int s
     : p_(pipeline),
       emitters_(pipeline.needs.emitters),
       spawns_(spawns),
-      stackSlots_(stackSlots),
       stackOrigin_(stackSlots > 0 ? p_.width : 1, stackSlots > 0 ? p_.height * stackSlots : 1, 4, "stackOrigin"),
       stackDir_(stackSlots > 0 ? p_.width : 1, stackSlots > 0 ? p_.height * stackSlots : 1, 4, "stackDir"),
       stackWeight_(stackSlots > 0 ? p_.width : 1, stackSlots > 0 ? p_.height * stackSlots : 1, 4, "stackWeight"),

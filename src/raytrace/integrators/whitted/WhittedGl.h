@@ -23,7 +23,6 @@ class WhittedGl final : public GlIntegrator {
     const GPUFloatArray& colour() const override { return p_.color; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;
-    int stackSlots() const { return stackSlots_; }
 
   private:
     void startTrees(int maxBounces);
@@ -38,7 +37,6 @@ class WhittedGl final : public GlIntegrator {
     GpuPipeline& p_;
     bool emitters_;
     bool spawns_;
-    int stackSlots_;
     // Each pixel's stack of pending rays, `stackSlots` slots of image size one above the other
     // (1 x 1 without slots); the box of the elements with a ray in the next round.
     GPUFloatArray stackOrigin_, stackDir_, stackWeight_, rayBounds_;
