@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace gpurt {
@@ -201,6 +202,26 @@ void PictureCliOptions::add(CLI::App& cmd) {
                     "camera's samples, default --frames or 256)")
                     ->check(kNotEmpty);
     cmd.add_option("--seed", seed, "Seed of the samples' random numbers (default 0)")->check(kNotEmpty);
+    cmd.add_option("--sampler", sampler,
+                   "Where the samples' numbers come from: sobol (Owen-scrambled Sobol points, any prefix well "
+                   "spread; default), stratified (correlated multi-jittered for the --spp count) or random")
+        ->check(CLI::IsMember({"sobol", "stratified", "random"}));
+    cmd.add_option("--noise-threshold", noiseThreshold,
+                   "Adaptive sampling (path integrator): a pixel stops once its estimated relative error is "
+                   "below T (Cycles' meaning; 0.01 is typical; default 0: off); --spp is then the most a pixel takes")
+        ->check(kNotEmpty);
+    cmd.add_option("--clamp-direct", clampDirect,
+                   "Path integrator: scale each sample's direct light (what the camera ray finds and the light "
+                   "at its first hit) so that its largest channel is at most X (Cycles' meaning; default 0: off)")
+        ->check(kNotEmpty);
+    cmd.add_option("--clamp-indirect", clampIndirect,
+                   "Path integrator: the same for indirect light, found after the first bounce (default 10, as "
+                   "Cycles; 0: off)")
+        ->check(kNotEmpty);
+    cmd.add_option("--min-spp", minSpp,
+                   "Adaptive sampling: the samples every pixel takes before it may stop (default as Cycles: "
+                   "max(4, ceil(16 / T^0.3)), at most --spp)")
+        ->check(kNotEmpty);
     cmd.add_option("--smooth", smooth,
                    "Smooth shading: crease angle in degrees for meshes without normals (default 60), or off (faceted)")
         ->check(kNotEmpty);
@@ -235,6 +256,11 @@ RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size
     settings.integrator = values.integrator;
     settings.samples = values.samples;
     settings.seed = values.seed;
+    settings.sampler = values.sampler;
+    settings.noiseThreshold = values.noiseThreshold;
+    settings.minSamples = values.minSamples;
+    settings.clampDirect = values.clampDirect;
+    settings.clampIndirect = values.clampIndirect;
     return settings;
 }
 
@@ -254,6 +280,27 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     // indices and counts exact in float (2^24).
     v.samples = parseCount("--spp", spp, 1, 1u << 24);
     v.seed = parseCount("--seed", seed, 0, UINT32_MAX);
+    v.sampler = sampler == "stratified" ? SamplerKind::Stratified
+                : sampler == "random"   ? SamplerKind::Random
+                                        : SamplerKind::Sobol;
+    v.noiseThreshold = parseFiniteFloat("--noise-threshold", noiseThreshold);
+    if (v.noiseThreshold < 0.0f || v.noiseThreshold >= 1.0f)
+        throw InputError("--noise-threshold: " + noiseThreshold + " is not in [0, 1) (0: off)");
+    if (v.noiseThreshold > 0.0f && v.integrator != Integrator::Path)
+        throw InputError("--noise-threshold: adaptive sampling needs --integrator path");
+    for (auto [option, text, value] : {std::tuple{"--clamp-direct", &clampDirect, &v.clampDirect},
+                                       std::tuple{"--clamp-indirect", &clampIndirect, &v.clampIndirect}}) {
+        *value = parseFiniteFloat(option, *text);
+        if (*value < 0.0f) throw InputError(std::string(option) + ": " + *text + " is negative (0: off)");
+    }
+    if (!minSpp.empty()) {
+        if (!(v.noiseThreshold > 0.0f)) throw InputError("--min-spp: only with --noise-threshold");
+        v.minSamples = parseCount("--min-spp", minSpp, 1, 1u << 24);
+        if (v.minSamples > v.samples)
+            throw InputError("--min-spp: " + minSpp + " is above --spp " + std::to_string(v.samples));
+    } else {
+        v.minSamples = std::min(defaultMinSamples(v.noiseThreshold), v.samples);
+    }
     v.env = env;
     if (!envStrength.empty()) {
         v.envStrength = parseFiniteFloat("--env-strength", envStrength);

@@ -103,12 +103,17 @@ struct CameraOptions {
 struct PictureCliOptions {
     std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60", integrator = "whitted";
     std::string env, envStrength, envRotate, envSampling = "mis";
+    std::string sampler = "sobol", noiseThreshold = "0", minSpp, clampDirect = "0", clampIndirect = "10";
     CLI::Option* sppOption = nullptr;
 
     void add(CLI::App& cmd);
     // The parsed values; InputError naming the option otherwise.
     struct Values {
         uint32_t samples = 1, seed = 0;
+        SamplerKind sampler = SamplerKind::Sobol;  // --sampler
+        float noiseThreshold = 0.0f;              // --noise-threshold (0: off)
+        uint32_t minSamples = 0;                  // --min-spp, or the threshold's default
+        float clampDirect = 0.0f, clampIndirect = 10.0f;  // --clamp-direct, --clamp-indirect (0: off)
         float crease = 60.0f;  // --smooth; < 0: off
         ColourSettings colour;
         Integrator integrator = Integrator::Whitted;

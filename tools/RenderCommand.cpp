@@ -95,7 +95,10 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
     const int ints[] = {camera.width, camera.height, grid.x, grid.y, grid.z, int(accel.kind),
                         settings.maxBounces, int(settings.integrator), int(settings.samples), int(settings.seed)};
     add(ints, sizeof(ints));
-    const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend;
+    const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend + "|" +
+                             picture.sampler + "|" + std::to_string(settings.noiseThreshold) + "|" +
+                             std::to_string(settings.minSamples) + "|" + std::to_string(settings.clampDirect) + "|" +
+                             std::to_string(settings.clampIndirect);
     add(text.data(), text.size());
     char hex[9];
     std::snprintf(hex, sizeof(hex), "%08x", crc);
@@ -154,6 +157,13 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         j["integrator"] = o.picture.integrator;
         j["samples"] = s.samples;  // pixel samples: width x height x spp
         j["spp"] = spp;
+        j["mean_spp"] = out.width * out.height > 0 ? double(s.samples) / (double(out.width) * out.height) : 0.0;
+        j["sampler"] = o.picture.sampler;
+        if (!s.adaptive.empty() || !out.spp.empty()) {
+            j["noise_threshold"] = std::stod(o.picture.noiseThreshold);
+            j["adaptive"] = nlohmann::json::array();
+            for (const AdaptiveRound& r : s.adaptive) j["adaptive"].push_back({{"samples", r.samples}, {"active", r.active}});
+        }
         if (!o.timeLimit.empty()) j["time_limit_s"] = std::stod(o.timeLimit);
         j["samples_per_s"] = samplesPerS;
         if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
@@ -177,6 +187,11 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
     std::printf("samples    %llu, %.3g per second (%u a pixel%s)\n", (unsigned long long)s.samples, samplesPerS, spp,
                 o.timeLimit.empty() ? "" : ", fitted to --time-limit");
+    if (!out.spp.empty()) {
+        std::printf("adaptive   %.2f samples a pixel on average; active pixels after", double(s.samples) / (double(out.width) * out.height));
+        for (const AdaptiveRound& r : s.adaptive) std::printf(" %u: %llu", r.samples, (unsigned long long)r.active);
+        std::printf("\n");
+    }
     if (!s.livePaths.empty()) {
         std::printf("paths      per bounce:");
         for (uint64_t n : s.livePaths) std::printf(" %llu", (unsigned long long)n);
@@ -206,7 +221,9 @@ bool isExr(const std::string& file) { return lowerExtension(file) == ".exr"; }
 // Writes a render's outputs (and their tile sidecars when `tile`) together: all appear or none.
 // OUT.png: the tone-mapped sRGB picture; OUT.exr: the linear colour times 2^EV as half floats.
 // An AOV file: PFM, or EXR (32-bit float channels) by its name.
-void writeOutputs(const OutputFiles& files, const RenderOutput& out, const ColourSettings& colour, TileInfo* tile) {
+// spp: the samples a pixel of a render without adaptive sampling (the spp AOV).
+void writeOutputs(const OutputFiles& files, const RenderOutput& out, const ColourSettings& colour, TileInfo* tile,
+                  uint32_t spp) {
     AtomicFileSet outputs;
     auto flat3 = [](const std::vector<glm::vec3>& values, float scale) {
         std::vector<float> flat;
@@ -245,6 +262,8 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         if (name == "depth") flat = out.depth;
         if (name == "prim") flat = out.prim;
         if (name == "steps") flat = out.steps;
+        if (name == "spp")  // the samples each pixel took: --spp everywhere without adaptive sampling
+            flat = out.spp.empty() ? std::vector<float>(size_t(out.width) * size_t(out.height), float(spp)) : out.spp;
         if (name == "normal" || name == "color") {
             flat = flat3(name == "normal" ? out.normal : out.color, 1.0f);
             channels = 3;
@@ -272,8 +291,8 @@ OutputFiles outputNames(const RenderOptions& o) {
         const std::string name = a.substr(0, eq);
         if (eq == std::string::npos || eq + 1 == a.size())
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
-        if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color")
-            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color)");
+        if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color" && name != "spp")
+            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color, spp)");
         if (names.aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         names.aovs[name] = a.substr(eq + 1);
     }
@@ -349,6 +368,38 @@ double parseTimeLimit(const RenderOptions& o) {
     return double(seconds);
 }
 
+// The rows [first, first + count) of a render's outputs.
+void keepRows(RenderOutput& out, int first, int count) {
+    auto crop = [&](auto& values) {
+        if (values.empty()) return;
+        const auto begin = values.begin() + std::ptrdiff_t(first) * out.width;
+        values = std::vector<typename std::decay_t<decltype(values)>::value_type>(begin, begin + std::ptrdiff_t(count) * out.width);
+    };
+    crop(out.color), crop(out.depth), crop(out.prim), crop(out.normal), crop(out.steps), crop(out.spp);
+    out.height = count;
+    if (!out.spp.empty()) {  // the samples of the rows kept
+        out.stats.samples = 0;
+        for (float n : out.spp) out.stats.samples += uint64_t(n);
+    }
+}
+
+// A render of the camera's rows. Under adaptive sampling a tile's pixels (--tile) stop as the
+// whole image's do only if their neighbours' sums are the whole image's too: a pixel's decision
+// looks at its neighbours, theirs at theirs, one row further at each convergence pass. So a tile
+// renders as many rows more above and below it as there are passes (within the image) and keeps
+// its own.
+RenderOutput renderRows(Renderer& renderer, const CameraBasis& camera, const RenderSettings& settings) {
+    if (!settings.adaptive() || camera.rowCount == 0 || settings.samples < 2) return renderer.render(camera, settings);
+    int passes = 0;
+    for (uint32_t taken = settings.minSamples; taken < settings.samples; ++taken) passes += adaptiveCheckAfter(taken, settings);
+    CameraBasis wide = camera;
+    wide.rowBegin = std::max(0, camera.rowBegin - passes);
+    wide.rowCount = std::min(camera.height, camera.rowBegin + camera.rowCount + passes) - wide.rowBegin;
+    RenderOutput out = renderer.render(wide, settings);
+    keepRows(out, camera.rowBegin - wide.rowBegin, camera.rowCount);
+    return out;
+}
+
 // One frame's image (or the only image) and its samples a pixel: settings.samples, or with
 // --time-limit (timeLimit > 0) the most that fit, printed, with --spp when given as their most.
 // `progress` sees the frame's part of all the frames.
@@ -360,7 +411,7 @@ RenderOutput renderFrame(const RenderOptions& o, Renderer& renderer, const Camer
             progress.update((double(index) + f) / double(frameCount));
         };
     spp = settings.samples;
-    if (!(timeLimit > 0)) return renderer.render(camera, settings);
+    if (!(timeLimit > 0)) return renderRows(renderer, camera, settings);
     const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
     TimedRender timed = renderWithinTime(renderer, camera, settings, timeLimit, sppGiven ? settings.samples : 1u << 24);
     spp = timed.samples;
@@ -435,7 +486,7 @@ int runRender(const RenderOptions& o) {
 
         const auto writeStart = std::chrono::steady_clock::now();
         if (tiled) tile.fingerprint = renderFingerprint(scene, camera, accel, settings, o.picture, o.backend);
-        writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr);
+        writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr, spp);
         phases.write = msSince(writeStart);
         if (o.statsGiven)
             printStats(o, scene, accel, out, totalMs, phases,
@@ -462,7 +513,8 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
         ->required()
         ->check(kNotEmpty);
     cmd->add_option("--aov", o->aovs,
-                    "Also write an AOV: depth|prim|normal|steps|color=FILE, FILE .pfm or .exr (32-bit float)");
+                    "Also write an AOV: depth|prim|normal|steps|color|spp=FILE, FILE .pfm or .exr (32-bit float); spp: the "
+                    "samples each pixel took");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")

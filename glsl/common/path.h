@@ -88,6 +88,16 @@ GPURT_FN vec3 pathEnvironmentContribution(MaterialRecord m, vec3 n, vec3 d, vec3
     return min(materialEval(m, n, d, l) * GPURT_INV_PI * cosP * radiance * (w / lightPdf), vec3(1e30f));
 }
 
+// --clamp-direct and --clamp-indirect (Cycles' meaning; 0: off): the contribution c a path adds
+// to its pixel at hit depth b (0: what the camera ray finds: the emission or sky it sees and the
+// light gathered at its hit) is direct, later ones indirect; scaled down so that its largest
+// channel is at most the limit (fireflies of rare, heavy paths, for a little bias).
+GPURT_FN vec3 clampContribution(vec3 c, int b, float clampDirect, float clampIndirect) {
+    float limit = b == 0 ? clampDirect : clampIndirect;
+    float m = maxChannel(c);
+    return limit > 0.0f && m > limit ? c * (limit / m) : c;
+}
+
 // Russian roulette at hit depth b for throughput w and the random number u: the probability the
 // path survives (1: no roulette yet), or 0 when it ends here.
 GPURT_FN float survival(int b, vec3 w, float u) {

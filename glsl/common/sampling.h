@@ -3,9 +3,16 @@
 // dimension), a counter-based hash, never a per-thread generator: images do not depend on tiling,
 // thread count or backend (CONTRACT.md, sampling).
 //
-// A pixel's N samples of one 2D dimension are Kensler's correlated multi-jittered pattern
-// (Kensler 2013, "Correlated Multi-Jittered Sampling", Pixar tech memo 13-01): stratified in 2D
-// and in each 1D projection for any N, the pattern and the jitter chosen per pixel by the hash.
+// Three samplers (--sampler, CONTRACT.md "Sampling"), each a function of the same key:
+// - sobol (the default): Owen-scrambled Sobol points, each 2D dimension its own shuffled and
+//   scrambled copy of Sobol's first two dimensions (Burley 2020, "Practical Hash-based Owen
+//   Scrambling", JCGT 9(4), sections 3-4: hash-based nested uniform scrambling and padding by
+//   shuffling). Any prefix of 2^k samples of a 2D dimension is a (0, k, 2)-net, so a render that
+//   does not know its sample count in advance (adaptive sampling, the viewer) stays stratified;
+// - stratified: Kensler's correlated multi-jittered pattern (Kensler 2013, "Correlated
+//   Multi-Jittered Sampling", Pixar tech memo 13-01): stratified in 2D and in each 1D projection
+//   for the N samples it is told of, not for a prefix of them;
+// - random: independent uniform numbers, the baseline.
 // The hash is PCG's output permutation as a hash (Jarzynski & Olano 2020, "Hash Functions for GPU
 // Rendering"). Same rules as raymath.h; integer arithmetic is 32-bit unsigned and wraps.
 #ifndef GPURT_SAMPLING_H
@@ -18,6 +25,11 @@
 // The sample dimensions (each a 2D pattern of its own).
 #define GPURT_DIM_PIXEL 0u    // position in the pixel
 #define GPURT_DIM_EMITTER 1u  // the point on an emitter (area lights)
+
+// The samplers (RenderTypes.h SamplerKind: the same values).
+#define GPURT_SAMPLER_SOBOL 0u
+#define GPURT_SAMPLER_STRATIFIED 1u
+#define GPURT_SAMPLER_RANDOM 2u
 
 GPURT_FN uint hashPcg(uint v) {
     uint state = v * 747796405u + 2891336453u;
@@ -85,11 +97,72 @@ GPURT_FN vec2 randomPair(uint s, uint p) {
     return vec2(unitFloat(hashPcg(s ^ (p * 0x8a4f2c1bu))), unitFloat(hashPcg(s ^ (p * 0x27d4eb2fu))));
 }
 
+// v with its 32 bits in reverse order.
+GPURT_FN uint reverseBits(uint v) {
+    v = ((v >> 1u) & 0x55555555u) | ((v & 0x55555555u) << 1u);
+    v = ((v >> 2u) & 0x33333333u) | ((v & 0x33333333u) << 2u);
+    v = ((v >> 4u) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4u);
+    v = ((v >> 8u) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8u);
+    return (v >> 16u) | (v << 16u);
+}
+
+// A nested uniform (Owen) scramble of the 32-bit fraction x under the key k: each bit is flipped
+// as a hash of the bits above it decides (Burley 2020, listing 5: a Laine-Karras permutation on
+// the reversed bits, with its constants). As a permutation of sample indices it keeps each
+// aligned block of 2^k indices together (listing 6's shuffle).
+GPURT_FN uint owenScramble(uint x, uint k) {
+    x = reverseBits(x);
+    x += k;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return reverseBits(x);
+}
+
+// Sobol's second dimension of index i as a 32-bit fraction (its generator matrix: the direction
+// numbers of the polynomial x + 1, v_1 = 1/2, v_k = v_{k-1} xor v_{k-1} / 2).
+GPURT_FN uint sobolSecond(uint i) {
+    uint v = 0x80000000u;
+    uint x = 0u;
+    for (; i != 0u; i >>= 1u) {
+        if ((i & 1u) != 0u) x ^= v;
+        v ^= v >> 1u;
+    }
+    return x;
+}
+
+// Sample s of the Owen-scrambled Sobol pattern p, in [0, 1)^2 (Burley 2020, listing 6): the index
+// shuffled, then Sobol's first two dimensions (the first is the index's bits reversed), each
+// scrambled with a key of its own.
+GPURT_FN vec2 sobolSample(uint s, uint p) {
+    uint i = owenScramble(s, hashPcg(p ^ 0x5bd1e995u));
+    uint x = owenScramble(reverseBits(i), hashPcg(p ^ 0x2545f491u));
+    uint y = owenScramble(sobolSecond(i), hashPcg(p ^ 0x9e3779b9u));
+    return vec2(unitFloat(x), unitFloat(y));
+}
+
+// Sample s of n of pixel (x, y) in the 2D dimension `dimension`, in [0, 1)^2, from `sampler`.
+GPURT_FN vec2 sample2D(uint sampler, uint x, uint y, uint s, uint n, uint seed, uint dimension) {
+    uint p = samplePattern(x, y, seed, dimension);
+    if (sampler == GPURT_SAMPLER_STRATIFIED) return cmjSample(s, n, p);
+    if (sampler == GPURT_SAMPLER_RANDOM) return randomPair(s, p);
+    return sobolSample(s, p);
+}
+
+// The pair of numbers for choices that gain little from stratification (a lobe, Russian
+// roulette): the stratified sampler's are independent (randomPair: it has no pattern for a
+// prefix); sobol's are its points as any dimension's.
+GPURT_FN vec2 sampleChoice(uint sampler, uint x, uint y, uint s, uint n, uint seed, uint dimension) {
+    if (sampler == GPURT_SAMPLER_STRATIFIED) return randomPair(s, samplePattern(x, y, seed, dimension));
+    return sample2D(sampler, x, y, s, n, seed, dimension);
+}
+
 // Where sample s of n of pixel (x, y) lies in the pixel, in [0, 1)^2: the centre for n = 1 (the
-// contract's pixel-centre ray), else the pixel's stratified pattern.
-GPURT_FN vec2 pixelSampleOffset(uint x, uint y, uint s, uint n, uint seed) {
+// contract's pixel-centre ray), else the sampler's point of the pixel dimension.
+GPURT_FN vec2 pixelSampleOffset(uint sampler, uint x, uint y, uint s, uint n, uint seed) {
     if (n == 1u) return vec2(0.5f);
-    return cmjSample(s, n, samplePattern(x, y, seed, GPURT_DIM_PIXEL));
+    return sample2D(sampler, x, y, s, n, seed, GPURT_DIM_PIXEL);
 }
 
 #endif

@@ -1,11 +1,27 @@
 // The sample loop's sum (--spp): adds this sample's pixel colour to the running sum of the
-// pixel's samples. The mean is the sum divided by the samples taken (GpuTracer::render, and the
-// viewer's present pass), so each sample costs one more pass over the chain, not more.
+// pixel's samples and counts it (w). The mean is the sum divided by the count (GpuTracer::render,
+// and the viewer's present pass), so each sample costs one more pass over the chain, not more.
+// ODD_SUM (adaptive sampling): the odd-numbered samples are summed apart as well
+// (common/adaptive.h). Under adaptive sampling the pass runs only for the active pixels.
 #include "common/stream.glsl"
 
 uniform sampler2D colorState;  // this sample's colour
 uniform sampler2D sumState;    // in place
+#ifdef ODD_SUM
+uniform sampler2D oddState;  // in place
+uniform float odd;           // 1 for an odd-numbered sample, else 0
+#endif
 
 layout(location = 0) out vec4 sum;
+#ifdef ODD_SUM
+layout(location = 1) out vec4 oddOut;
+#endif
 
-void main() { sum = vec4(readStream(sumState).xyz + readStream(colorState).xyz, 0.0f); }
+void main() {
+    vec3 c = readStream(colorState).xyz;
+    vec4 s = readStream(sumState);
+    sum = vec4(s.xyz + c, s.w + 1.0f);
+#ifdef ODD_SUM
+    oddOut = vec4(readStream(oddState).xyz + (odd > 0.5f ? c : vec3(0.0f)), 0.0f);
+#endif
+}

@@ -99,7 +99,7 @@ bool lightVisible(vec3 p, vec3 n, vec3 position) {
 // The emitter point of the pixel's sample in dimension GPURT_DIM_EMITTER + depth, q on triangle
 // `id`, when it is in front of p and unblocked (shadowgen.frag EMITTER; CpuTracer::emitterVisible).
 bool emitterVisible(uvec2 pixel, int depth, vec3 p, vec3 n, out vec3 q, out int id) {
-    q = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, uint(depth), id);
+    q = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, samplerKind, uint(depth), id);
     if (!lightInFront(p, n, q)) return false;
     vec3 o, d;
     float limit;

@@ -26,6 +26,7 @@ uniform sampler2D surfaceShading;  // w: v
 uniform uint sampleIndex;
 uniform uint sampleCount;
 uniform uint seed;
+uniform uint samplerKind;
 uniform uint bounce;
 #else
 uniform vec3 lightPosition;
@@ -54,7 +55,7 @@ void main() {
     lightSample = vec4(0.0f);
     if (s.w < 0.0f) return;
     uvec2 pixel = uvec2(pathPixel(readStream(pathState), int(bounce)));
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_ENVIRONMENT + bounce));
+    vec2 u = sample2D(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed, GPURT_DIM_ENVIRONMENT + bounce);
     vec3 l;
     float pdf;
     if (!sampleEnvironment(u, l, pdf) || !(dot(n, l) > 0.0f)) return;
@@ -71,7 +72,7 @@ void main() {
     uvec2 pixel = imagePixel();
 #endif
     int id;
-    vec3 lightPosition = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, bounce, id);
+    vec3 lightPosition = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, samplerKind, bounce, id);
     if (!lightInFront(s.xyz, n, lightPosition)) return;
     lightSample = vec4(lightPosition, float(id));
     vec3 o, d;

@@ -13,6 +13,9 @@
 #ifdef PATH
 #include "common/path.h"
 uniform sampler2D pathState;  // (pdf of the ray's direction at the last hit, 0: delta or camera)
+uniform int depth;            // the hits' depth (0: the camera rays')
+uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
+uniform float clampIndirect;  // --clamp-indirect
 #endif
 
 uniform sampler2D rayOrigin;
@@ -47,8 +50,12 @@ void main() {
         vec3 sky = environmentRadiance(away);
 #ifdef PATH
         sky = sky * environmentHitWeight(readStream(pathState).x, environmentLightPdf(away));
-#endif
+        color = vec4(c.xyz + clampContribution(w.xyz * sky, depth, clampDirect, clampIndirect), 0.0f);
+#else
         color = vec4(c.xyz + w.xyz * sky, 0.0f);
+#endif
+#elif defined(PATH)
+        color = vec4(c.xyz + clampContribution(w.xyz * background, depth, clampDirect, clampIndirect), 0.0f);
 #else
         color = vec4(c.xyz + w.xyz * background, 0.0f);
 #endif
@@ -69,7 +76,7 @@ void main() {
     surfaceView = vec4(d, h.y);
 #ifdef PATH
     float mis = m.emitterLight ? emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea) : 1.0f;
-    color = vec4(c.xyz + w.xyz * (materialEmitted(m, ns) * mis), 0.0f);
+    color = vec4(c.xyz + clampContribution(w.xyz * (materialEmitted(m, ns) * mis), depth, clampDirect, clampIndirect), 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);
 #ifdef SCENE_ENVIRONMENT

@@ -13,6 +13,7 @@ uniform vec2 imageSize;
 uniform uint sampleIndex;  // the sample of this pass
 uniform uint sampleCount;  // --spp (1: the pixel centre)
 uniform uint seed;         // --seed
+uniform uint samplerKind;  // --sampler (sampling.h GPURT_SAMPLER_*)
 
 // The direction of this fragment's primary ray (stream row y = image row tileRow + y from the
 // top; pixel.glsl imagePixel).
@@ -26,7 +27,7 @@ vec3 primaryDirection() {
 // sampleDirection on the CPU).
 vec3 sampleDirection() {
     uvec2 pixel = imagePixel();
-    vec2 offset = pixelSampleOffset(pixel.x, pixel.y, sampleIndex, sampleCount, seed);
+    vec2 offset = pixelSampleOffset(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed);
     return cameraRayThrough(forward, right, upOrtho, tanHalf, aspect, float(pixel.x) + offset.x,
                             float(pixel.y) + offset.y, imageSize.x, imageSize.y);
 }

@@ -8,11 +8,11 @@
 uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
 
 #include "../common/sampling.h"
-// The emitters' point of a pixel's sample (s of n, seed) in dimension GPURT_DIM_EMITTER + depth,
+// The emitters' point of a pixel's sample (s of n, seed, sampler) in dimension GPURT_DIM_EMITTER + depth,
 // uniform by area (the emitter by a binary search of the area table, EmitterTable::pick): q on
 // triangle `id` (CpuTracer::emitterVisible).
-vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint depth, out int id) {
-    vec2 u = cmjSample(s, n, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_EMITTER + depth));
+vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint sampler, uint depth, out int id) {
+    vec2 u = sample2D(sampler, pixel.x, pixel.y, s, n, seed, GPURT_DIM_EMITTER + depth);
     int k = pickEmitter(u.x);
     vec2 entry = texelFetch(emitters, k).xy;
     float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;

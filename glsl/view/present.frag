@@ -17,6 +17,7 @@ uniform isampler2D aovCells;
 uniform sampler2D aovNormal;
 uniform int mode;          // 0 shaded, 1 depth, 2 normal, 3 prim, 4 steps
 uniform float samples;     // samples in the sums (at least 1)
+                           // (each pixel's own count is its sum's w: adaptive sampling stops some)
 uniform float exposureScale;
 uniform int toneMapMode;   // GPURT_TONEMAP_*
 uniform vec2 depthRange;   // (near, far)
@@ -29,7 +30,8 @@ void main() {
     vec4 hit = texelFetch(aovHit, at, 0);
     vec3 c = vec3(0.0f);
     if (mode == 0) {
-        vec3 mapped = toneMap(texelFetch(sampleSum, at, 0).xyz / samples, exposureScale, toneMapMode);
+        vec4 sum = texelFetch(sampleSum, at, 0);
+        vec3 mapped = toneMap(sum.xyz / max(sum.w, 1.0f), exposureScale, toneMapMode);
         c = vec3(srgbEncode(mapped.x), srgbEncode(mapped.y), srgbEncode(mapped.z));
     } else if (mode == 4) {
         float s = clamp(float(texelFetch(aovCells, at, 0).w) / 64.0f, 0.0f, 1.0f);

@@ -107,8 +107,9 @@ glm::vec3 primaryDirection(const CameraBasis& c, int i, int j) {
                                        static_cast<float>(c.width), static_cast<float>(c.height));
 }
 
-glm::vec3 sampleDirection(const CameraBasis& c, int i, int j, uint32_t s, uint32_t n, uint32_t seed) {
-    const glm::vec2 offset = raymath::pixelSampleOffset(uint32_t(i), uint32_t(j), s, n, seed);
+glm::vec3 sampleDirection(const CameraBasis& c, int i, int j, uint32_t s, uint32_t n, uint32_t seed,
+                          SamplerKind sampler) {
+    const glm::vec2 offset = raymath::pixelSampleOffset(uint32_t(sampler), uint32_t(i), uint32_t(j), s, n, seed);
     return raymath::cameraRayThrough(c.forward, c.right, c.upOrtho, c.tanHalf, c.aspect,
                                      float(i) + offset.x, float(j) + offset.y, float(c.width),
                                      float(c.height));

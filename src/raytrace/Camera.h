@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/RenderTypes.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
@@ -40,8 +41,9 @@ CameraSpec defaultCamera(const Bounds& bounds, int width, int height, float fovy
 // Direction of the primary ray through pixel (i, j), j counted from the top row.
 glm::vec3 primaryDirection(const CameraBasis& camera, int i, int j);
 
-// Direction of the ray of sample s of n (--spp) through pixel (i, j) with --seed `seed`
-// (glsl/common/sampling.h): the pixel centre for n = 1.
-glm::vec3 sampleDirection(const CameraBasis& camera, int i, int j, uint32_t s, uint32_t n, uint32_t seed);
+// Direction of the ray of sample s of n (--spp) through pixel (i, j) with --seed `seed` from
+// `sampler` (glsl/common/sampling.h): the pixel centre for n = 1.
+glm::vec3 sampleDirection(const CameraBasis& camera, int i, int j, uint32_t s, uint32_t n, uint32_t seed,
+                          SamplerKind sampler);
 
 }  // namespace gpurt

@@ -72,10 +72,10 @@ bool CpuTracer::lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint3
     return unblocked(origin, dir, limit, coverageKey, stats);
 }
 
-bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
-                               glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const {
+bool CpuTracer::emitterVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
+                               glm::vec3& q, uint32_t& id) const {
     if (emitters_.empty()) return false;
-    const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), seed, GPURT_DIM_EMITTER + uint32_t(depth)));
+    const vec2 u = px.sample2D(GPURT_DIM_EMITTER + uint32_t(depth));
     const size_t k = emitters_.pick(u.x);
     id = emitters_.triangles[k];
     const PreparedTriangle& e = triangles_[id];
@@ -84,15 +84,15 @@ bool CpuTracer::emitterVisible(int i, int j, uint32_t sample, uint32_t samples, 
     glm::vec3 origin, dir;
     float limit;
     emitterShadowRay(p, n, rayOffset_, q, origin, dir, limit);
-    return unblocked(origin, dir, limit, coverageKey(uint32_t(i), uint32_t(j), sample, seed), stats);
+    return unblocked(origin, dir, limit, px.coverageKey(), stats);
 }
 
-bool CpuTracer::environmentVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth,
-                                   glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& l, float& pdf) const {
+bool CpuTracer::environmentVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
+                                   glm::vec3& l, float& pdf) const {
     if (!environment_.sampled) return false;
-    const vec2 u = cmjSample(sample, samples, samplePattern(uint32_t(i), uint32_t(j), seed, GPURT_DIM_ENVIRONMENT + uint32_t(depth)));
+    const vec2 u = px.sample2D(GPURT_DIM_ENVIRONMENT + uint32_t(depth));
     if (!environment_.sample(u, l, pdf) || !(dot(n, l) > 0.0f)) return false;
-    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, coverageKey(uint32_t(i), uint32_t(j), sample, seed), stats);
+    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, px.coverageKey(), stats);
 }
 
 CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
@@ -124,10 +124,12 @@ CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::v
     return s;
 }
 
-// One pixel: the pixel-centre ray for the AOVs when there are several samples, then the samples
-// of the integrator (integrators/whitted/WhittedCpu, integrators/path/PathCpu), summed in order
-// and divided by their number (as the GL accumulate pass sums). Rows are handed out one at a
-// time: cost varies strongly across the image.
+// The pixel-centre ray for the AOVs when there are several samples, then the samples of the
+// integrator (integrators/whitted/WhittedCpu, integrators/path/PathCpu), summed in order and
+// divided by their number (as the GL accumulate pass sums). Rows are handed out one at a time:
+// cost varies strongly across the image. Adaptive sampling (settings.adaptive()) takes the samples
+// in rounds over the whole image, as the gl backend's passes do, with a convergence pass between
+// them (common/adaptive.h) that stops pixels; the rounds and decisions are the gl backend's.
 RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
     const auto start = std::chrono::steady_clock::now();
     RenderOutput out;
@@ -148,33 +150,61 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);
-    auto shadePixel = [&](int i, int j, RenderStats& stats) {
-        const size_t pixel = size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i);
-        if (samples > 1 && settings.aovs)
-            whittedSample(*this, {i, j, 0, 1, settings.seed}, camera.eye, primaryDirection(camera, i, j), lights, -1,
-                          stackSlots, {&out, pixel}, stats);
+    const bool adaptive = settings.adaptive() && samples > 1;
+    // Each pixel's sums: of all its samples (and their count), of its odd-numbered ones.
+    std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
+    std::vector<float> counts(pixels, 0.0f);
+    std::vector<uint8_t> active(pixels, 1);
+    auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
+    // Samples [first, last) of pixel (i, j), and its AOVs with the first.
+    auto shadePixel = [&](int i, int j, uint32_t first, uint32_t last, RenderStats& stats) {
+        const size_t pixel = pixelIndex(i, j);
+        if (!active[pixel]) return;
+        if (first == 0 && samples > 1 && settings.aovs)
+            whittedSample(*this, {i, j, 0, 1, settings.seed, settings.sampler}, camera.eye,
+                          primaryDirection(camera, i, j), lights, -1, stackSlots, {&out, pixel}, stats);
         const PixelAovs aovs = samples == 1 && settings.aovs ? PixelAovs{&out, pixel} : PixelAovs{};
-        glm::vec3 sum(0.0f);
-        for (uint32_t s = 0; s < samples; ++s) {
-            const PixelSample px{i, j, s, samples, settings.seed};
-            const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed);
-            sum += path ? pathSample(*this, px, camera.eye, d, lights, bounces, aovs, stats)
-                        : whittedSample(*this, px, camera.eye, d, lights, bounces, stackSlots, aovs, stats);
+        for (uint32_t s = first; s < last; ++s) {
+            const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
+            const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed, settings.sampler);
+            const glm::vec3 c = path ? pathSample(*this, px, camera.eye, d, lights, bounces,
+                                                        {settings.clampDirect, settings.clampIndirect}, aovs, stats)
+                                     : whittedSample(*this, px, camera.eye, d, lights, bounces, stackSlots, aovs, stats);
+            sums[pixel] += c;
+            counts[pixel] += 1.0f;
+            if (adaptive && (s & 1u) != 0u) oddSums[pixel] += c;
         }
-        out.color[pixel] = sum / float(samples);
     };
 
     const int threads = std::min(resolveThreads(settings.threads), std::max(1, out.height));
     std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
     std::mutex progressMutex;
     size_t rowsDone = 0;
-    parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
-        for (int i = 0; i < camera.width; ++i) shadePixel(i, camera.rowBegin + int(row), threadStats[worker]);
-        if (settings.progress) {
-            const std::lock_guard<std::mutex> lock(progressMutex);
-            if (++rowsDone < size_t(out.height)) settings.progress(double(rowsDone) / double(out.height));
-        }
-    });
+    uint32_t taken = 0;
+    while (taken < samples) {
+        uint32_t next = taken + 1;  // the round: up to the next convergence pass, or the last sample
+        if (adaptive)
+            while (next < samples && !adaptiveCheckAfter(next, settings)) ++next;
+        else
+            next = samples;
+        parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
+            for (int i = 0; i < camera.width; ++i)
+                shadePixel(i, camera.rowBegin + int(row), taken, next, threadStats[worker]);
+            if (settings.progress && !adaptive) {
+                const std::lock_guard<std::mutex> lock(progressMutex);
+                if (++rowsDone < size_t(out.height)) settings.progress(double(rowsDone) / double(out.height));
+            }
+        });
+        taken = next;
+        if (!adaptive || taken >= samples) break;
+        if (settings.progress) settings.progress(double(taken) / double(samples));
+        const uint64_t left = convergencePass(camera.width, out.height, sums, oddSums, counts, settings.noiseThreshold,
+                                              threads, active);
+        out.stats.adaptive.push_back({taken, left});
+        if (left == 0) break;
+    }
+    for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
+    if (adaptive) out.spp = counts;
     if (settings.progress) settings.progress(1.0);
     for (const RenderStats& s : threadStats) {
         out.stats.primaryRays += s.primaryRays;
@@ -183,10 +213,39 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.stats.overflowRays += s.overflowRays;
         for (size_t b = 0; b < s.livePaths.size(); ++b) out.stats.addLivePaths(b, s.livePaths[b]);
     }
-    out.stats.samples = uint64_t(pixels) * samples;
+    for (float c : counts) out.stats.samples += uint64_t(c);
     out.stats.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+// The convergence pass of integrators/converge.frag over a width x height image of sums: each
+// active pixel stays active while an error of its 3 x 3 neighbourhood is at or above the
+// threshold. Returns the pixels still active.
+uint64_t convergencePass(int width, int height, const std::vector<glm::vec3>& sums,
+                         const std::vector<glm::vec3>& oddSums, const std::vector<float>& counts, float threshold,
+                         int threads, std::vector<uint8_t>& active) {
+    std::vector<uint8_t> next(active.size(), 0);
+    parallelChunks(size_t(height), 1, threads, [&](size_t row, size_t, size_t) {
+        for (int x = 0; x < width; ++x) {
+            const size_t at = row * size_t(width) + size_t(x);
+            if (!active[at]) continue;
+            float error = 0.0f;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int qx = x + dx, qy = int(row) + dy;
+                    if (qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
+                    const size_t q = size_t(qy) * size_t(width) + size_t(qx);
+                    error = std::max(error, pixelError(sums[q], oddSums[q], counts[q]));
+                }
+            }
+            next[at] = pixelConverged(error, threshold) ? 0 : 1;
+        }
+    });
+    active.swap(next);
+    uint64_t left = 0;
+    for (uint8_t a : active) left += a;
+    return left;
 }
 
 }  // namespace gpurt

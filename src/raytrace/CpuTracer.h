@@ -19,6 +19,33 @@
 
 namespace gpurt {
 
+// Sample `index` of `count` of pixel (i, j) of the image (its random numbers: common/sampling.h,
+// from `sampler`).
+struct PixelSample {
+    int i, j;
+    uint32_t index, count, seed;
+    SamplerKind sampler = SamplerKind::Sobol;
+
+    // The sampler's numbers of this sample in the 2D dimension `dimension` (sampling.h sample2D),
+    // and its pair for lobe and roulette choices (sampleChoice).
+    glm::vec2 sample2D(uint32_t dimension) const {
+        return raymath::sample2D(uint32_t(sampler), uint32_t(i), uint32_t(j), index, count, seed, dimension);
+    }
+    glm::vec2 sampleChoice(uint32_t dimension) const {
+        return raymath::sampleChoice(uint32_t(sampler), uint32_t(i), uint32_t(j), index, count, seed, dimension);
+    }
+    // The coverage key of its rays (common/alpha.h): the accelerators' alpha coverage.
+    uint32_t coverageKey() const { return raymath::coverageKey(uint32_t(i), uint32_t(j), index, seed); }
+};
+
+// Adaptive sampling's convergence pass over a width x height image (glsl/integrators/converge.frag
+// on the cpu): each active pixel (active[i] != 0) stays active while one of its 3 x 3
+// neighbourhood's errors (common/adaptive.h, from the sums of all and of the odd samples and the
+// counts) is at or above the threshold; on `threads` threads. Returns the pixels still active.
+uint64_t convergencePass(int width, int height, const std::vector<glm::vec3>& sums,
+                         const std::vector<glm::vec3>& oddSums, const std::vector<float>& counts, float threshold,
+                         int threads, std::vector<uint8_t>& active);
+
 class CpuTracer {
   public:
     // Keeps references to both: they must outlive the tracer.
@@ -62,18 +89,17 @@ class CpuTracer {
     // Whether the point light at lightPos lights the hit p (facing normal n): in front of it and
     // its shadow ray unblocked (shadowgen.frag, the trace, light.frag), counted in stats.
     bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint32_t coverageKey, RenderStats& stats) const;
-    // The emitter point q (on triangle id) that sample `sample` of `samples` of pixel (i, j) takes
-    // at hit depth `depth` (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in
-    // front and unblocked (shadowgen.frag EMITTER). False without emitters.
-    bool emitterVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
-                        glm::vec3 n, RenderStats& stats, glm::vec3& q, uint32_t& id) const;
+    // The emitter point q (on triangle id) that the pixel sample px takes at hit depth `depth`
+    // (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in front and unblocked
+    // (shadowgen.frag EMITTER). False without emitters.
+    bool emitterVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& q,
+                        uint32_t& id) const;
 
-    // The environment direction l (pdf `pdf`) that sample `sample` of `samples` of pixel (i, j)
-    // draws at hit depth `depth` (GPURT_DIM_ENVIRONMENT + depth), and whether it lights p: in
-    // front of the facing normal n and unblocked (shadowgen.frag ENVIRONMENT). False when the
-    // environment is not sampled.
-    bool environmentVisible(int i, int j, uint32_t sample, uint32_t samples, uint32_t seed, int depth, glm::vec3 p,
-                            glm::vec3 n, RenderStats& stats, glm::vec3& l, float& pdf) const;
+    // The environment direction l (pdf `pdf`) that the pixel sample px draws at hit depth `depth`
+    // (GPURT_DIM_ENVIRONMENT + depth), and whether it lights p: in front of the facing normal n
+    // and unblocked (shadowgen.frag ENVIRONMENT). False when the environment is not sampled.
+    bool environmentVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
+                            glm::vec3& l, float& pdf) const;
 
   private:
     // Traces one shadow ray (counted in stats); true when nothing blocks it.

@@ -32,12 +32,36 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       aovCells(progressive ? w : 1, progressive ? h : 1, GPUFormat::RGBA32I, "aovCells"),
       aovNormal(progressive ? w : 1, progressive ? h : 1, 4, "aovNormal"),
       raygen("raygen", "integrators/raygen.frag"),
-      raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)) {  // a variant: the same pass in --stats
+      raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)),  // a variant: the same pass in --stats
+      oddSum(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "oddSum"),
+      activity(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activity"),
+      converge("converge", "integrators/converge.frag") {
     if (needs.stages) accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
     for (GPUKernel* k : kernels()) {
         textures.bind(*k);
         k->addOutput(rayOrigin).addOutput(rayDir);
     }
+    if (needs.adaptive) {
+        activeMask = std::make_unique<GPUMask>("active", mask, activity, 0, 0.5f, 1.5f);
+        for (GPUKernel* k : kernels()) k->setMask(activeMask.get(), false);
+        // Stopped pixels are masked out and keep the 0 the stream is cleared to.
+        converge.addInput(sampleSum, "sampleSum").addInput(oddSum, "oddSum").addOutput(activity);
+        converge.setPreserveUnwritten(false).setMask(activeMask.get(), false);
+    }
+}
+
+void GpuPipeline::beginAdaptive() {
+    oddSum.fill(0.0f);
+    activity.front().fill(1.0f);
+    activeMask->update();
+}
+
+uint64_t GpuPipeline::convergeRound(float threshold) {
+    activity.back().fill(0.0f);
+    converge.setUniform("threshold", threshold);
+    const uint64_t active = converge.execute();  // the pass swaps activity: its front is the new one
+    activeMask->update();
+    return active;
 }
 
 void GpuPipeline::setCamera(const CameraBasis& c, const std::vector<GPUKernel*>& others) {

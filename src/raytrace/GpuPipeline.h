@@ -13,6 +13,7 @@
 #include "stream/GPUKernel.h"
 #include "stream/GPUMask.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct StreamNeeds {
     // The primary AOVs (RenderSettings::aovs, the viewer's display modes): without the stages,
     // the hit stream is full size only for them.
     bool aovs = true;
+    // Adaptive sampling (RenderSettings::adaptive): the odd samples' sums, the pixels' activity,
+    // its mask over the pixel passes, and the convergence pass.
+    bool adaptive = false;
     bool operator==(const StreamNeeds&) const = default;
 };
 
@@ -70,6 +74,14 @@ struct GpuPipeline {
     GPUFloatArray aovHit, aovCells, aovNormal;
     // The camera rays (raygen.frag): through the sample's point of each pixel, or its centre.
     GPUKernel raygen, raygenCentre;
+    // Adaptive sampling (needs.adaptive; 1 x 1 otherwise): the sum of each pixel's odd-numbered
+    // samples (common/adaptive.h), its activity (1: still taking samples, 0: stopped), the mask
+    // that keeps stopped pixels out of the passes that start samples and sum them (null without
+    // adaptive sampling), and the convergence pass (integrators/converge.frag).
+    GPUFloatArray oddSum;
+    GPUPingPongArray activity;
+    std::unique_ptr<GPUMask> activeMask;
+    GPUKernel converge;
 
     // The accelerator's passes are attached to the ray streams (not without the stages: the
     // megakernels trace inside). paths: the path integrator's per-ray state (pathState) even
@@ -89,6 +101,12 @@ struct GpuPipeline {
     GPUKernel& primaryRays() { return sampleCount_ == 1 ? raygenCentre : raygen; }
     // Its own kernels (the accelerator's are accel.kernels()).
     std::vector<GPUKernel*> kernels() { return {&raygen, &raygenCentre}; }
+
+    // Adaptive sampling: every pixel active, the sums cleared.
+    void beginAdaptive();
+    // The convergence pass under --noise-threshold `threshold`: the pixels that stop leave the
+    // mask. Returns the pixels still active (the pass's occlusion count).
+    uint64_t convergeRound(float threshold);
 
     // The primary rays' depth, prim and steps AOVs from the hit and step streams (before the
     // shading passes reuse them; primary rays at the step limit count in stats.overflowRays),

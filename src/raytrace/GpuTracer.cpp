@@ -74,7 +74,7 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
 }
 
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
-                                 bool integrating, bool aovs) {
+                                 bool integrating, bool aovs, bool adaptive) {
     // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
     // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
     // pass of their own takes the pixel centres' AOVs.
@@ -86,6 +86,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.sums = sums || progressive;
     needs.stages = !megakernel;
     needs.aovs = aovs || progressive;
+    needs.adaptive = adaptive;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
         paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
         megakernelAovs_.reset();
@@ -187,14 +188,20 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const auto start = std::chrono::steady_clock::now();
     const bool paths = settings.integrator == Integrator::Path;
     const uint32_t samples = std::max(1u, settings.samples);
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true, settings.aovs);
+    const bool adaptive = settings.adaptive() && samples > 1;
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true,
+                              settings.aovs, adaptive);
     GlIntegrator& chosen = integrator(settings);
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.rows();
 
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, paths);
-    for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
+    for (GPUKernel* k : allKernels())
+        k->setUniform("background", scene_.background)
+            .setUniform("samplerKind", unsigned(settings.sampler))
+            .setUniform("clampDirect", settings.clampDirect)
+            .setUniform("clampIndirect", settings.clampIndirect);
     setCamera(camera);
     setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)
     if (samples > 1 && settings.aovs) pixelCentreAovs(lights, &out, out.stats);
@@ -205,10 +212,21 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.color = downloadVectors<glm::vec3>(chosen.colour());
     } else {
         p.sampleSum.fill(0.0f);
+        if (adaptive) p.beginAdaptive();
+        const std::vector<GPUKernel*> kernels = integratorKernels();
         for (uint32_t s = 0; s < samples; ++s) {
             setSample(s, samples, settings.seed);
+            if (adaptive)  // the accumulate pass sums the odd samples apart (common/adaptive.h)
+                for (GPUKernel* k : kernels) k->setUniform("odd", float(s & 1u));
             chosen.sample(lights, bounces, nullptr, out.stats);
             chosen.accumulate();
+            // Adaptive sampling's convergence pass (CpuTracer::render takes the same rounds): the
+            // render ends when its occlusion query counts no active pixel.
+            if (adaptiveCheckAfter(s + 1, settings)) {
+                const uint64_t active = p.convergeRound(settings.noiseThreshold);
+                out.stats.adaptive.push_back({s + 1, active});
+                if (active == 0) break;
+            }
             // The rounds' occlusion counts already wait for the passes; glFinish makes the
             // fraction a finished one (a few microseconds a sample, only when asked for).
             if (settings.progress && s + 1 < samples) {
@@ -216,10 +234,18 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
                 settings.progress(double(s + 1) / double(samples));
             }
         }
-        out.color = downloadVectors<glm::vec3>(p.sampleSum);
-        for (glm::vec3& c : out.color) c /= float(samples);  // CpuTracer::render divides alike
+        const std::vector<glm::vec4> sums = downloadVectors<glm::vec4>(p.sampleSum);
+        out.color.resize(sums.size());
+        for (size_t i = 0; i < sums.size(); ++i) {  // CpuTracer::render divides alike
+            out.color[i] = glm::vec3(sums[i]) / sums[i].w;
+            out.stats.samples += uint64_t(sums[i].w);
+        }
+        if (adaptive) {
+            out.spp.resize(sums.size());
+            for (size_t i = 0; i < sums.size(); ++i) out.spp[i] = sums[i].w;
+        }
     }
-    out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows()) * samples;
+    if (samples == 1) out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows());
     flushStats();
     if (settings.progress) settings.progress(1.0);
     out.stats.totalMs =
@@ -229,10 +255,15 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 
 void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true, false, true);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true, false, true, true,
+                              settings.adaptive());
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
-    for (GPUKernel* k : allKernels()) k->setUniform("background", scene_.background);
+    for (GPUKernel* k : allKernels())
+        k->setUniform("background", scene_.background)
+            .setUniform("samplerKind", unsigned(settings.sampler))
+            .setUniform("clampDirect", settings.clampDirect)
+            .setUniform("clampIndirect", settings.clampIndirect);
     setCamera(camera);
     setCoverageSample(0, settings.seed);
     pixelCentreAovs(progressive_.lights, nullptr, progressive_.output.stats);
@@ -240,14 +271,24 @@ void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings
     p.aovCells.copyFrom(megakernelAovs_ ? megakernelAovs_->steps() : accel_->steps());
     p.aovNormal.copyFrom(megakernelAovs_ ? megakernelAovs_->normals() : p.surfaceNormal);
     p.sampleSum.fill(0.0f);
+    if (settings.adaptive()) p.beginAdaptive();
 }
 
+// Under adaptive sampling the viewer's sums stop refining converged pixels as render does (the
+// same rounds, with n the most a pixel takes).
 void GpuTracer::addSample(uint32_t s, uint32_t n) {
-    setSample(s, n, progressive_.settings.seed);
-    GlIntegrator& chosen = integrator(progressive_.settings);
-    chosen.sample(progressive_.lights, std::max(0, progressive_.settings.maxBounces), nullptr, progressive_.output.stats);
+    const RenderSettings& settings = progressive_.settings;
+    setSample(s, n, settings.seed);
+    if (pipeline_->needs.adaptive)
+        for (GPUKernel* k : integratorKernels()) k->setUniform("odd", float(s & 1u));
+    GlIntegrator& chosen = integrator(settings);
+    chosen.sample(progressive_.lights, std::max(0, settings.maxBounces), nullptr, progressive_.output.stats);
     chosen.accumulate();
     progressive_.output.stats.samples += uint64_t(pipeline_->width) * uint64_t(pipeline_->height);
+    RenderSettings rounds = settings;
+    rounds.samples = n;
+    if (pipeline_->needs.adaptive && adaptiveCheckAfter(s + 1, rounds))
+        progressive_.output.stats.adaptive.push_back({s + 1, pipeline_->convergeRound(settings.noiseThreshold)});
 }
 
 void GpuTracer::bindDisplay(GPUKernel& display) {

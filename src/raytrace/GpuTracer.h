@@ -74,8 +74,9 @@ class GpuTracer {
     // integrator's streams; progressive: the viewer's AOV copies; sums: more than one sample).
     // integrating: for the integrators' samples (render, the viewer), which may be megakernels;
     // false: for the accelerator's traces alone (gpurt bench).
+    // adaptive: adaptive sampling's streams and passes (GpuPipeline::beginAdaptive).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
-                          bool sums = false, bool integrating = false, bool aovs = true);
+                          bool sums = false, bool integrating = false, bool aovs = true, bool adaptive = false);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
     void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator `settings` asks for.

@@ -14,4 +14,5 @@ using namespace glm;
 #include "../../glsl/common/path.h"
 #include "../../glsl/common/texture.h"
 #include "../../glsl/common/environment.h"
+#include "../../glsl/common/adaptive.h"
 }  // namespace gpurt::raymath

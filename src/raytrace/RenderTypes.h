@@ -14,6 +14,10 @@ namespace gpurt {
 // next-event estimation (glsl/common/path.h).
 enum class Integrator { Whitted, Path };
 
+// --sampler: where each sample's random numbers come from (glsl/common/sampling.h; the values are
+// its GPURT_SAMPLER_*).
+enum class SamplerKind : uint32_t { Sobol = 0, Stratified = 1, Random = 2 };
+
 // The path integrator's --bounces when none is given (pbrt's default maxdepth is 5, Cycles' 12).
 constexpr int kDefaultPathBounces = 8;
 
@@ -30,6 +34,16 @@ struct RenderSettings {
     // --spp: samples per pixel (1: the pixel-centre ray) and --seed (glsl/common/sampling.h).
     uint32_t samples = 1;
     uint32_t seed = 0;
+    SamplerKind sampler = SamplerKind::Sobol;
+    // Adaptive sampling (--noise-threshold, path integrator; glsl/common/adaptive.h): 0 is off,
+    // else each pixel takes at least minSamples (--min-spp) samples and stops once its
+    // neighbourhood's error is below noiseThreshold; `samples` is then the most it takes.
+    float noiseThreshold = 0.0f;
+    uint32_t minSamples = 0;
+    bool adaptive() const { return noiseThreshold > 0.0f; }
+    // --clamp-direct, --clamp-indirect (path integrator; common/path.h clampContribution): 0 is
+    // off. The library's default is off; the command's indirect default is Cycles' 10.
+    float clampDirect = 0.0f, clampIndirect = 0.0f;
     // The primary AOVs (depth, prim, normal, steps) in RenderOutput, from the pixel centres' rays;
     // false: the colour alone (gpurt render without --aov), and no pixel-centre rays of their own
     // for several samples a pixel.
@@ -40,6 +54,21 @@ struct RenderSettings {
     std::function<void(double)> progress;
 };
 
+// Cycles' default --min-spp for a --noise-threshold (Integrator::get_adaptive_sampling: "threshold
+// 0.1 -> 32, 0.01 -> 64, 0.001 -> 128"): max(4, ceil(16 / threshold^0.3)).
+uint32_t defaultMinSamples(float noiseThreshold);
+
+// Whether an adaptive render with these settings checks convergence once `taken` samples a pixel
+// are summed: at minSamples, then at each multiple of GPURT_ADAPTIVE_STEP above it, before the
+// last sample (both backends take the same rounds).
+bool adaptiveCheckAfter(uint32_t taken, const RenderSettings& settings);
+
+// One convergence pass of an adaptive render: the pixels still active after `samples` samples.
+struct AdaptiveRound {
+    uint32_t samples = 0;
+    uint64_t active = 0;
+};
+
 struct RenderStats {
     uint64_t primaryRays = 0, shadowRays = 0, secondaryRays = 0;
     // Rays stopped by the traversal step limit (RAY_OVERFLOW): a bug if > 0. The GL backend
@@ -48,7 +77,8 @@ struct RenderStats {
     // The path integrator: livePaths[b] paths (over all samples) reached hit depth b, that is,
     // traced their ray of round b (round 0: the camera rays). Empty for Whitted.
     std::vector<uint64_t> livePaths;
-    uint64_t samples = 0;  // pixel samples taken (width x height x spp)
+    uint64_t samples = 0;  // pixel samples taken (width x height x spp; adaptive: the sum over the pixels)
+    std::vector<AdaptiveRound> adaptive;  // adaptive sampling's convergence passes, in order
     double totalMs = 0;
 
     void addLivePaths(size_t round, uint64_t paths) {
@@ -66,6 +96,8 @@ struct RenderOutput {
     std::vector<float> prim;        // triangle index of the first hit; -1 on a miss
     std::vector<glm::vec3> normal;  // geometric unit normal facing the eye; 0,0,0 on a miss
     std::vector<float> steps;       // grid cells visited by the primary ray
+    // The samples each pixel took (adaptive sampling; empty otherwise: every pixel took --spp).
+    std::vector<float> spp;
     RenderStats stats;
 };
 

@@ -5,6 +5,7 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   AlphaCoverage.cpp
   BenchRays.cpp
   Camera.cpp
+  RenderTypes.cpp
   CpuTracer.cpp
   SurfaceTexture.cpp
   EmitterTable.cpp

@@ -133,6 +133,11 @@ void GPUKernel::build() {
     if (program_ && builtFor_ == mode) return;
     std::string preamble;
     for (const std::string& d : defines_) preamble += "#define " + d + "\n";
+    // A kernel that stores to images has side effects, and GL then runs the depth and stencil
+    // tests after the shader unless it asks for them first (GL 4.5, 14.9): without this a masked
+    // element's fragment would run, stores and atomics included, and only its outputs be dropped.
+    if ((mode == MaskMode::EarlyZ || mode == MaskMode::Stencil) && !images_.empty())
+        preamble += "layout(early_fragment_tests) in;\n";
     std::string epilogue;
     if (mode == MaskMode::EarlyExit) {
         // Early exit: the kernel's own main becomes gpu_kernelMain, called after the mask test.

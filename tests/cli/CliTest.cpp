@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "CliRunner.h"
+#include "image/ImageIO.h"
 #include "../common/TransmissionQuad.h"
 
 namespace {
@@ -179,6 +180,50 @@ TEST_F(Cli, BadOptionsAreRefusedWithExit1) {
     expectRefused(render + " --aov colour=" + path("x.pfm"), "colour");
     expectRefused(render + " --backend vulkan", "--backend");
     expectRefused(render + " --eye 1,2", "--eye");
+}
+
+// Sampling options (CONTRACT.md "Sampling, adaptive sampling and denoising"): a threshold must be
+// a number in [0, 1), needs the path integrator, and --min-spp at most --spp.
+TEST_F(Cli, BadSamplingOptionsAreRefusedWithExit1) {
+    const std::string render = "render " + kTeapot + " -o " + path("out.png") + " --size 8x8";
+    expectRefused(render + " --integrator path --noise-threshold -0.01", "--noise-threshold");
+    expectRefused(render + " --integrator path --noise-threshold nan", "--noise-threshold");
+    expectRefused(render + " --integrator path --noise-threshold 2", "--noise-threshold");
+    expectRefused(render + " --noise-threshold 0.01", "--noise-threshold");  // Whitted
+    expectRefused(render + " --integrator path --spp 16 --noise-threshold 0.01 --min-spp 32", "--min-spp");
+    expectRefused(render + " --integrator path --spp 16 --min-spp 8", "--min-spp");  // no threshold
+    expectRefused(render + " --integrator path --sampler halton", "--sampler");
+}
+
+// An adaptive render's statistics: mean_spp, and the active pixels after each convergence pass,
+// never rising; the spp AOV holds each pixel's count, whose mean is mean_spp.
+TEST_F(Cli, AdaptiveStatsAndSppAov) {
+    const Result r = gpurt("render scenes/cornell_blocks.json -o " + path("out.png") + " --size 24x20 --integrator path "
+                           "--spp 64 --noise-threshold 0.05 --min-spp 16 --stats=json --aov spp=" + path("spp.pfm"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_TRUE(j.contains("adaptive")) << r.out;
+    uint64_t last = 24 * 20;
+    uint32_t samples = 0;
+    for (const auto& round : j["adaptive"]) {
+        EXPECT_GT(round["samples"].get<uint32_t>(), samples);
+        EXPECT_LE(round["active"].get<uint64_t>(), last);
+        samples = round["samples"];
+        last = round["active"];
+    }
+    EXPECT_EQ(j["adaptive"][0]["samples"], 16);
+    int width = 0, height = 0, channels = 0;
+    const std::vector<float> spp = gpurt::readPfm(path("spp.pfm"), width, height, channels);
+    ASSERT_EQ(spp.size(), size_t(24 * 20));
+    double sum = 0.0;
+    for (float n : spp) {
+        EXPECT_GE(n, 16.0f);
+        EXPECT_LE(n, 64.0f);
+        sum += n;
+    }
+    EXPECT_NEAR(j["mean_spp"].get<double>(), sum / double(spp.size()), 1e-9);
+    EXPECT_LT(j["mean_spp"].get<double>(), 64.0);
+    EXPECT_EQ(j["sampler"], "sobol");
 }
 
 TEST_F(Cli, BadSceneFilesAreRefusedWithExit1) {
@@ -845,6 +890,30 @@ TEST_F(Cli, StitchedTilesAreTheWholeRenderByteForByte) {
                 EXPECT_EQ(slurp(dir / ("stitched" + output)), slurp(dir / ("whole" + output))) << output;
             }
         }
+    }
+}
+
+// Adaptive tiles render a margin of rows (a pixel's stopping decision reaches one row further each
+// convergence pass): stitched, they are the whole adaptive render byte for byte, spp AOV included.
+TEST_F(Cli, AdaptiveTilesStitchToTheWholeRender) {
+    for (const char* backend : {"gl", "cpu"}) {
+        SCOPED_TRACE(backend);
+        const std::string scene = std::string("render scenes/cornell_blocks.json --size 40x36 --integrator path --spp 64 "
+                                              "--noise-threshold 0.05 --min-spp 16 --backend ") + backend;
+        ASSERT_EQ(gpurt(scene + " -o " + path("whole.png") + " --aov spp=" + path("whole_spp.pfm")).code, 0);
+        std::string pngs, spps;
+        for (int i = 0; i < 3; ++i) {
+            const std::string t = "t" + std::to_string(i);
+            const Result r = gpurt(scene + " --tile " + std::to_string(i) + "/3 -o " + path(t + ".png") + " --aov spp=" +
+                                   path(t + "_spp.pfm"));
+            ASSERT_EQ(r.code, 0) << r.err;
+            pngs += " " + path(t + ".png");
+            spps += " " + path(t + "_spp.pfm");
+        }
+        ASSERT_EQ(gpurt("stitch -o " + path("st.png") + pngs).code, 0);
+        ASSERT_EQ(gpurt("stitch -o " + path("st_spp.pfm") + spps).code, 0);
+        EXPECT_EQ(slurp(dir / "st.png"), slurp(dir / "whole.png"));
+        EXPECT_EQ(slurp(dir / "st_spp.pfm"), slurp(dir / "whole_spp.pfm"));
     }
 }
 

@@ -81,7 +81,7 @@ class CyclesReference : public GpurtTest {
         for (int seed = 1; seed <= kSeeds; ++seed) {
             const std::string out = "seed" + std::to_string(seed) + ".exr";
             const GpurtRun run = gpurt("render " + shellQuote(r.scene) + " -o " + quoted(out) + " " + r.options +
-                                       " --integrator path --backend " + backend + " --spp " + std::to_string(r.spp) +
+                                       " --integrator path --clamp-indirect 0 --backend " + backend + " --spp " + std::to_string(r.spp) +
                                        " --seed " + std::to_string(seed));
             ASSERT_EQ(run.code, 0) << run.err;
             int w = 0, h = 0;

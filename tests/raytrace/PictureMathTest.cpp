@@ -121,10 +121,82 @@ TEST(PictureMath, SamplePatternsAreStratified) {
             EXPECT_EQ(cells.size(), n) << n;
         }
     }
-    // One sample is the pixel centre; the patterns of neighbouring pixels differ.
-    EXPECT_EQ(pixelSampleOffset(3, 4, 0, 1, 7), vec2(0.5f));
-    EXPECT_NE(pixelSampleOffset(3, 4, 0, 4, 7), pixelSampleOffset(4, 4, 0, 4, 7));
-    EXPECT_NE(pixelSampleOffset(3, 4, 0, 4, 7), pixelSampleOffset(3, 4, 0, 4, 8));
+    // One sample is the pixel centre, for every sampler; the patterns of neighbouring pixels differ.
+    for (uint32_t sampler : {GPURT_SAMPLER_SOBOL, GPURT_SAMPLER_STRATIFIED, GPURT_SAMPLER_RANDOM}) {
+        EXPECT_EQ(pixelSampleOffset(sampler, 3, 4, 0, 1, 7), vec2(0.5f));
+        EXPECT_NE(pixelSampleOffset(sampler, 3, 4, 0, 4, 7), pixelSampleOffset(sampler, 4, 4, 0, 4, 7));
+        EXPECT_NE(pixelSampleOffset(sampler, 3, 4, 0, 4, 7), pixelSampleOffset(sampler, 3, 4, 0, 4, 8));
+    }
+}
+
+// Whether `points` (2^k of them in [0, 1)^2) form a (0, k, 2)-net: every elementary interval of
+// area 2^-k (2^a columns x 2^(k-a) rows, each a) holds exactly one point.
+bool isZeroNet(const std::vector<vec2>& points, uint32_t k) {
+    for (uint32_t a = 0; a <= k; ++a) {
+        std::set<uint64_t> cells;
+        for (const vec2& p : points) {
+            if (!(p.x >= 0.0f && p.x < 1.0f && p.y >= 0.0f && p.y < 1.0f)) return false;
+            const uint64_t column = uint64_t(std::ldexp(double(p.x), int(a)));
+            const uint64_t row = uint64_t(std::ldexp(double(p.y), int(k - a)));
+            cells.insert((column << 32) | row);
+        }
+        if (cells.size() != points.size()) return false;
+    }
+    return true;
+}
+
+// The sobol sampler: every prefix of 2^k samples of every 2D dimension is a (0, k, 2)-net (what
+// lets an adaptive render stop a pixel after any power of two); so is each later aligned block of
+// 2^k (the rounds of 16 samples an adaptive render adds). The values are pure functions of
+// (pixel, index, seed, dimension), and differ between dimensions and seeds.
+TEST(PictureMath, SobolPrefixesAreZeroNets) {
+    const uint32_t dims[] = {GPURT_DIM_PIXEL, GPURT_DIM_EMITTER, GPURT_DIM_EMITTER + 3u, GPURT_DIM_SCATTER,
+                             GPURT_DIM_SCATTER + 1u, GPURT_DIM_ENVIRONMENT + 7u};
+    for (uint32_t seed : {0u, 1u, 12345u}) {
+        for (uint32_t dim : dims) {
+            for (uint32_t k = 0; k <= 10; ++k) {
+                const uint32_t n = 1u << k;
+                for (uint32_t block : {0u, 1u, 5u}) {
+                    if (block > 0 && k > 6) continue;
+                    std::vector<vec2> points;
+                    for (uint32_t s = block * n; s < (block + 1) * n; ++s)
+                        points.push_back(sample2D(GPURT_SAMPLER_SOBOL, 17, 9, s, 1024, seed, dim));
+                    EXPECT_TRUE(isZeroNet(points, k)) << "seed " << seed << " dim " << dim << " k " << k << " block " << block;
+                }
+            }
+        }
+    }
+    // Pure: the same key gives the same value; another dimension, seed or pixel another value.
+    const vec2 a = sample2D(GPURT_SAMPLER_SOBOL, 17, 9, 5, 64, 3, GPURT_DIM_SCATTER);
+    EXPECT_EQ(a, sample2D(GPURT_SAMPLER_SOBOL, 17, 9, 5, 64, 3, GPURT_DIM_SCATTER));
+    EXPECT_EQ(a, sample2D(GPURT_SAMPLER_SOBOL, 17, 9, 5, 4096, 3, GPURT_DIM_SCATTER));  // no count needed
+    EXPECT_NE(a, sample2D(GPURT_SAMPLER_SOBOL, 17, 9, 5, 64, 3, GPURT_DIM_SCATTER + 2u));
+    EXPECT_NE(a, sample2D(GPURT_SAMPLER_SOBOL, 17, 9, 5, 64, 4, GPURT_DIM_SCATTER));
+    EXPECT_NE(a, sample2D(GPURT_SAMPLER_SOBOL, 18, 9, 5, 64, 3, GPURT_DIM_SCATTER));
+    // The scramble is a bijection of the 32-bit words (spot check: distinct inputs, distinct outputs).
+    std::set<uint32_t> images;
+    for (uint32_t x = 0; x < 4096; ++x) images.insert(owenScramble(x * 0x9e3779b9u, 0x1234567u));
+    EXPECT_EQ(images.size(), 4096u);
+}
+
+// Dimensions are decorrelated: over many pixels, the correlation between the first coordinate of
+// two dimensions of the same sample is near 0 (bound: 5 standard errors of a correlation of
+// independent numbers, 5 / sqrt(N)); the random sampler's pairs likewise.
+TEST(PictureMath, SampleDimensionsAreUncorrelated) {
+    for (uint32_t sampler : {GPURT_SAMPLER_SOBOL, GPURT_SAMPLER_RANDOM, GPURT_SAMPLER_STRATIFIED}) {
+        const int n = 64 * 64 * 4;
+        double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+        for (uint32_t y = 0; y < 64; ++y)
+            for (uint32_t x = 0; x < 64; ++x)
+                for (uint32_t s = 0; s < 4; ++s) {
+                    const double u = sample2D(sampler, x, y, s, 4, 0, GPURT_DIM_SCATTER).x;
+                    const double v = sample2D(sampler, x, y, s, 4, 0, GPURT_DIM_SCATTER + 2u).x;
+                    sx += u, sy += v, sxx += u * u, syy += v * v, sxy += u * v;
+                }
+        const double cov = sxy / n - (sx / n) * (sy / n);
+        const double r = cov / std::sqrt((sxx / n - sx / n * sx / n) * (syy / n - sy / n * sy / n));
+        EXPECT_LT(std::abs(r), 5.0 / std::sqrt(double(n))) << sampler;
+    }
 }
 
 TEST(PictureMath, ToneMapsKeepBlackAndTheirRanges) {

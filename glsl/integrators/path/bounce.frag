@@ -25,7 +25,10 @@ uniform sampler2D lightSample;  // (q, emitting triangle | -1): the emitter poin
 uniform uint sampleIndex;
 uniform uint sampleCount;
 uniform uint seed;
+uniform uint samplerKind;
 uniform int depth;  // the hits' depth (0: the camera rays' hits)
+uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
+uniform float clampIndirect;  // --clamp-indirect
 layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
 #ifdef PACK
 // The live paths, packed for the next round: slot k is element (k % W, k / W), k from the counter.
@@ -70,11 +73,11 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
                             emitterSampleWeight(m, s.xyz, q.xyz, qe1, qe2, emitterArea, n, d);
     }
 #endif
-    color = color + w * local;
+    color = color + clampContribution(w * local, depth, clampDirect, clampIndirect);
 
     uint dim = GPURT_DIM_SCATTER + 2u * uint(depth);
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim));
-    vec2 choice = randomPair(sampleIndex, samplePattern(uint(pixel.x), uint(pixel.y), seed, dim + 1u));
+    vec2 u = sample2D(samplerKind, uint(pixel.x), uint(pixel.y), sampleIndex, sampleCount, seed, dim);
+    vec2 choice = sampleChoice(samplerKind, uint(pixel.x), uint(pixel.y), sampleIndex, sampleCount, seed, dim + 1u);
     vec3 factor;
     float side;
     if (!materialSample(m, d, nm.xyz, n, frontFace(e1, e2, d), u, choice.x, dir, factor, pdf, side))

@@ -16,6 +16,8 @@
 uniform int depth;     // the depth of the pass's first rays (0 with CAMERA)
 uniform int bounces;   // the depths a pass takes each path through
 uniform int maxDepth;  // a path's last depth (--bounces): its emission only
+uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
+uniform float clampIndirect;  // --clamp-indirect
 uniform int packWidth;  // the streams' width: live path k goes to element (k % width, k / width)
 layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
 #ifndef CAMERA
@@ -55,7 +57,7 @@ vec3 directLight(uvec2 pixel, SurfaceHit s, vec3 d, int b) {
             local = local + pathLightContribution(s.m, s.p, s.ns, d, position, color, intensity);
     }
 #ifdef ENVIRONMENT_LIGHT  // the environment is sampled (CpuTracer::environmentVisible)
-    vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, GPURT_DIM_ENVIRONMENT + uint(b)));
+    vec2 u = sample2D(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed, GPURT_DIM_ENVIRONMENT + uint(b));
     vec3 l;
     float pdf;
     if (sampleEnvironment(u, l, pdf) && dot(s.n, l) > 0.0f && unblocked(offsetOrigin(s.p, s.n, rayOffset), l, GPURT_FAR))
@@ -117,9 +119,10 @@ void main() {
 #endif
         if (h.w < 0.0f) {
 #ifdef SCENE_ENVIRONMENT
-            color = color + weight * (environmentRadiance(d) * environmentHitWeight(prevPdf, environmentLightPdf(d)));
+            color = color + clampContribution(weight * (environmentRadiance(d) * environmentHitWeight(prevPdf, environmentLightPdf(d))),
+                                              b, clampDirect, clampIndirect);
 #else
-            color = color + weight * background;
+            color = color + clampContribution(weight * background, b, clampDirect, clampIndirect);
 #endif
             break;
         }
@@ -128,14 +131,15 @@ void main() {
         if (b == 0) normalOut = vec4(s.n, 0.0f);
 #endif
         float mis = s.m.emitterLight ? emissionWeight(prevPdf, h.x, s.n, d, emitterArea) : 1.0f;
-        color = color + weight * (materialEmitted(s.m, s.ns) * mis);
+        color = color + clampContribution(weight * (materialEmitted(s.m, s.ns) * mis), b, clampDirect, clampIndirect);
         if (b == maxDepth) break;
-        if (materialLit(s.m)) color = color + weight * directLight(pixel, s, d, b);
+        if (materialLit(s.m))
+            color = color + clampContribution(weight * directLight(pixel, s, d, b), b, clampDirect, clampIndirect);
 
         // The next direction (path/bounce.frag).
         uint dim = GPURT_DIM_SCATTER + 2u * uint(b);
-        vec2 u = cmjSample(sampleIndex, sampleCount, samplePattern(pixel.x, pixel.y, seed, dim));
-        vec2 choice = randomPair(sampleIndex, samplePattern(pixel.x, pixel.y, seed, dim + 1u));
+        vec2 u = sample2D(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed, dim);
+        vec2 choice = sampleChoice(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed, dim + 1u);
         vec3 dir, factor;
         float pdf, side;
         if (!materialSample(s.m, d, s.n, s.ns, s.front, u, choice.x, dir, factor, pdf, side)) break;

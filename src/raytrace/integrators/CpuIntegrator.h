@@ -11,15 +11,6 @@
 
 namespace gpurt {
 
-// Sample `index` of `count` of pixel (i, j) of the image (its random numbers: common/sampling.h).
-struct PixelSample {
-    int i, j;
-    uint32_t index, count, seed;
-
-    // The coverage key of its rays (common/alpha.h): the accelerators' alpha coverage.
-    uint32_t coverageKey() const { return raymath::coverageKey(uint32_t(i), uint32_t(j), index, seed); }
-};
-
 // Where a sample writes its pixel's primary AOVs: element `pixel` of `out` (nullptr: nowhere).
 struct PixelAovs {
     RenderOutput* out = nullptr;

@@ -49,6 +49,9 @@ void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter) {
 
 void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& colour) {
     if (p.needs.sums) k.addInput(colour, "colorState").addInOut(p.sampleSum, "sumState");
+    if (p.needs.adaptive) {  // the odd samples' sums too, for the active pixels only
+        k.addDefine("ODD_SUM").addInOut(p.oddSum, "oddState").setMask(p.activeMask.get(), false);
+    }
 }
 
 }  // namespace gpurt

@@ -17,11 +17,11 @@ glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer
             local += pathLightContribution(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
     vec3 l;
     float pdf;
-    if (t.environmentVisible(px.i, px.j, px.index, px.count, px.seed, depth, s.p, s.n, stats, l, pdf))
+    if (t.environmentVisible(px, depth, s.p, s.n, stats, l, pdf))
         local += pathEnvironmentContribution(s.material, s.ns, d, l, t.environment().radiance(l), pdf);
     vec3 q;
     uint32_t id;
-    if (t.emitterVisible(px.i, px.j, px.index, px.count, px.seed, depth, s.p, s.n, stats, q, id)) {
+    if (t.emitterVisible(px, depth, s.p, s.n, stats, q, id)) {
         const CpuTracer::PreparedTriangle& e = t.triangle(id);
         const float area = t.emitters().totalArea;
         local += pathLightContribution(s.material, s.p, s.ns, d, q, t.scene().materials[t.scene().materialIds[id]].emission,
@@ -34,7 +34,8 @@ glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer
 }  // namespace
 
 glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                     const std::vector<PointLight>& lights, int maxDepth, PixelAovs aovs, RenderStats& stats) {
+                     const std::vector<PointLight>& lights, int maxDepth, PathClamp clamp, PixelAovs aovs,
+                     RenderStats& stats) {
     glm::vec3 o = eye, color(0.0f), weight(1.0f);
     float prevPdf = 0.0f;  // the camera ray: its emission counts in full
     for (int b = 0;; ++b) {
@@ -44,23 +45,24 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
         if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
         if (b == 0 && aovs.out) aovs.out->steps[aovs.pixel] = static_cast<float>(hit.steps);
         if (hit.prim < 0) {
-            if (t.environment().empty())
-                color += weight * t.scene().background;
-            else
-                color += weight * (t.environment().radiance(d) * environmentHitWeight(prevPdf, t.environment().pdf(d)));
+            const glm::vec3 sky = t.environment().empty()
+                                      ? t.scene().background
+                                      : t.environment().radiance(d) * environmentHitWeight(prevPdf, t.environment().pdf(d));
+            color += clampContribution(weight * sky, b, clamp.direct, clamp.indirect);
             break;
         }
         const CpuTracer::Surface s = t.surfaceAt(hit, o, d);
         if (b == 0 && aovs.out) aovs.write(hit.t, static_cast<float>(hit.prim), s.n);
         const float mis = s.material.emitterLight ? emissionWeight(prevPdf, hit.t, s.n, d, t.emitters().totalArea) : 1.0f;
-        color += weight * (materialEmitted(s.material, s.ns) * mis);
+        color += clampContribution(weight * (materialEmitted(s.material, s.ns) * mis), b, clamp.direct, clamp.indirect);
         if (b == maxDepth) break;
-        if (materialLit(s.material)) color += weight * directLight(t, px, s, d, lights, b, stats);
+        if (materialLit(s.material))
+            color += clampContribution(weight * directLight(t, px, s, d, lights, b, stats), b, clamp.direct, clamp.indirect);
 
         // The next direction (path/bounce.frag).
         const uint32_t dim = GPURT_DIM_SCATTER + 2u * uint32_t(b);
-        const vec2 u = cmjSample(px.index, px.count, samplePattern(uint32_t(px.i), uint32_t(px.j), px.seed, dim));
-        const vec2 choice = randomPair(px.index, samplePattern(uint32_t(px.i), uint32_t(px.j), px.seed, dim + 1u));
+        const vec2 u = px.sample2D(dim);
+        const vec2 choice = px.sampleChoice(dim + 1u);
         const CpuTracer::PreparedTriangle& tri = t.triangle(uint32_t(hit.prim));
         vec3 dir, factor;
         float pdf, side;

@@ -10,8 +10,14 @@
 
 namespace gpurt {
 
+// --clamp-direct and --clamp-indirect (0: off; common/path.h clampContribution).
+struct PathClamp {
+    float direct = 0.0f, indirect = 0.0f;
+};
+
 // The colour of the path of the camera ray from eye along d, with hits up to maxDepth.
 glm::vec3 pathSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                     const std::vector<PointLight>& lights, int maxDepth, PixelAovs aovs, RenderStats& stats);
+                     const std::vector<PointLight>& lights, int maxDepth, PathClamp clamp, PixelAovs aovs,
+                     RenderStats& stats);
 
 }  // namespace gpurt

@@ -108,6 +108,7 @@ void PathGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderO
         stats.addLivePaths(size_t(b), rays);
         (b == 0 ? stats.primaryRays : stats.secondaryRays) += rays;
         if (b == 0 && aovs) p_.readHitAovs(*aovs);
+        surface_.setUniform("depth", b);
         shadeSurfaces(masked_);
         if (b == 0 && aovs) p_.readNormalAov(*aovs);
         if (b == maxDepth) {  // the last depth: its emission only
@@ -138,6 +139,8 @@ void PathGl::startPaths() {
     p_.weight.fill(1.0f);
     p_.pathState.fill(0.0f);
     pixelColor_.fill(0.0f);
+    // Adaptive sampling: raygen skips the stopped pixels, which then carry no ray.
+    if (p_.activeMask) p_.rayDir.fill(GPURT_NO_RAY);
     p_.primaryRays().dispatch();
     setPathRows(p_.height);
 }

@@ -35,6 +35,9 @@ PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& t
     declarePass(fromOwn_, textures, &ownSet, pipelineSet);
     if (aovs_) cameraAovs_.addOutput(p_.hit).addOutput(aovs_->normals()).addOutput(aovs_->steps());
     declareAccumulatePass(accumulate_, p_, pixelColor_);
+    // Adaptive sampling: the stopped pixels start no path.
+    if (p_.activeMask)
+        for (GPUKernel* k : {&camera_, &cameraCentre_}) k->setMask(p_.activeMask.get(), false);
 }
 
 // A pass's streams: the scene, its accelerator, the lights, the live paths it reads (none: the

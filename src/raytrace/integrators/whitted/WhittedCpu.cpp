@@ -18,7 +18,7 @@ glm::vec3 whittedLocal(const CpuTracer& t, const PixelSample& px, const CpuTrace
             local += materialLight(s.material, s.p, s.ns, d, light.position, light.color, light.intensity);
     vec3 q;
     uint32_t id;
-    if (t.emitterVisible(px.i, px.j, px.index, px.count, px.seed, round, s.p, s.n, stats, q, id)) {
+    if (t.emitterVisible(px, round, s.p, s.n, stats, q, id)) {
         const CpuTracer::PreparedTriangle& e = t.triangle(id);
         local += materialLight(s.material, s.p, s.ns, d, q, t.scene().materials[t.scene().materialIds[id]].emission,
                                emitterIntensity(s.p, q, e.e1, e.e2, t.emitters().totalArea));
