@@ -71,7 +71,10 @@ void ProgressDisplay::printLine() {
     const double shown = std::min(std::round(fraction_ * 100.0) / 100.0, fraction_ < 1.0 ? 0.99 : 1.0);
     if (shown <= lastPrinted_) return;
     lastPrinted_ = shown;
-    std::fprintf(stderr, "progress %.2f eta %.1fs\n", shown, secondsLeft());
+    if (active_)
+        std::fprintf(stderr, "progress %.2f eta %.1fs active %llu\n", shown, secondsLeft(), (unsigned long long)*active_);
+    else
+        std::fprintf(stderr, "progress %.2f eta %.1fs\n", shown, secondsLeft());
     std::fflush(stderr);
 }
 
@@ -94,7 +97,9 @@ void ProgressDisplay::drawBar(bool force) {
     else
         std::snprintf(time, sizeof time, "%dm%02ds left", int(left) / 60, int(left) % 60);
     // \r and clear to the end of the line: the bar redraws itself in place.
-    std::fprintf(stderr, "\r[%s] %3d%%%s  %s\033[K", bar.c_str(), int(fraction_ * 100.0), rate, time);
+    char active[48] = "";
+    if (active_) std::snprintf(active, sizeof active, "  %llu px active", (unsigned long long)*active_);
+    std::fprintf(stderr, "\r[%s] %3d%%%s%s  %s\033[K", bar.c_str(), int(fraction_ * 100.0), rate, active, time);
     std::fflush(stderr);
 }
 

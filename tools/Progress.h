@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace gpurt {
@@ -31,6 +33,9 @@ class ProgressDisplay {
     void mark();
     // Done: the fraction 1 (the bar's line ended).
     void finish();
+    // Adaptive sampling: the pixels still active, shown after the fraction from now on
+    // ("progress 0.35 eta 12.1s active 1234"; the bar: "1234 px active").
+    void setActive(uint64_t active) { active_ = active; }
 
     Mode mode() const { return mode_; }
 
@@ -46,6 +51,7 @@ class ProgressDisplay {
     int lastStep_ = 0;                // Lines: the last multiple of 5% printed
     double lastPrinted_ = -1.0;       // Lines: the last fraction printed
     bool finished_ = false;
+    std::optional<uint64_t> active_;
     std::chrono::steady_clock::time_point start_, lastDraw_;
 };
 

@@ -264,8 +264,8 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         if (name == "steps") flat = out.steps;
         if (name == "spp")  // the samples each pixel took: --spp everywhere without adaptive sampling
             flat = out.spp.empty() ? std::vector<float>(size_t(out.width) * size_t(out.height), float(spp)) : out.spp;
-        if (name == "normal" || name == "color") {
-            flat = flat3(name == "normal" ? out.normal : out.color, 1.0f);
+        if (name == "normal" || name == "color" || name == "variance") {
+            flat = flat3(name == "normal" ? out.normal : name == "color" ? out.color : out.variance, 1.0f);
             channels = 3;
         }
         if (isExr(file)) {
@@ -291,8 +291,9 @@ OutputFiles outputNames(const RenderOptions& o) {
         const std::string name = a.substr(0, eq);
         if (eq == std::string::npos || eq + 1 == a.size())
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
-        if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color" && name != "spp")
-            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color, spp)");
+        if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color" && name != "spp" &&
+            name != "variance")
+            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color, spp, variance)");
         if (names.aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         names.aovs[name] = a.substr(eq + 1);
     }
@@ -375,7 +376,7 @@ void keepRows(RenderOutput& out, int first, int count) {
         const auto begin = values.begin() + std::ptrdiff_t(first) * out.width;
         values = std::vector<typename std::decay_t<decltype(values)>::value_type>(begin, begin + std::ptrdiff_t(count) * out.width);
     };
-    crop(out.color), crop(out.depth), crop(out.prim), crop(out.normal), crop(out.steps), crop(out.spp);
+    crop(out.color), crop(out.depth), crop(out.prim), crop(out.normal), crop(out.steps), crop(out.spp), crop(out.variance);
     out.height = count;
     if (!out.spp.empty()) {  // the samples of the rows kept
         out.stats.samples = 0;
@@ -410,6 +411,8 @@ RenderOutput renderFrame(const RenderOptions& o, Renderer& renderer, const Camer
         settings.progress = [&progress, index, frameCount](double f) {
             progress.update((double(index) + f) / double(frameCount));
         };
+    if (progress.mode() != ProgressDisplay::Mode::Off && settings.adaptive())
+        settings.adaptiveProgress = [&progress](uint32_t, uint64_t active) { progress.setActive(active); };
     spp = settings.samples;
     if (!(timeLimit > 0)) return renderRows(renderer, camera, settings);
     const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;
@@ -446,6 +449,7 @@ int runRender(const RenderOptions& o) {
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
     RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
     settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
+    for (const std::string& a : o.aovs) settings.variance = settings.variance || a.rfind("variance=", 0) == 0;
 
     const auto start = std::chrono::steady_clock::now();
     const Acceleration accel = o.grid.accelerate(loaded, cameras.front());
@@ -513,8 +517,8 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
         ->required()
         ->check(kNotEmpty);
     cmd->add_option("--aov", o->aovs,
-                    "Also write an AOV: depth|prim|normal|steps|color|spp=FILE, FILE .pfm or .exr (32-bit float); spp: the "
-                    "samples each pixel took");
+                    "Also write an AOV: depth|prim|normal|steps|color|spp|variance=FILE, FILE .pfm or .exr (32-bit float); "
+                    "spp: the samples each pixel took; variance: of each pixel's mean, per channel");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")

@@ -3,6 +3,7 @@
 // and the viewer's present pass), so each sample costs one more pass over the chain, not more.
 // ODD_SUM (adaptive sampling): the odd-numbered samples are summed apart as well
 // (common/adaptive.h). Under adaptive sampling the pass runs only for the active pixels.
+// SQUARE_SUM (the variance AOV): the squares of the samples are summed as well.
 #include "common/stream.glsl"
 
 uniform sampler2D colorState;  // this sample's colour
@@ -11,10 +12,18 @@ uniform sampler2D sumState;    // in place
 uniform sampler2D oddState;  // in place
 uniform float odd;           // 1 for an odd-numbered sample, else 0
 #endif
+#ifdef SQUARE_SUM
+uniform sampler2D squareState;  // in place
+#endif
 
 layout(location = 0) out vec4 sum;
 #ifdef ODD_SUM
 layout(location = 1) out vec4 oddOut;
+#endif
+#if defined(SQUARE_SUM) && defined(ODD_SUM)
+layout(location = 2) out vec4 squareOut;
+#elif defined(SQUARE_SUM)
+layout(location = 1) out vec4 squareOut;
 #endif
 
 void main() {
@@ -23,5 +32,8 @@ void main() {
     sum = vec4(s.xyz + c, s.w + 1.0f);
 #ifdef ODD_SUM
     oddOut = vec4(readStream(oddState).xyz + (odd > 0.5f ? c : vec3(0.0f)), 0.0f);
+#endif
+#ifdef SQUARE_SUM
+    squareOut = vec4(readStream(squareState).xyz + c * c, 0.0f);
 #endif
 }

@@ -46,7 +46,7 @@ ExrLayout exrLayout(const std::string& output) {
     if (output == "exr") return {{"R", "G", "B"}, true};
     if (output == "depth") return {{"Z"}, false};
     if (output == "normal") return {{"X", "Y", "Z"}, false};
-    if (output == "color") return {{"R", "G", "B"}, false};
+    if (output == "color" || output == "variance") return {{"R", "G", "B"}, false};
     return {{output}, false};  // prim, steps
 }
 

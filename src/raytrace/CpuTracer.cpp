@@ -154,6 +154,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     // Each pixel's sums: of all its samples (and their count), of its odd-numbered ones.
     std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
     std::vector<float> counts(pixels, 0.0f);
+    std::vector<glm::vec3> squares(settings.variance ? pixels : 0, glm::vec3(0.0f));
     std::vector<uint8_t> active(pixels, 1);
     auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
     // Samples [first, last) of pixel (i, j), and its AOVs with the first.
@@ -173,6 +174,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             sums[pixel] += c;
             counts[pixel] += 1.0f;
             if (adaptive && (s & 1u) != 0u) oddSums[pixel] += c;
+            if (settings.variance) squares[pixel] += c * c;
         }
     };
 
@@ -201,10 +203,15 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         const uint64_t left = convergencePass(camera.width, out.height, sums, oddSums, counts, settings.noiseThreshold,
                                               threads, active);
         out.stats.adaptive.push_back({taken, left});
+        if (settings.adaptiveProgress) settings.adaptiveProgress(taken, left);
         if (left == 0) break;
     }
     for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
     if (adaptive) out.spp = counts;
+    if (settings.variance) {
+        out.variance.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) out.variance[p] = varianceOfMean(sums[p], squares[p], counts[p]);
+    }
     if (settings.progress) settings.progress(1.0);
     for (const RenderStats& s : threadStats) {
         out.stats.primaryRays += s.primaryRays;

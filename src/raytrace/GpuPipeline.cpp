@@ -34,6 +34,7 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       raygen("raygen", "integrators/raygen.frag"),
       raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)),  // a variant: the same pass in --stats
       oddSum(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "oddSum"),
+      squareSum(needs.variance ? w : 1, needs.variance ? h : 1, 4, "squareSum"),
       activity(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activity"),
       converge("converge", "integrators/converge.frag") {
     if (needs.stages) accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);

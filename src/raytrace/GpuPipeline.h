@@ -36,6 +36,7 @@ struct StreamNeeds {
     // Adaptive sampling (RenderSettings::adaptive): the odd samples' sums, the pixels' activity,
     // its mask over the pixel passes, and the convergence pass.
     bool adaptive = false;
+    bool variance = false;  // the samples' squares summed (the variance AOV)
     bool operator==(const StreamNeeds&) const = default;
 };
 
@@ -79,6 +80,7 @@ struct GpuPipeline {
     // that keeps stopped pixels out of the passes that start samples and sum them (null without
     // adaptive sampling), and the convergence pass (integrators/converge.frag).
     GPUFloatArray oddSum;
+    GPUFloatArray squareSum;  // needs.variance: the sum of each pixel's samples' squares (1 x 1 otherwise)
     GPUPingPongArray activity;
     std::unique_ptr<GPUMask> activeMask;
     GPUKernel converge;

@@ -74,7 +74,7 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
 }
 
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
-                                 bool integrating, bool aovs, bool adaptive) {
+                                 bool integrating, bool aovs, bool adaptive, bool variance) {
     // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
     // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
     // pass of their own takes the pixel centres' AOVs.
@@ -87,6 +87,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.stages = !megakernel;
     needs.aovs = aovs || progressive;
     needs.adaptive = adaptive;
+    needs.variance = variance;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
         paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
         megakernelAovs_.reset();
@@ -189,8 +190,9 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const bool paths = settings.integrator == Integrator::Path;
     const uint32_t samples = std::max(1u, settings.samples);
     const bool adaptive = settings.adaptive() && samples > 1;
+    const bool variance = settings.variance && samples > 1;
     GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true,
-                              settings.aovs, adaptive);
+                              settings.aovs, adaptive, variance);
     GlIntegrator& chosen = integrator(settings);
     RenderOutput out;
     out.width = camera.width;
@@ -212,6 +214,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.color = downloadVectors<glm::vec3>(chosen.colour());
     } else {
         p.sampleSum.fill(0.0f);
+        if (variance) p.squareSum.fill(0.0f);
         if (adaptive) p.beginAdaptive();
         const std::vector<GPUKernel*> kernels = integratorKernels();
         for (uint32_t s = 0; s < samples; ++s) {
@@ -225,6 +228,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             if (adaptiveCheckAfter(s + 1, settings)) {
                 const uint64_t active = p.convergeRound(settings.noiseThreshold);
                 out.stats.adaptive.push_back({s + 1, active});
+                if (settings.adaptiveProgress) settings.adaptiveProgress(s + 1, active);
                 if (active == 0) break;
             }
             // The rounds' occlusion counts already wait for the passes; glFinish makes the
@@ -244,7 +248,14 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             out.spp.resize(sums.size());
             for (size_t i = 0; i < sums.size(); ++i) out.spp[i] = sums[i].w;
         }
+        if (variance) {
+            const std::vector<glm::vec3> squares = downloadVectors<glm::vec3>(p.squareSum);
+            out.variance.resize(sums.size());
+            for (size_t i = 0; i < sums.size(); ++i)
+                out.variance[i] = varianceOfMean(glm::vec3(sums[i]), squares[i], sums[i].w);
+        }
     }
+    if (settings.variance && samples == 1) out.variance.assign(out.color.size(), glm::vec3(0.0f));
     if (samples == 1) out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows());
     flushStats();
     if (settings.progress) settings.progress(1.0);

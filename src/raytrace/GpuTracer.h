@@ -75,8 +75,10 @@ class GpuTracer {
     // integrating: for the integrators' samples (render, the viewer), which may be megakernels;
     // false: for the accelerator's traces alone (gpurt bench).
     // adaptive: adaptive sampling's streams and passes (GpuPipeline::beginAdaptive).
+    // variance: the samples' squares summed too (the variance AOV).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
-                          bool sums = false, bool integrating = false, bool aovs = true, bool adaptive = false);
+                          bool sums = false, bool integrating = false, bool aovs = true, bool adaptive = false,
+                          bool variance = false);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
     void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator `settings` asks for.

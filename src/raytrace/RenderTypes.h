@@ -44,6 +44,8 @@ struct RenderSettings {
     // --clamp-direct, --clamp-indirect (path integrator; common/path.h clampContribution): 0 is
     // off. The library's default is off; the command's indirect default is Cycles' 10.
     float clampDirect = 0.0f, clampIndirect = 0.0f;
+    // The variance AOV (RenderOutput::variance): the sums of the samples' squares as well.
+    bool variance = false;
     // The primary AOVs (depth, prim, normal, steps) in RenderOutput, from the pixel centres' rays;
     // false: the colour alone (gpurt render without --aov), and no pixel-centre rays of their own
     // for several samples a pixel.
@@ -52,6 +54,9 @@ struct RenderSettings {
     // sample (gl) or image row (cpu), from the rendering thread or a worker (never two at once).
     // Nothing of the image depends on it.
     std::function<void(double)> progress;
+    // Adaptive sampling: called after each convergence pass with the samples taken and the pixels
+    // still active (both backends; the same thread rules as progress).
+    std::function<void(uint32_t, uint64_t)> adaptiveProgress;
 };
 
 // Cycles' default --min-spp for a --noise-threshold (Integrator::get_adaptive_sampling: "threshold
@@ -62,6 +67,10 @@ uint32_t defaultMinSamples(float noiseThreshold);
 // are summed: at minSamples, then at each multiple of GPURT_ADAPTIVE_STEP above it, before the
 // last sample (both backends take the same rounds).
 bool adaptiveCheckAfter(uint32_t taken, const RenderSettings& settings);
+
+// The variance of a pixel's mean from the sum and the sum of squares of its n samples, per channel
+// (both backends; the variance AOV).
+glm::vec3 varianceOfMean(glm::vec3 sum, glm::vec3 squares, float n);
 
 // One convergence pass of an adaptive render: the pixels still active after `samples` samples.
 struct AdaptiveRound {
@@ -98,6 +107,9 @@ struct RenderOutput {
     std::vector<float> steps;       // grid cells visited by the primary ray
     // The samples each pixel took (adaptive sampling; empty otherwise: every pixel took --spp).
     std::vector<float> spp;
+    // With RenderSettings::variance: per channel, the variance of each pixel's mean (the samples'
+    // variance over their count: (sum of squares / n - mean^2) / (n - 1)); 0 for one sample.
+    std::vector<glm::vec3> variance;
     RenderStats stats;
 };
 

@@ -214,3 +214,45 @@ TEST_F(Adaptive, ClampingBoundsEachSamplesContribution) {
 
 }  // namespace
 }  // namespace gpurt::test
+
+namespace gpurt::test {
+namespace {
+
+// The variance AOV: the variance of each pixel's mean. Two renders (random sampler) of other seeds differ by
+// E[(a - b)^2] = 2 var(mean) in each pixel, so over the image the mean squared difference of two
+// renders is twice the mean of the AOV (within 10%: 1920 pixels x 3 channels of a chi-square of
+// one degree, plus the estimates' own spread), on both backends; the backends' AOVs agree.
+TEST_F(Adaptive, VarianceAovPredictsTheSpreadBetweenSeeds) {
+    const LoadedScene loaded = loadScene("scenes/cornell_blocks.json");
+    const UniformGrid grid = buildGrid(loaded.scene, GridOptions{});
+    const CameraBasis camera = makeCamera(*loaded.scene.camera, 48, 40);
+    RenderSettings settings = adaptiveSettings(32, 0, 0.0f);
+    settings.variance = true;
+    settings.clampIndirect = 2.0f;  // no fireflies: their variance is estimated only once one is drawn
+    // Independent samples: the AOV is the samples' variance over their count, which is the mean's
+    // for independent samples; sobol's means vary about 10x less between seeds than that here.
+    settings.sampler = SamplerKind::Random;
+    GpuTracer gl(loaded.scene, grid);
+    const RenderOutput a = gl.render(camera, settings);
+    const RenderOutput cpu = CpuTracer(loaded.scene, grid).render(camera, settings);
+    settings.seed = 1;
+    const RenderOutput b = gl.render(camera, settings);
+    ASSERT_EQ(a.variance.size(), a.color.size());
+    double predicted = 0.0, observed = 0.0, worst = 0.0;
+    for (size_t i = 0; i < a.color.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            // The light and its edge (above 1) are left out: a few pixels of great variance there
+            // would decide the whole sum.
+            if (glm::compMax(a.color[i]) > 1.0f || glm::compMax(b.color[i]) > 1.0f) continue;
+            predicted += a.variance[i][c] + b.variance[i][c];
+            observed += std::pow(double(a.color[i][c]) - double(b.color[i][c]), 2.0);
+            worst = std::max(worst, std::abs(double(a.variance[i][c]) - double(cpu.variance[i][c])) /
+                                        (1e-6 + double(cpu.variance[i][c])));
+        }
+    EXPECT_GT(observed / predicted, 0.9);
+    EXPECT_LT(observed / predicted, 1.1);
+    EXPECT_LT(worst, 1e-2);
+}
+
+}  // namespace
+}  // namespace gpurt::test

@@ -52,6 +52,7 @@ void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& co
     if (p.needs.adaptive) {  // the odd samples' sums too, for the active pixels only
         k.addDefine("ODD_SUM").addInOut(p.oddSum, "oddState").setMask(p.activeMask.get(), false);
     }
+    if (p.needs.variance) k.addDefine("SQUARE_SUM").addInOut(p.squareSum, "squareState");
 }
 
 }  // namespace gpurt
