@@ -25,9 +25,10 @@ vec3 primaryDirection() {
 
 // The direction of this fragment's ray for sample sampleIndex of sampleCount (Camera.cpp
 // sampleDirection on the CPU).
-vec3 sampleDirection() {
-    uvec2 pixel = imagePixel();
+vec3 sampleDirectionAt(uvec2 pixel) {
     vec2 offset = pixelSampleOffset(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed);
     return cameraRayThrough(forward, right, upOrtho, tanHalf, aspect, float(pixel.x) + offset.x,
                             float(pixel.y) + offset.y, imageSize.x, imageSize.y);
 }
+
+vec3 sampleDirection() { return sampleDirectionAt(imagePixel()); }

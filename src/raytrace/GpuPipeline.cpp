@@ -3,6 +3,7 @@
 #include "raytrace/integrators/SharedPasses.h"
 
 #include <limits>
+#include <span>
 
 namespace gpurt {
 
@@ -36,6 +37,8 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       oddSum(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "oddSum"),
       squareSum(needs.variance ? w : 1, needs.variance ? h : 1, 4, "squareSum"),
       activity(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activity"),
+      activePixels(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activePixels"),
+      activeCount(1, 1, GPUFormat::R32UI, "activeCount"),
       converge("converge", "integrators/converge.frag") {
     if (needs.stages) accel.attach(GlRayStreams{&rayOrigin, &rayDir, &hit}, mask);
     for (GPUKernel* k : kernels()) {
@@ -47,6 +50,7 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
         for (GPUKernel* k : kernels()) k->setMask(activeMask.get(), false);
         // Stopped pixels are masked out and keep the 0 the stream is cleared to.
         converge.addInput(sampleSum, "sampleSum").addInput(oddSum, "oddSum").addOutput(activity);
+        converge.addImage(activePixels, "activePixels").addImage(activeCount, "activeCount").setUniform("packWidth", w);
         converge.setPreserveUnwritten(false).setMask(activeMask.get(), false);
     }
 }
@@ -55,13 +59,17 @@ void GpuPipeline::beginAdaptive() {
     oddSum.fill(0.0f);
     activity.front().fill(1.0f);
     activeMask->update();
+    packedActive.reset();
 }
 
 uint64_t GpuPipeline::convergeRound(float threshold) {
     activity.back().fill(0.0f);
+    const uint32_t zero = 0;
+    activeCount.upload(std::span<const uint32_t>(&zero, 1));
     converge.setUniform("threshold", threshold);
     const uint64_t active = converge.execute();  // the pass swaps activity: its front is the new one
     activeMask->update();
+    packedActive = active;
     return active;
 }
 

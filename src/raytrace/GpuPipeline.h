@@ -14,6 +14,7 @@
 #include "stream/GPUMask.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,10 @@ struct GpuPipeline {
     GPUFloatArray squareSum;  // needs.variance: the sum of each pixel's samples' squares (1 x 1 otherwise)
     GPUPingPongArray activity;
     std::unique_ptr<GPUMask> activeMask;
+    // The active pixels packed by the last convergence pass (slot k: element (k % width, k /
+    // width) holds the pixel's stream index) and their number; none before the first pass.
+    GPUFloatArray activePixels, activeCount;
+    std::optional<uint64_t> packedActive;
     GPUKernel converge;
 
     // The accelerator's passes are attached to the ray streams (not without the stages: the

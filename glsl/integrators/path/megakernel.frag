@@ -10,6 +10,8 @@
 // next pass covers only the live paths and its count ends the loop (PathMegakernelGl).
 // CAMERA: the first pass, one path per pixel from the camera ray of the sample (raygen.frag), no
 // streams read. AOVS (with CAMERA): the primary hit, facing normal and step count as well.
+// PIXEL_LIST (with CAMERA; adaptive sampling): one path per pixel of the packed list of active
+// pixels the last convergence pass made (integrators/converge.frag), element k for its k-th.
 #include "integrators/megakernel.glsl"
 #include "common/path.h"
 
@@ -20,6 +22,10 @@ uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution
 uniform float clampIndirect;  // --clamp-indirect
 uniform int packWidth;  // the streams' width: live path k goes to element (k % width, k / width)
 layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
+#ifdef PIXEL_LIST
+uniform sampler2D activePixels;  // (stream x, stream y, 0, 0) of each active pixel
+uniform uint listLength;         // how many: the elements from the `listLength`-th on hold none
+#endif
 #ifndef CAMERA
 // The live paths of the last pass, packed: ray, (throughput, 1), (pdf, pixel x, pixel y, 0),
 // colour so far.
@@ -81,9 +87,17 @@ vec3 directLight(uvec2 pixel, SurfaceHit s, vec3 d, int b) {
 void main() {
     lives = vec4(0.0f);
 #ifdef CAMERA
+#ifdef PIXEL_LIST
+    uvec2 element = uvec2(gl_FragCoord.xy);
+    if (element.y * uint(packWidth) + element.x >= listLength) discard;  // no pixel in this element
+    uvec2 pixel = uvec2(texelFetch(activePixels, ivec2(element), 0).xy) + uvec2(0u, uint(tileRow));
+    vec3 d = sampleDirectionAt(pixel);
+#else
     uvec2 pixel = imagePixel();
+#endif
     vec3 o = eye;
-#ifdef PIXEL_CENTRE
+#ifdef PIXEL_LIST
+#elif defined(PIXEL_CENTRE)
     vec3 d = primaryDirection();
 #else
     vec3 d = sampleDirection();

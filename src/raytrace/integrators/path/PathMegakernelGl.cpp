@@ -27,7 +27,8 @@ PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& t
                   passDefines(kCameraPass | kPixelCentre | kAovPass)),
       fromPipeline_("pathMegakernel", "integrators/path/megakernel.frag"),
       fromOwn_("pathMegakernel", "integrators/path/megakernel.frag"),
-      accumulate_("pathMegakernelAccumulate", "integrators/accumulate.frag") {
+      accumulate_("pathMegakernelAccumulate", "integrators/accumulate.frag"),
+      cameraList_("pathMegakernel", "integrators/path/megakernel.frag", passDefines(kCameraPass)) {
     const PathStreams pipelineSet{&p_.rayOrigin, &p_.rayDir, &p_.weight, &p_.pathState, &p_.color};
     const PathStreams ownSet{&origin_, &dir_, &weight_, &state_, &color_};
     for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_}) declarePass(*k, textures, nullptr, pipelineSet);
@@ -35,9 +36,14 @@ PathMegakernelGl::PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& t
     declarePass(fromOwn_, textures, &ownSet, pipelineSet);
     if (aovs_) cameraAovs_.addOutput(p_.hit).addOutput(aovs_->normals()).addOutput(aovs_->steps());
     declareAccumulatePass(accumulate_, p_, pixelColor_);
-    // Adaptive sampling: the stopped pixels start no path.
-    if (p_.activeMask)
+    // Adaptive sampling: the stopped pixels start no path: the first round's passes are masked,
+    // the later ones run over the packed list of the pixels still active.
+    if (p_.activeMask) {
         for (GPUKernel* k : {&camera_, &cameraCentre_}) k->setMask(p_.activeMask.get(), false);
+        cameraList_.addDefine("PIXEL_LIST");
+        declarePass(cameraList_, textures, nullptr, pipelineSet);
+        cameraList_.addInput(p_.activePixels, "activePixels");
+    }
 }
 
 // A pass's streams: the scene, its accelerator, the lights, the live paths it reads (none: the
@@ -57,11 +63,11 @@ void PathMegakernelGl::declarePass(GPUKernel& k, const SceneTextures& textures, 
 }
 
 std::vector<GPUKernel*> PathMegakernelGl::kernels() {
-    return {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_, &accumulate_};
+    return {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_, &accumulate_, &cameraList_};
 }
 
 void PathMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
-    for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_})
+    for (GPUKernel* k : {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_, &cameraList_})
         k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
     sampleCount_ = n;
 }
@@ -71,13 +77,22 @@ void PathMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 // whose count ends the loop. Each path leaves its colour in its pixel's element when it ends.
 void PathMegakernelGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderOutput* aovs,
                               RenderStats& stats) {
-    const std::vector<GPUKernel*> passes = {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_};
+    const std::vector<GPUKernel*> passes = {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_,
+                                            &cameraList_};
     inputs_.setLights(lights, passes);
     const int perPass = bouncesPerPass_ > 0 ? bouncesPerPass_ : maxDepth + 1;
     for (GPUKernel* k : passes) k->setUniform("bounces", perPass).setUniform("maxDepth", maxDepth);
     if (aovs && !aovs_) throw UsageError("PathMegakernelGl: AOVs asked of a pipeline made without them");
-    GPUKernel& first = aovs ? cameraAovs_ : sampleCount_ == 1 ? cameraCentre_ : camera_;
-    uint64_t live = runPass(first, 0, p_.height, stats);
+    uint64_t live = 0;
+    if (p_.packedActive && !aovs) {  // adaptive sampling, after a convergence pass
+        const uint64_t pixels = *p_.packedActive;
+        cameraList_.setUniform("listLength", unsigned(pixels));
+        if (pixels > 0)  // (the viewer goes on sampling once every pixel has stopped)
+            live = runPass(cameraList_, 0, int((pixels + uint64_t(p_.width) - 1) / uint64_t(p_.width)), stats);
+    } else {
+        GPUKernel& first = aovs ? cameraAovs_ : sampleCount_ == 1 ? cameraCentre_ : camera_;
+        live = runPass(first, 0, p_.height, stats);
+    }
     if (aovs) {
         p_.readHitAovs(*aovs, &aovs_->steps(), false);
         p_.readNormalAov(*aovs, &aovs_->normals());

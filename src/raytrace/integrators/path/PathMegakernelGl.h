@@ -47,6 +47,9 @@ class PathMegakernelGl final : public GlIntegrator {
     // The first pass from the camera rays (sample points or pixel centres; with AOVs), and the
     // passes from each stream set into the other.
     GPUKernel camera_, cameraCentre_, cameraAovs_, fromPipeline_, fromOwn_, accumulate_;
+    // Adaptive sampling: the first pass over the packed list of active pixels (PIXEL_LIST), once
+    // a convergence pass has made one.
+    GPUKernel cameraList_;
 };
 
 }  // namespace gpurt
