@@ -13,30 +13,19 @@ total_ms (load, grid, context and render). Efficiency = 1 / (relMSE x seconds). 
 Needs build/gpurt; run it on a quiet machine (a second process slows llvmpipe).
 """
 import argparse
-import array
 import json
 import os
 import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from pfm import read_pfm  # noqa: E402
 G = os.path.join(ROOT, "build", "gpurt")
 SCENES = {
     "cornell blocks": ["scenes/cornell_blocks.json"],
     "bunny under the sky": ["../shared/models/bunny.obj", "--env", "scenes/sky.hdr"],
 }
-
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        values = array.array("f")
-        values.frombytes(f.read())
-    if scale > 0:
-        values.byteswap()
-    return values
 
 
 def rel_mse(x, ref):
@@ -49,7 +38,7 @@ def render(scene, work, name, size, options):
            "--integrator", "path", "--aov", "color=" + color, "--stats=json", *options]
     out = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True).stdout
     stats = json.loads(out.strip().splitlines()[-1])
-    return read_pfm(color), stats
+    return read_pfm(color)[3], stats
 
 
 def per_sample_us(stats):

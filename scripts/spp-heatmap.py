@@ -4,24 +4,13 @@
   python3 scripts/spp-heatmap.py spp.pfm heat.png [--max N]
 Dark blue: the fewest samples (--min-spp), through red to yellow: the most (--max, default the
 largest count in the file). Only the standard library (zlib, struct)."""
-import array
+import os
 import struct
 import sys
 import zlib
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        values = array.array("f")
-        values.frombytes(f.read())
-    if scale > 0:
-        values.byteswap()
-    if kind != b"Pf":
-        raise SystemExit(f"{path}: not a one-channel PFM (the spp AOV)")
-    return w, h, values
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pfm import read_pfm  # noqa: E402
 
 
 def colour(t):
@@ -47,7 +36,9 @@ def write_png(path, w, h, rows):
 def main():
     if len(sys.argv) < 3:
         raise SystemExit(__doc__)
-    w, h, values = read_pfm(sys.argv[1])
+    w, h, channels, values = read_pfm(sys.argv[1])
+    if channels != 1:
+        raise SystemExit(f"{sys.argv[1]}: not a one-channel PFM (the spp AOV)")
     top = float(sys.argv[4]) if len(sys.argv) > 4 and sys.argv[3] == "--max" else max(values)
     low = min(values)
     span = max(1e-9, top - low)

@@ -181,6 +181,20 @@ TEST_F(Viewer, PathTracedFramesAreTheRenderWithAsManySamples) {
     expectRenderMatches("scenes/cornell.json", printedCamera(), "--integrator path --spp 6", "shot.png");
 }
 
+// Adaptive sampling in the viewer: its sums stop refining the pixels that converged, in the same
+// rounds as render, so K frames are `gpurt render --spp K` with the same threshold.
+TEST_F(Viewer, AdaptiveFramesAreTheAdaptiveRender) {
+    const std::vector<std::string> adaptive = {"--integrator", "path", "--spp", "48", "--noise-threshold", "0.05",
+                                               "--min-spp", "16"};
+    std::vector<std::string> args = {"--size", "96x96", "--frames", "48", "--screenshot", path("shot.png")};
+    args.insert(args.end(), adaptive.begin(), adaptive.end());
+    auto v = view("scenes/cornell_blocks.json", args);
+    ASSERT_TRUE(v->started());
+    ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
+    expectRenderMatches("scenes/cornell_blocks.json", printedCamera(),
+                        "--integrator path --spp 48 --noise-threshold 0.05 --min-spp 16", "shot.png");
+}
+
 // A drag and a key move the camera; `gpurt render` with the camera printed on closing is the
 // picture the window showed; Esc closes with exit 0.
 TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
