@@ -162,7 +162,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         if (!s.adaptive.empty() || !out.spp.empty()) {
             j["noise_threshold"] = std::stod(o.picture.noiseThreshold);
             j["adaptive"] = nlohmann::json::array();
-            for (const AdaptiveRound& r : s.adaptive) j["adaptive"].push_back({{"samples", r.samples}, {"active", r.active}});
+            for (const AdaptiveRound& r : s.adaptive)
+                j["adaptive"].push_back({{"samples", r.samples}, {"active", r.active}, {"ms", r.ms}});
         }
         if (!o.timeLimit.empty()) j["time_limit_s"] = std::stod(o.timeLimit);
         j["samples_per_s"] = samplesPerS;

@@ -184,6 +184,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     size_t rowsDone = 0;
     uint32_t taken = 0;
     while (taken < samples) {
+        const auto roundStart = std::chrono::steady_clock::now();
         uint32_t next = taken + 1;  // the round: up to the next convergence pass, or the last sample
         if (adaptive)
             while (next < samples && !adaptiveCheckAfter(next, settings)) ++next;
@@ -200,9 +201,11 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         taken = next;
         if (!adaptive || taken >= samples) break;
         if (settings.progress) settings.progress(double(taken) / double(samples));
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - roundStart).count();
         const uint64_t left = convergencePass(camera.width, out.height, sums, oddSums, counts, settings.noiseThreshold,
                                               threads, active);
-        out.stats.adaptive.push_back({taken, left});
+        out.stats.adaptive.push_back({taken, left, ms});
         if (settings.adaptiveProgress) settings.adaptiveProgress(taken, left);
         if (left == 0) break;
     }

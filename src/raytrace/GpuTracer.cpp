@@ -217,6 +217,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         if (variance) p.squareSum.fill(0.0f);
         if (adaptive) p.beginAdaptive();
         const std::vector<GPUKernel*> kernels = integratorKernels();
+        auto roundStart = std::chrono::steady_clock::now();
         for (uint32_t s = 0; s < samples; ++s) {
             setSample(s, samples, settings.seed);
             if (adaptive)  // the accumulate pass sums the odd samples apart (common/adaptive.h)
@@ -226,8 +227,12 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             // Adaptive sampling's convergence pass (CpuTracer::render takes the same rounds): the
             // render ends when its occlusion query counts no active pixel.
             if (adaptiveCheckAfter(s + 1, settings)) {
+                glFinish();  // the round's passes, timed apart from the convergence pass
+                const auto now = std::chrono::steady_clock::now();
+                const double ms = std::chrono::duration<double, std::milli>(now - roundStart).count();
                 const uint64_t active = p.convergeRound(settings.noiseThreshold);
-                out.stats.adaptive.push_back({s + 1, active});
+                roundStart = std::chrono::steady_clock::now();
+                out.stats.adaptive.push_back({s + 1, active, ms});
                 if (settings.adaptiveProgress) settings.adaptiveProgress(s + 1, active);
                 if (active == 0) break;
             }

@@ -76,6 +76,9 @@ glm::vec3 varianceOfMean(glm::vec3 sum, glm::vec3 squares, float n);
 struct AdaptiveRound {
     uint32_t samples = 0;
     uint64_t active = 0;
+    // Wall time of the round's samples (since the last convergence pass, or the first sample),
+    // in milliseconds: the masked passes' cost against the pixels they ran for.
+    double ms = 0.0;
 };
 
 struct RenderStats {
