@@ -256,3 +256,39 @@ TEST_F(Adaptive, VarianceAovPredictsTheSpreadBetweenSeeds) {
 
 }  // namespace
 }  // namespace gpurt::test
+
+namespace gpurt::test {
+namespace {
+
+// The samplers' numbers are pure functions of (pixel, sample, seed, dimension) and the same on
+// both backends, bit for bit: a kernel of glsl/common/sampling.h against the C++ of the same file.
+TEST_F(Adaptive, SamplersGiveTheSameNumbersOnBothBackends) {
+    const int w = 24, h = 16;
+    GPUFloatArray first(w, h, 4, "first"), second(w, h, 4, "second");
+    GPUKernel kernel("samples", "test/samples.frag");
+    kernel.addOutput(first).addOutput(second);
+    for (uint32_t s : {0u, 1u, 5u, 63u, 1000u})
+        for (uint32_t dimension : {0u, 1u, 1030u, 3077u}) {
+            kernel.setUniform("sampleIndex", s).setUniform("sampleCount", 64u).setUniform("seed", 7u);
+            kernel.setUniform("dimension", dimension).execute();
+            const std::vector<float> a = first.download(), b = second.download();
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const size_t i = size_t(y * w + x) * 4;
+                    const auto px = [&](uint32_t sampler) {
+                        return raymath::sample2D(sampler, uint32_t(x), uint32_t(y), s, 64u, 7u, dimension);
+                    };
+                    const glm::vec2 sobol = px(GPURT_SAMPLER_SOBOL), stratified = px(GPURT_SAMPLER_STRATIFIED),
+                                    random = px(GPURT_SAMPLER_RANDOM);
+                    const glm::vec2 choice =
+                        raymath::sampleChoice(GPURT_SAMPLER_SOBOL, uint32_t(x), uint32_t(y), s, 64u, 7u, dimension + 1u);
+                    ASSERT_EQ(glm::vec4(a[i], a[i + 1], a[i + 2], a[i + 3]), glm::vec4(sobol, stratified))
+                        << x << "," << y << " sample " << s << " dimension " << dimension;
+                    ASSERT_EQ(glm::vec4(b[i], b[i + 1], b[i + 2], b[i + 3]), glm::vec4(random, choice))
+                        << x << "," << y << " sample " << s << " dimension " << dimension;
+                }
+        }
+}
+
+}  // namespace
+}  // namespace gpurt::test
