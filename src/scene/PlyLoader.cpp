@@ -653,7 +653,10 @@ class ParallelAsciiReader {
                 const void* nl = std::memchr(bytes_.data() + end - 1, '\n', size - (end - 1));
                 end = nl ? size_t(static_cast<const char*>(nl) - bytes_.data()) + 1 : size;
             }
-            chunks_.push_back(AsciiChunk{begin, end});
+            AsciiChunk chunk;
+            chunk.begin = begin;
+            chunk.end = end;
+            chunks_.push_back(std::move(chunk));
             begin = end;
         }
         parallelChunks(chunks_.size(), 1, threads_, [&](size_t c, size_t, size_t) {

@@ -305,7 +305,9 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
                                              factor, pdf, side))
                     continue;
                 ASSERT_EQ(side < 0.0f, dir.z < 0.0f);
-                if (dir.z < 0.0f) ASSERT_EQ(pdf, 0.0f);
+                if (dir.z < 0.0f) {
+                    ASSERT_EQ(pdf, 0.0f);
+                }
                 ++kept;
                 sum += glm::dvec3(factor);
                 sum2 += glm::dvec3(factor) * glm::dvec3(factor);

@@ -84,7 +84,9 @@ TEST(PathMath, ScatteredDirectionsFollowTheirPdf) {
                             lobe, dir, factor, pdf, side)) {
                 x = factor.x;
                 EXPECT_NEAR(glm::length(dir), 1.0f, 1e-5f);
-                if (pdf > 0.0f) EXPECT_GT(dir.z, 0.0f);
+                if (pdf > 0.0f) {
+                    EXPECT_GT(dir.z, 0.0f);
+                }
             }
             sum += x;
             sum2 += x * x;

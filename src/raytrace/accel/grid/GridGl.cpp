@@ -84,8 +84,8 @@ GridGl::Passes::Passes(const GridGl& grid, const GlRayStreams& rays, MaskMode ma
       precalc("precalc", "accel/grid/precalc.frag"),
       traverse("traverse", "accel/grid/traverse.frag", {"TRAVERSE_STEPS " + std::to_string(std::max(1, traverseSteps))}),
       intersect("intersect", "accel/grid/intersect.frag"),
-      trace("trace", "accel/grid/trace.frag", traceDefines(fusedSteps > 0 ? 0 : kFromStart, fusedSteps)),
-      traceAny("traceAny", "accel/grid/trace.frag", traceDefines((fusedSteps > 0 ? 0 : kFromStart) | kAnyHit, fusedSteps)),
+      trace("trace", "accel/grid/trace.frag", traceDefines(fusedSteps > 0 ? 0u : unsigned(kFromStart), fusedSteps)),
+      traceAny("traceAny", "accel/grid/trace.frag", traceDefines((fusedSteps > 0 ? 0u : unsigned(kFromStart)) | unsigned(kAnyHit), fusedSteps)),
       traceMasked("traceMasked", "accel/grid/trace.frag", traceDefines(kFromStart, 0)),
       traceAnyMasked("traceAnyMasked", "accel/grid/trace.frag", traceDefines(kFromStart | kAnyHit, 0)),
       traceCamera("traceCamera", "accel/grid/trace.frag", traceDefines(kFromStart | kCamera, 0)) {
