@@ -450,7 +450,7 @@ int runRender(const RenderOptions& o) {
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
     RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
     settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
-    for (const std::string& a : o.aovs) settings.variance = settings.variance || a.rfind("variance=", 0) == 0;
+    settings.variance = frames.names.aovs.count("variance") > 0;  // the squares summed only for that AOV
 
     const auto start = std::chrono::steady_clock::now();
     const Acceleration accel = o.grid.accelerate(loaded, cameras.front());

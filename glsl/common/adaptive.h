@@ -19,9 +19,10 @@
 
 // Cycles' scale of the threshold (Integrator::get_adaptive_sampling: "threshold *= 5").
 #define GPURT_ADAPTIVE_SCALE 5.0f
-// The samples between two convergence passes (Cycles' adaptive step): each round takes this many
-// (the first takes --min-spp rounded up to a multiple of it), a power of two so that each
-// round's samples are an aligned block of the sampler's (0, 2)-sequence.
+// The samples between two convergence passes (Cycles' adaptive step): the first pass follows
+// --min-spp samples, the later ones each multiple of this above it (RenderTypes.h
+// adaptiveCheckAfter), a power of two so that each later round's samples are an aligned block of
+// the sampler's (0, 2)-sequence.
 #define GPURT_ADAPTIVE_STEP 16u
 
 // The error of a pixel whose `count` samples sum to `sum`, its odd-numbered ones (1, 3, 5...) to

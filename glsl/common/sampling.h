@@ -106,19 +106,22 @@ GPURT_FN uint reverseBits(uint v) {
     return (v >> 16u) | (v << 16u);
 }
 
-// A nested uniform (Owen) scramble of the 32-bit fraction x under the key k: each bit is flipped
-// as a hash of the bits above it decides (Burley 2020, listing 5: a Laine-Karras permutation on
-// the reversed bits, with its constants). As a permutation of sample indices it keeps each
-// aligned block of 2^k indices together (listing 6's shuffle).
-GPURT_FN uint owenScramble(uint x, uint k) {
-    x = reverseBits(x);
+// The Laine-Karras permutation under the key k (Burley 2020, listing 4, with its constants): each
+// bit of x is flipped as a hash of the bits below it decides.
+GPURT_FN uint laineKarras(uint x, uint k) {
     x += k;
     x ^= x * 0x6c50b47cu;
     x ^= x * 0xb82f1e52u;
     x ^= x * 0xc7afe638u;
     x ^= x * 0x8d22f6e6u;
-    return reverseBits(x);
+    return x;
 }
+
+// A nested uniform (Owen) scramble of the 32-bit fraction x under the key k: each bit is flipped
+// as a hash of the bits above it decides (Burley 2020, listing 5: Laine-Karras on the reversed
+// bits). As a permutation of sample indices it keeps each aligned block of 2^k indices together
+// (listing 6's shuffle).
+GPURT_FN uint owenScramble(uint x, uint k) { return reverseBits(laineKarras(reverseBits(x), k)); }
 
 // Sobol's second dimension of index i as a 32-bit fraction (its generator matrix: the direction
 // numbers of the polynomial x + 1, v_1 = 1/2, v_k = v_{k-1} xor v_{k-1} / 2).
@@ -133,11 +136,12 @@ GPURT_FN uint sobolSecond(uint i) {
 }
 
 // Sample s of the Owen-scrambled Sobol pattern p, in [0, 1)^2 (Burley 2020, listing 6): the index
-// shuffled, then Sobol's first two dimensions (the first is the index's bits reversed), each
-// scrambled with a key of its own.
+// shuffled, then Sobol's first two dimensions, each scrambled with a key of its own. The first
+// dimension is the index's bits reversed, so its scramble, owenScramble(reverseBits(i)), is
+// Laine-Karras on i itself, reversed once.
 GPURT_FN vec2 sobolSample(uint s, uint p) {
     uint i = owenScramble(s, hashPcg(p ^ 0x5bd1e995u));
-    uint x = owenScramble(reverseBits(i), hashPcg(p ^ 0x2545f491u));
+    uint x = reverseBits(laineKarras(i, hashPcg(p ^ 0x2545f491u)));
     uint y = owenScramble(sobolSecond(i), hashPcg(p ^ 0x9e3779b9u));
     return vec2(unitFloat(x), unitFloat(y));
 }
