@@ -14,5 +14,6 @@ void addBenchCommand(CLI::App& app, std::function<int()>& run);
 void addPackCommand(CLI::App& app, std::function<int()>& run);
 void addViewCommand(CLI::App& app, std::function<int()>& run);
 void addStitchCommand(CLI::App& app, std::function<int()>& run);
+void addDenoiseCommand(CLI::App& app, std::function<int()>& run);
 
 }  // namespace gpurt

@@ -10,6 +10,7 @@
 #include "image/Colour.h"
 #include "image/ExrIO.h"
 #include "raytrace/Renderer.h"
+#include "raytrace/denoise/DenoiseGl.h"
 #include "image/ImageIO.h"
 #include "raytrace/SceneScale.h"
 #include "scene/SmoothNormals.h"
@@ -45,6 +46,7 @@ struct RenderOptions {
     std::string tile;  // --tile I/N
     std::string frames;  // --frames A:B
     std::string timeLimit;  // --time-limit SECONDS
+    bool denoise = false;   // --denoise
     ProgressCliOptions progress;
     PictureCliOptions picture;
     CameraOptions camera;
@@ -157,6 +159,7 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         j["integrator"] = o.picture.integrator;
         j["samples"] = s.samples;  // pixel samples: width x height x spp
         j["spp"] = spp;
+        if (s.denoised) j["denoise"] = {{"ms", s.denoiseMs}, {"refused", s.denoiseRefused}};
         j["mean_spp"] = out.width * out.height > 0 ? double(s.samples) / (double(out.width) * out.height) : 0.0;
         j["sampler"] = o.picture.sampler;
         if (!s.adaptive.empty() || !out.spp.empty()) {
@@ -223,8 +226,10 @@ bool isExr(const std::string& file) { return lowerExtension(file) == ".exr"; }
 // OUT.png: the tone-mapped sRGB picture; OUT.exr: the linear colour times 2^EV as half floats.
 // An AOV file: PFM, or EXR (32-bit float channels) by its name.
 // spp: the samples a pixel of a render without adaptive sampling (the spp AOV).
+// picture: the colour of the PNG or EXR (the denoised one), out.color otherwise.
 void writeOutputs(const OutputFiles& files, const RenderOutput& out, const ColourSettings& colour, TileInfo* tile,
-                  uint32_t spp) {
+                  uint32_t spp, const std::vector<glm::vec3>* picture = nullptr) {
+    const std::vector<glm::vec3>& shown = picture ? *picture : out.color;
     AtomicFileSet outputs;
     auto flat3 = [](const std::vector<glm::vec3>& values, float scale) {
         std::vector<float> flat;
@@ -244,9 +249,9 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         }
     };
     if (isExr(files.png)) {
-        exr(files.png, "exr", flat3(out.color, exposureScale(colour.exposure)));
+        exr(files.png, "exr", flat3(shown, exposureScale(colour.exposure)));
     } else {
-        const std::vector<glm::vec3> display = toneMapImage(out.color, colour);
+        const std::vector<glm::vec3> display = toneMapImage(shown, colour);
         writePng(outputs, files.png, out.width, out.height, display);
         if (tile) {
             std::vector<unsigned char> rgb;
@@ -265,8 +270,11 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         if (name == "steps") flat = out.steps;
         if (name == "spp")  // the samples each pixel took: --spp everywhere without adaptive sampling
             flat = out.spp.empty() ? std::vector<float>(size_t(out.width) * size_t(out.height), float(spp)) : out.spp;
-        if (name == "normal" || name == "color" || name == "variance") {
-            flat = flat3(name == "normal" ? out.normal : name == "color" ? out.color : out.variance, 1.0f);
+        const std::map<std::string, const std::vector<glm::vec3>*> vectors = {
+            {"normal", &out.normal}, {"color", &out.color}, {"variance", &out.variance},
+            {"albedo", &out.albedo}, {"shading_normal", &out.shadingNormal}};
+        if (const auto v = vectors.find(name); v != vectors.end()) {
+            flat = flat3(*v->second, 1.0f);
             channels = 3;
         }
         if (isExr(file)) {
@@ -293,8 +301,9 @@ OutputFiles outputNames(const RenderOptions& o) {
         if (eq == std::string::npos || eq + 1 == a.size())
             throw InputError("--aov: '" + a + "' is not NAME=FILE");
         if (name != "depth" && name != "prim" && name != "normal" && name != "steps" && name != "color" && name != "spp" &&
-            name != "variance")
-            throw InputError("--aov: unknown AOV '" + name + "' (depth, prim, normal, steps, color, spp, variance)");
+            name != "variance" && name != "albedo" && name != "shading_normal")
+            throw InputError("--aov: unknown AOV '" + name +
+                             "' (depth, prim, normal, steps, color, spp, variance, albedo, shading_normal)");
         if (names.aovs.count(name)) throw InputError("--aov: " + name + " given twice");
         names.aovs[name] = a.substr(eq + 1);
     }
@@ -378,6 +387,7 @@ void keepRows(RenderOutput& out, int first, int count) {
         values = std::vector<typename std::decay_t<decltype(values)>::value_type>(begin, begin + std::ptrdiff_t(count) * out.width);
     };
     crop(out.color), crop(out.depth), crop(out.prim), crop(out.normal), crop(out.steps), crop(out.spp), crop(out.variance);
+    crop(out.albedo), crop(out.shadingNormal);
     out.height = count;
     if (!out.spp.empty()) {  // the samples of the rows kept
         out.stats.samples = 0;
@@ -451,6 +461,17 @@ int runRender(const RenderOptions& o) {
     RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
     settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
     settings.variance = frames.names.aovs.count("variance") > 0;  // the squares summed only for that AOV
+    settings.features = frames.names.aovs.count("albedo") > 0 || frames.names.aovs.count("shading_normal") > 0;
+    if (settings.features && settings.integrator != Integrator::Path)
+        throw InputError("--aov albedo, shading_normal: the path integrator's features (--integrator path)");
+    if (o.denoise) {  // the filter's guides: these AOVs, as gpurt denoise reads them from files
+        if (settings.integrator != Integrator::Path)
+            throw InputError("--denoise: needs --integrator path (its features guide the filter)");
+        if (tiled)
+            throw InputError("--denoise: not with --tile (the filter looks across tiles: stitch the color, albedo, "
+                             "shading_normal, depth and variance AOVs, then gpurt denoise; docs/FARM.md)");
+        settings.features = settings.variance = settings.aovs = true;
+    }
 
     const auto start = std::chrono::steady_clock::now();
     const Acceleration accel = o.grid.accelerate(loaded, cameras.front());
@@ -491,7 +512,18 @@ int runRender(const RenderOptions& o) {
 
         const auto writeStart = std::chrono::steady_clock::now();
         if (tiled) tile.fingerprint = renderFingerprint(scene, camera, accel, settings, o.picture, o.backend);
-        writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr, spp);
+        std::vector<glm::vec3> denoised;
+        if (o.denoise) {
+            DenoiseStats ds;
+            denoised = denoise(backend, denoiseImages(out), settings.threads, &ds);
+            out.stats.denoised = true;
+            out.stats.denoiseRefused = ds.refused;
+            out.stats.denoiseMs = ds.ms;
+            if (ds.refused > 0)
+                std::fprintf(stderr, "gpurt: warning: the denoiser refused %llu pixels that are not finite\n",
+                             (unsigned long long)ds.refused);
+        }
+        writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr, spp, o.denoise ? &denoised : nullptr);
         phases.write = msSince(writeStart);
         if (o.statsGiven)
             printStats(o, scene, accel, out, totalMs, phases,
@@ -539,6 +571,9 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
                     "Not with --tile")
         ->check(kNotEmpty);
     o->progress.add(*cmd);
+    cmd->add_flag("--denoise", o->denoise,
+                  "Denoise the picture (path integrator): an a-trous filter guided by the albedo, shading normal, "
+                  "depth and variance AOVs (the color AOV stays the raw mean); gpurt denoise does the same on files");
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")
         ->check(CLI::Range(0, 64));
     o->picture.add(*cmd);

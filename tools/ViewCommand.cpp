@@ -1,7 +1,9 @@
 // `gpurt view SCENE`: the scene in a window (GLFW), rendered by the same gl renderer as
 // `gpurt render`, progressively: while the camera is still each frame adds one sample per pixel to
 // the pixels' sums and a present pass (glsl/view/present.frag) shows their mean, tone mapped as
-// the PNG is, or an AOV in false colour. No image passes through the CPU per frame. Controls:
+// the PNG is, or an AOV in false colour. Under the path integrator the mean is denoised first
+// (raytrace/denoise: the kernels of render --denoise over the sums; key N toggles). No image
+// passes through the CPU per frame. Controls:
 // CONTRACT.md, "Viewer"; README.
 #include "Commands.h"
 #include "CommonOptions.h"
@@ -24,6 +26,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 namespace gpurt {
@@ -38,6 +41,7 @@ struct ViewOptions {
     PictureCliOptions picture;
     int bounces = -1;
     int frames = 0;
+    bool noDenoise = false;  // --no-denoise
     std::string screenshot;
     bool bench = false;
     std::string glslDir;
@@ -140,6 +144,9 @@ class Viewer {
         : o_(o), control_(std::move(control)), settings_(settings), samples_(samples), frames_(frames),
           bounds_(scene.bounds()), toneMapMode_(toneMapCode(picture.colour.toneMap)),
           exposure_(exposureScale(picture.colour.exposure)) {
+        // The path integrator's picture is denoised (N toggles): its features and variance summed.
+        denoising_ = settings_.integrator == Integrator::Path && !o.noDenoise;
+        if (settings_.integrator == Integrator::Path) settings_.features = settings_.variance = true;
         try {
             window_ = std::make_unique<GLWindow>(settings.width, settings.height, "gpurt view");
         } catch (const EnvironmentError& e) {
@@ -199,6 +206,9 @@ class Viewer {
                 window_->requestClose();
             } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_P) {
                 screenshotNow = true;
+            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_N &&
+                       settings_.integrator == Integrator::Path) {
+                denoising_ = !denoising_;
             } else {
                 const CameraSpec before = control_.spec;
                 if (control_.handle(e, height_)) {
@@ -231,11 +241,20 @@ class Viewer {
         const float radius = bounds_.empty() ? 1.0f : glm::length(bounds_.halfExtent());
         depthRange_ = glm::vec2(std::max(0.0f, dist - radius), dist + radius);
         done_ = 0;
+        denoisedAt_ = 0;
         dirty_ = false;
     }
 
-    void show() {
+    // The present pass: the denoised mean when the denoiser is on (denoising the sums again only
+    // when a sample was added since), else the raw one.
+    void show(bool raw = false) {
+        const bool denoised = denoising_ && mode_ == 0 && !raw;
+        if (denoised && denoisedAt_ != done_) {
+            progressive_->denoise();
+            denoisedAt_ = done_;
+        }
         present_->setScreenTarget(width_, height_)
+            .setUniform("showDenoised", denoised ? 1 : 0)
             .setUniform("mode", mode_)
             .setUniform("samples", float(std::max(1u, done_)))
             .setUniform("exposureScale", exposure_)
@@ -255,6 +274,14 @@ class Viewer {
         }
         writeScreenshot(path);
         std::fprintf(stderr, "gpurt: screenshot %s\n", path.c_str());
+        if (denoising_ && mode_ == 0) {  // the raw mean beside it, as FILE-raw.png
+            const std::filesystem::path p(path);
+            const std::string rawPath = (p.parent_path() / (p.stem().string() + "-raw" + p.extension().string())).string();
+            show(true);
+            writeScreenshot(rawPath);
+            show();
+            std::fprintf(stderr, "gpurt: screenshot %s (not denoised)\n", rawPath.c_str());
+        }
     }
 
     uint64_t raysSoFar() const {
@@ -317,6 +344,8 @@ class Viewer {
     int width_ = 0, height_ = 0;
     uint32_t done_ = 0;
     int mode_ = 0, frame_ = 0, screenshots_ = 0;
+    bool denoising_ = false;
+    uint32_t denoisedAt_ = 0;  // the samples in the sums at the last denoise
     bool dirty_ = true;
     glm::vec2 depthRange_{0.0f, 1.0f};
     std::chrono::steady_clock::time_point benchStart_ = std::chrono::steady_clock::now();
@@ -381,6 +410,8 @@ void addViewCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--bounces", o->bounces, "Whitted: mirror and glass levels (default: the scene's, 3); path: the longest path in hits (default " + std::to_string(kDefaultPathBounces) + ")")->check(CLI::Range(0, 64));
     cmd->add_option("--glsl-dir", o->glslDir, "Load GLSL kernels from this folder instead of the embedded copies")
         ->check(CLI::ExistingDirectory);
+    cmd->add_flag("--no-denoise", o->noDenoise,
+                  "Show the raw mean of the samples (path integrator; the denoiser is on by default, key N toggles)");
     o->picture.add(*cmd);
     o->tracer.add(*cmd);
     o->grid.add(*cmd);

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
     gpurt::addPackCommand(app, run);
     gpurt::addViewCommand(app, run);
     gpurt::addStitchCommand(app, run);
+    gpurt::addDenoiseCommand(app, run);
     std::string names;  // "render, pack, bench or info"
     const auto subcommands = app.get_subcommands([](CLI::App*) { return true; });
     for (size_t i = 0; i < subcommands.size(); ++i)

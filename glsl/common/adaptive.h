@@ -25,6 +25,14 @@
 // the sampler's (0, 2)-sequence.
 #define GPURT_ADAPTIVE_STEP 16u
 
+// The variance of the mean of n samples per channel, from their sum and the sum of their squares:
+// (squares / n - mean^2) / (n - 1), 0 below two samples (the variance AOV; the denoiser's).
+GPURT_FN vec3 sampleMeanVariance(vec3 sum, vec3 squares, float n) {
+    if (!(n >= 2.0f)) return vec3(0.0f);
+    vec3 mean = sum / n;
+    return max(squares / n - mean * mean, vec3(0.0f)) / (n - 1.0f);
+}
+
 // The error of a pixel whose `count` samples sum to `sum`, its odd-numbered ones (1, 3, 5...) to
 // `oddSum`; 1e30 before it has an odd sample.
 GPURT_FN float pixelError(vec3 sum, vec3 oddSum, float count) {

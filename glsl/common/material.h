@@ -66,6 +66,22 @@ GPURT_FN MaterialRecord materialFacing(MaterialRecord m, bool entering) {
     return m;
 }
 
+// The albedo that the denoiser's feature buffer records at a hit (Open Image Denoise's: the
+// surface's colour apart from light and view, each channel in [0, 1]): the classic model's
+// diffuse, specular, mirror and glass colours together, the glTF model's base colour (a metal's
+// reflectance at normal incidence, a dielectric's diffuse or transmitted colour), 1 for the
+// debug-normal model (its colour is its emission).
+GPURT_FN vec3 materialAlbedo(MaterialRecord m) {
+#ifdef GPURT_WITH_DEBUG_NORMAL
+    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(1.0f);
+#endif
+#ifdef GPURT_WITH_GLTF
+    if (m.model == GPURT_MODEL_GLTF) return clamp(m.kd, vec3(0.0f), vec3(1.0f));
+#endif
+    vec3 glass = m.ior > 0.0f ? m.tf : vec3(0.0f);
+    return clamp(m.kd + m.ks + m.reflectivity + glass, vec3(0.0f), vec3(1.0f));
+}
+
 // The radiance the surface sends along the ray by itself at shading normal ns (emission).
 GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) {
 #ifdef GPURT_WITH_DEBUG_NORMAL

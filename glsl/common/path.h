@@ -98,6 +98,15 @@ GPURT_FN vec3 clampContribution(vec3 c, int b, float clampDirect, float clampInd
     return limit > 0.0f && m > limit ? c * (limit / m) : c;
 }
 
+// The denoiser's features of a sample (--aov albedo and shading_normal; Open Image Denoise's
+// definitions): the albedo (materialAlbedo) and shading normal of the first hit whose sampled lobe
+// is not a delta, that is, through mirrors and smooth glass. Each hit of a path whose features are
+// still open records its own; a delta lobe (pdf 0) leaves them open for the next hit to
+// overwrite. A ray that leaves the scene records the background's: albedo
+// GPURT_BACKGROUND_ALBEDO (its light passes the denoiser's demodulation unchanged), normal 0.
+#define GPURT_BACKGROUND_ALBEDO 1.0f
+GPURT_FN bool featuresOpenAfter(bool open, float pdf) { return open && !(pdf > 0.0f); }
+
 // Russian roulette at hit depth b for throughput w and the random number u: the probability the
 // path survives (1: no roulette yet), or 0 when it ends here.
 GPURT_FN float survival(int b, vec3 w, float u) {

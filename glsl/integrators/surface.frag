@@ -9,6 +9,9 @@
 // same point (common/path.h emissionWeight, from the pdf of the direction the last hit chose), as is
 // the environment a ray finds against next-event estimation of the environment
 // (environmentHitWeight), and the local colour starts at 0 (no ambient term).
+// FEATURES (with PATH; the denoiser's): a path whose features are still open (pathState w 0;
+// common/path.h featuresOpenAfter, the bounce pass closes them) leaves the hit's albedo and shading
+// normal, or the background's, in its pixel's elements of pixelAlbedo and pixelNormal.
 #include "scene/shading.glsl"
 #ifdef PATH
 #include "common/path.h"
@@ -16,6 +19,10 @@ uniform sampler2D pathState;  // (pdf of the ray's direction at the last hit, 0:
 uniform int depth;            // the hits' depth (0: the camera rays')
 uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
 uniform float clampIndirect;  // --clamp-indirect
+#ifdef FEATURES
+layout(rgba32f) uniform image2D pixelAlbedo;
+layout(rgba32f) uniform image2D pixelNormal;
+#endif
 #endif
 
 uniform sampler2D rayOrigin;
@@ -33,6 +40,17 @@ layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
 layout(location = 5) out vec4 surfaceShading; // (shading normal, barycentric v): the normal
                                               // smooth, facing as the geometric one
 
+// The sample's features, albedo a and shading normal n, when they are still open.
+void recordFeatures(vec3 a, vec3 n) {
+#if defined(PATH) && defined(FEATURES)
+    vec4 state = readStream(pathState);
+    if (state.w != 0.0f) return;
+    ivec2 pixel = pathPixel(state, depth) - ivec2(0, tileRow);
+    imageStore(pixelAlbedo, pixel, vec4(a, 0.0f));
+    imageStore(pixelNormal, pixel, vec4(n, 0.0f));
+#endif
+}
+
 void main() {
     vec4 w = readStream(weight);
     vec4 c = readStream(colorState);
@@ -45,6 +63,7 @@ void main() {
     surfaceShading = vec4(0.0f);
     if (w.w == 0.0f) return;  // path ended at an earlier bounce
     if (h.w < 0.0f) {
+        recordFeatures(vec3(GPURT_BACKGROUND_ALBEDO), vec3(0.0f));
 #ifdef SCENE_ENVIRONMENT
         vec3 away = readStream(rayDir).xyz;
         vec3 sky = environmentRadiance(away);
@@ -75,6 +94,7 @@ void main() {
     surfaceShading = vec4(ns, h.z);
     surfaceView = vec4(d, h.y);
 #ifdef PATH
+    recordFeatures(materialAlbedo(m), ns);
     float mis = m.emitterLight ? emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea) : 1.0f;
     color = vec4(c.xyz + clampContribution(w.xyz * (materialEmitted(m, ns) * mis), depth, clampDirect, clampIndirect), 0.0f);
 #else

@@ -1,7 +1,7 @@
 // The viewer's present pass: draws the streams into the window's back buffer, flipped (stream row
 // 0 is the image's top row, the window's row 0 its bottom). Shaded: the running mean of the
-// samples, then exposure, tone map and the sRGB transfer function of common/colour.h, as the PNG
-// of `gpurt render` is made. The AOVs of the pixel centres in false colour (docs: README, viewer):
+// samples (or with showDenoised its denoised colour, raytrace/denoise), then exposure, tone map and
+// the sRGB transfer function of common/colour.h, as the PNG of `gpurt render` is made. The AOVs of the pixel centres in false colour (docs: README, viewer):
 //   depth:  grey 1 - (t - near) / (far - near), clamped, near and far bounding the scene's box
 //   normal: n * 0.5 + 0.5
 //   prim:   the colour of the triangle id's hash (common/sampling.h hashPcg: bytes 0, 1, 2)
@@ -15,6 +15,8 @@ uniform sampler2D sampleSum;
 uniform sampler2D aovHit;
 uniform isampler2D aovCells;
 uniform sampler2D aovNormal;
+uniform sampler2D denoised;  // (colour, 1): the denoiser's output
+uniform int showDenoised;
 uniform int mode;          // 0 shaded, 1 depth, 2 normal, 3 prim, 4 steps
 uniform float samples;     // samples in the sums (at least 1)
                            // (each pixel's own count is its sum's w: adaptive sampling stops some)
@@ -31,7 +33,8 @@ void main() {
     vec3 c = vec3(0.0f);
     if (mode == 0) {
         vec4 sum = texelFetch(sampleSum, at, 0);
-        vec3 mapped = toneMap(sum.xyz / max(sum.w, 1.0f), exposureScale, toneMapMode);
+        vec3 linear = showDenoised != 0 ? texelFetch(denoised, at, 0).xyz : sum.xyz / max(sum.w, 1.0f);
+        vec3 mapped = toneMap(linear, exposureScale, toneMapMode);
         c = vec3(srgbEncode(mapped.x), srgbEncode(mapped.y), srgbEncode(mapped.z));
     } else if (mode == 4) {
         float s = clamp(float(texelFetch(aovCells, at, 0).w) / 64.0f, 0.0f, 1.0f);

@@ -45,8 +45,8 @@ class FileStream : public Imf::OStream {
 ExrLayout exrLayout(const std::string& output) {
     if (output == "exr") return {{"R", "G", "B"}, true};
     if (output == "depth") return {{"Z"}, false};
-    if (output == "normal") return {{"X", "Y", "Z"}, false};
-    if (output == "color" || output == "variance") return {{"R", "G", "B"}, false};
+    if (output == "normal" || output == "shading_normal") return {{"X", "Y", "Z"}, false};
+    if (output == "color" || output == "variance" || output == "albedo") return {{"R", "G", "B"}, false};
     return {{output}, false};  // prim, steps
 }
 

@@ -11,7 +11,8 @@ namespace gpurt {
 class AtomicFileSet;
 
 // The channels of an EXR output: "exr" (the render: R, G, B as half), or an AOV's name: depth
-// (Z), prim (prim), steps (steps), normal (X, Y, Z), color (R, G, B), all 32-bit float.
+// (Z), prim (prim), steps (steps), normal and shading_normal (X, Y, Z), color, variance and albedo
+// (R, G, B), all 32-bit float.
 struct ExrLayout {
     std::vector<std::string> channels;
     bool half = false;

@@ -155,6 +155,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
     std::vector<float> counts(pixels, 0.0f);
     std::vector<glm::vec3> squares(settings.variance ? pixels : 0, glm::vec3(0.0f));
+    const bool features = settings.features && path;
+    std::vector<glm::vec3> albedoSums(features ? pixels : 0, glm::vec3(0.0f)), normalSums(albedoSums);
     std::vector<uint8_t> active(pixels, 1);
     auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
     // Samples [first, last) of pixel (i, j), and its AOVs with the first.
@@ -168,9 +170,15 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         for (uint32_t s = first; s < last; ++s) {
             const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
             const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed, settings.sampler);
+            SampleFeatures f;
             const glm::vec3 c = path ? pathSample(*this, px, camera.eye, d, lights, bounces,
-                                                        {settings.clampDirect, settings.clampIndirect}, aovs, stats)
+                                                  {settings.clampDirect, settings.clampIndirect}, aovs, stats,
+                                                  features ? &f : nullptr)
                                      : whittedSample(*this, px, camera.eye, d, lights, bounces, stackSlots, aovs, stats);
+            if (features) {
+                albedoSums[pixel] += f.albedo;
+                normalSums[pixel] += f.normal;
+            }
             sums[pixel] += c;
             counts[pixel] += 1.0f;
             if (adaptive && (s & 1u) != 0u) oddSums[pixel] += c;
@@ -211,9 +219,17 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     }
     for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
     if (adaptive) out.spp = counts;
+    if (features) {
+        out.albedo.resize(pixels);
+        out.shadingNormal.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+            out.albedo[p] = albedoSums[p] / counts[p];
+            out.shadingNormal[p] = normalSums[p] / counts[p];
+        }
+    }
     if (settings.variance) {
         out.variance.resize(pixels);
-        for (size_t p = 0; p < pixels; ++p) out.variance[p] = varianceOfMean(sums[p], squares[p], counts[p]);
+        for (size_t p = 0; p < pixels; ++p) out.variance[p] = gpurt::varianceOfMean(sums[p], squares[p], counts[p]);
     }
     if (settings.progress) settings.progress(1.0);
     for (const RenderStats& s : threadStats) {

@@ -36,6 +36,10 @@ GpuPipeline::GpuPipeline(int w, int h, const SceneTextures& textures, GlAccelera
       raygenCentre("raygen", "integrators/raygen.frag", passDefines(kPixelCentre)),  // a variant: the same pass in --stats
       oddSum(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "oddSum"),
       squareSum(needs.variance ? w : 1, needs.variance ? h : 1, 4, "squareSum"),
+      pixelAlbedo(needs.features ? w : 1, needs.features ? h : 1, 4, "pixelAlbedo"),
+      pixelNormal(needs.features ? w : 1, needs.features ? h : 1, 4, "pixelNormal"),
+      albedoSum(needs.features ? w : 1, needs.features ? h : 1, 4, "albedoSum"),
+      normalSum(needs.features ? w : 1, needs.features ? h : 1, 4, "normalSum"),
       activity(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activity"),
       activePixels(needs.adaptive ? w : 1, needs.adaptive ? h : 1, 4, "activePixels"),
       activeCount(1, 1, GPUFormat::R32UI, "activeCount"),

@@ -38,6 +38,9 @@ struct StreamNeeds {
     // its mask over the pixel passes, and the convergence pass.
     bool adaptive = false;
     bool variance = false;  // the samples' squares summed (the variance AOV)
+    // The denoiser's features (the path integrator): each sample's albedo and shading normal, and
+    // their sums (common/path.h featuresOpenAfter).
+    bool features = false;
     bool operator==(const StreamNeeds&) const = default;
 };
 
@@ -82,6 +85,9 @@ struct GpuPipeline {
     // adaptive sampling), and the convergence pass (integrators/converge.frag).
     GPUFloatArray oddSum;
     GPUFloatArray squareSum;  // needs.variance: the sum of each pixel's samples' squares (1 x 1 otherwise)
+    // needs.features (1 x 1 otherwise): per pixel the albedo and shading normal of its sample (the
+    // path integrators write them as images) and their sums over the samples.
+    GPUFloatArray pixelAlbedo, pixelNormal, albedoSum, normalSum;
     GPUPingPongArray activity;
     std::unique_ptr<GPUMask> activeMask;
     // The active pixels packed by the last convergence pass (slot k: element (k % width, k /

@@ -74,7 +74,7 @@ int GpuTracer::stackSlots(const RenderSettings& settings) const {
 }
 
 GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
-                                 bool integrating, bool aovs, bool adaptive, bool variance) {
+                                 bool integrating, bool aovs, bool adaptive, bool variance, bool features) {
     // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
     // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
     // pass of their own takes the pixel centres' AOVs.
@@ -88,6 +88,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.aovs = aovs || progressive;
     needs.adaptive = adaptive;
     needs.variance = variance;
+    needs.features = features && paths;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
         paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
         megakernelAovs_.reset();
@@ -100,6 +101,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
         paths_ = paths;
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
+        ++pipelineGeneration_;
         if (!megakernel) {
             whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
             path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
@@ -191,8 +193,9 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     const uint32_t samples = std::max(1u, settings.samples);
     const bool adaptive = settings.adaptive() && samples > 1;
     const bool variance = settings.variance && samples > 1;
+    const bool features = settings.features && paths;
     GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true,
-                              settings.aovs, adaptive, variance);
+                              settings.aovs, adaptive, variance, features);
     GlIntegrator& chosen = integrator(settings);
     RenderOutput out;
     out.width = camera.width;
@@ -212,9 +215,17 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         setSample(0, 1, settings.seed);
         chosen.sample(lights, bounces, settings.aovs ? &out : nullptr, out.stats);
         out.color = downloadVectors<glm::vec3>(chosen.colour());
+        if (features) {
+            out.albedo = downloadVectors<glm::vec3>(p.pixelAlbedo);
+            out.shadingNormal = downloadVectors<glm::vec3>(p.pixelNormal);
+        }
     } else {
         p.sampleSum.fill(0.0f);
         if (variance) p.squareSum.fill(0.0f);
+        if (features) {
+            p.albedoSum.fill(0.0f);
+            p.normalSum.fill(0.0f);
+        }
         if (adaptive) p.beginAdaptive();
         const std::vector<GPUKernel*> kernels = integratorKernels();
         auto roundStart = std::chrono::steady_clock::now();
@@ -249,6 +260,14 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             out.color[i] = glm::vec3(sums[i]) / sums[i].w;
             out.stats.samples += uint64_t(sums[i].w);
         }
+        if (features) {  // the means, as CpuTracer::render divides them
+            out.albedo = downloadVectors<glm::vec3>(p.albedoSum);
+            out.shadingNormal = downloadVectors<glm::vec3>(p.normalSum);
+            for (size_t i = 0; i < sums.size(); ++i) {
+                out.albedo[i] = out.albedo[i] / sums[i].w;
+                out.shadingNormal[i] = out.shadingNormal[i] / sums[i].w;
+            }
+        }
         if (adaptive) {
             out.spp.resize(sums.size());
             for (size_t i = 0; i < sums.size(); ++i) out.spp[i] = sums[i].w;
@@ -272,7 +291,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
     const bool paths = settings.integrator == Integrator::Path;
     GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true, false, true, true,
-                              settings.adaptive());
+                              settings.adaptive(), settings.variance, settings.features);
     progressive_.settings = settings;
     progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
     for (GPUKernel* k : allKernels())
@@ -287,6 +306,16 @@ void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings
     p.aovCells.copyFrom(megakernelAovs_ ? megakernelAovs_->steps() : accel_->steps());
     p.aovNormal.copyFrom(megakernelAovs_ ? megakernelAovs_->normals() : p.surfaceNormal);
     p.sampleSum.fill(0.0f);
+    if (p.needs.variance) p.squareSum.fill(0.0f);
+    if (p.needs.features) {
+        p.albedoSum.fill(0.0f);
+        p.normalSum.fill(0.0f);
+        if (!denoiser_ || denoiserGeneration_ != pipelineGeneration_) {
+            denoiser_ = std::make_unique<DenoiserGl>(p.width, p.height);
+            denoiser_->bindSums(p.sampleSum, p.squareSum, p.albedoSum, p.normalSum, p.aovHit);
+            denoiserGeneration_ = pipelineGeneration_;
+        }
+    }
     if (settings.adaptive()) p.beginAdaptive();
 }
 
@@ -311,6 +340,14 @@ void GpuTracer::bindDisplay(GPUKernel& display) {
     if (!pipeline_) throw UsageError("GpuTracer::bindDisplay before beginProgressive");
     display.addInput(pipeline_->sampleSum, "sampleSum").addInput(pipeline_->aovHit, "aovHit");
     display.addInput(pipeline_->aovCells, "aovCells").addInput(pipeline_->aovNormal, "aovNormal");
+    display.addInput(denoiser_ && denoiserGeneration_ == pipelineGeneration_ ? denoiser_->output() : pipeline_->sampleSum,
+                     "denoised");
+}
+
+void GpuTracer::denoiseProgressive() {
+    if (!denoiser_ || denoiserGeneration_ != pipelineGeneration_)
+        throw UsageError("GpuTracer::denoiseProgressive without the features (RenderSettings::features)");
+    denoiser_->denoiseSums();
 }
 
 std::set<std::string> GpuTracer::accelerationPasses() {

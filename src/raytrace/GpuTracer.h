@@ -12,6 +12,7 @@
 #include "raytrace/SceneTextures.h"
 #include "raytrace/accel/GlAccelerator.h"
 #include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/denoise/DenoiseGl.h"
 #include "stream/GPUMask.h"
 
 #include <memory>
@@ -53,6 +54,9 @@ class GpuTracer {
     // The progressive sums and AOVs as inputs of a display pass (samplers sampleSum, aovHit,
     // aovCells, aovNormal).
     void bindDisplay(GPUKernel& display);
+    // The denoiser over the progressive sums (beginProgressive with settings.features), into the
+    // display's `denoised`.
+    void denoiseProgressive();
 
     // The names of the accelerator's passes (the trace phase of --stats; the others shade).
     std::set<std::string> accelerationPasses();
@@ -76,9 +80,10 @@ class GpuTracer {
     // false: for the accelerator's traces alone (gpurt bench).
     // adaptive: adaptive sampling's streams and passes (GpuPipeline::beginAdaptive).
     // variance: the samples' squares summed too (the variance AOV).
+    // features: the denoiser's features (the path integrators write and sum them).
     GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
                           bool sums = false, bool integrating = false, bool aovs = true, bool adaptive = false,
-                          bool variance = false);
+                          bool variance = false, bool features = false);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
     void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator `settings` asks for.
@@ -112,6 +117,10 @@ class GpuTracer {
     IntegratorKernel kernel_;  // options_.integratorKernel, Auto resolved
     bool splits_ = false;  // some material may spawn two rays (glass): the ray tree needs its stacks
     bool spawns_ = false;  // some material spawns rays (mirror, glass)
+    // The viewer's denoiser over the progressive sums of the pipeline of generation
+    // denoiserGeneration_ (pipelineGeneration_ counts the pipelines made).
+    std::unique_ptr<DenoiserGl> denoiser_;
+    uint64_t pipelineGeneration_ = 0, denoiserGeneration_ = 0;
     struct Progressive {
         RenderSettings settings;
         std::vector<PointLight> lights;

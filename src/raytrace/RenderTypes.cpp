@@ -17,10 +17,6 @@ bool adaptiveCheckAfter(uint32_t taken, const RenderSettings& settings) {
     return taken == settings.minSamples || taken % GPURT_ADAPTIVE_STEP == 0;
 }
 
-glm::vec3 varianceOfMean(glm::vec3 sum, glm::vec3 squares, float n) {
-    if (!(n >= 2.0f)) return glm::vec3(0.0f);
-    const glm::vec3 mean = sum / n;
-    return glm::max(squares / n - mean * mean, glm::vec3(0.0f)) / (n - 1.0f);
-}
+glm::vec3 varianceOfMean(glm::vec3 sum, glm::vec3 squares, float n) { return raymath::sampleMeanVariance(sum, squares, n); }
 
 }  // namespace gpurt

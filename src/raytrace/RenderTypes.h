@@ -46,6 +46,8 @@ struct RenderSettings {
     float clampDirect = 0.0f, clampIndirect = 0.0f;
     // The variance AOV (RenderOutput::variance): the sums of the samples' squares as well.
     bool variance = false;
+    // The denoiser's features (RenderOutput::albedo, shadingNormal; the path integrator only).
+    bool features = false;
     // The primary AOVs (depth, prim, normal, steps) in RenderOutput, from the pixel centres' rays;
     // false: the colour alone (gpurt render without --aov), and no pixel-centre rays of their own
     // for several samples a pixel.
@@ -92,6 +94,10 @@ struct RenderStats {
     uint64_t samples = 0;  // pixel samples taken (width x height x spp; adaptive: the sum over the pixels)
     std::vector<AdaptiveRound> adaptive;  // adaptive sampling's convergence passes, in order
     double totalMs = 0;
+    // The denoiser's (render --denoise): whether it ran, the pixels it refused (not finite), its time.
+    bool denoised = false;
+    uint64_t denoiseRefused = 0;
+    double denoiseMs = 0.0;
 
     void addLivePaths(size_t round, uint64_t paths) {
         if (livePaths.size() <= round) livePaths.resize(round + 1, 0);
@@ -113,6 +119,10 @@ struct RenderOutput {
     // With RenderSettings::variance: per channel, the variance of each pixel's mean (the samples'
     // variance over their count: (sum of squares / n - mean^2) / (n - 1)); 0 for one sample.
     std::vector<glm::vec3> variance;
+    // With RenderSettings::features (path integrator): the means over each pixel's samples of the
+    // albedo and the shading normal of the first hit that is not a mirror or smooth glass
+    // (common/path.h featuresOpenAfter; Open Image Denoise's feature images).
+    std::vector<glm::vec3> albedo, shadingNormal;
     RenderStats stats;
 };
 

@@ -48,8 +48,12 @@ class ProgressiveRenderer {
     // Adds sample s of n of every pixel to the sums.
     virtual void addSample(uint32_t s, uint32_t n) = 0;
     // The sums and the AOVs as inputs of a display pass (samplers sampleSum, aovHit, aovCells,
-    // aovNormal), valid until a begin with another image size.
+    // aovNormal, and denoised: the last denoise's colour), valid until a begin with another image
+    // size.
     virtual void bindDisplay(GPUKernel& display) = 0;
+    // Denoises the sums so far into the display's `denoised` (common/denoise.h; begin's settings
+    // asked for the features and variance: RenderSettings::features, variance).
+    virtual void denoise() = 0;
     // The rays traced since the first begin.
     virtual const RenderStats& stats() const = 0;
 };

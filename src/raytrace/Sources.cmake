@@ -21,6 +21,8 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   accel/bvh/BvhCpu.cpp
   accel/grid/GridCpu.cpp
   accel/grid/UniformGrid.cpp
+  denoise/DenoiseCpu.cpp
+  denoise/DenoiseFiles.cpp
   integrators/path/PathCpu.cpp
   integrators/whitted/WhittedCpu.cpp)
 set(GPURT_RAYTRACE_GL_SOURCES
@@ -30,6 +32,7 @@ set(GPURT_RAYTRACE_GL_SOURCES
   SceneTextures.cpp
   accel/bvh/BvhGl.cpp
   accel/grid/GridGl.cpp
+  denoise/DenoiseGl.cpp
   integrators/SharedPasses.cpp
   integrators/path/PathGl.cpp
   integrators/path/PathMegakernelGl.cpp

@@ -8,6 +8,8 @@
 // with PACK are packed to the front of the next round's streams (an atomic counter gives each
 // its slot: Purcell's stream compaction), so that the next rounds' passes cover only them; the
 // packing costs, so PathGl::sample packs only once many paths end.
+// The path's state w says whether its sample's features (the denoiser's) are still open: 0 until
+// a hit's sampled lobe is not a delta (common/path.h featuresOpenAfter; surface.frag records them).
 #include "scene/shading.glsl"
 #include "common/sampling.h"
 #include "common/path.h"
@@ -113,7 +115,7 @@ void main() {
     }
     vec4 origin = vec4(o, GPURT_FAR);
     vec4 direction = vec4(dir, GPURT_A_RAY);
-    vec4 state = vec4(pdf, float(pixel.x), float(pixel.y), 0.0f);
+    vec4 state = vec4(pdf, float(pixel.x), float(pixel.y), featuresOpenAfter(ps.w == 0.0f, pdf) ? 0.0f : 1.0f);
 #ifdef PACK
     uint k = imageAtomicAdd(pathCount, ivec2(0), 1u);
     int width = textureSize(colorState, 0).x;

@@ -12,6 +12,9 @@
 // streams read. AOVS (with CAMERA): the primary hit, facing normal and step count as well.
 // PIXEL_LIST (with CAMERA; adaptive sampling): one path per pixel of the packed list of active
 // pixels the last convergence pass made (integrators/converge.frag), element k for its k-th.
+// FEATURES (the denoiser's): each path leaves its sample's albedo and shading normal in its pixel's
+// elements of pixelAlbedo and pixelNormal (common/path.h featuresOpenAfter); the live paths carry
+// whether theirs are still open (state w: 0 open, 1 recorded).
 #include "integrators/megakernel.glsl"
 #include "common/path.h"
 
@@ -22,6 +25,10 @@ uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution
 uniform float clampIndirect;  // --clamp-indirect
 uniform int packWidth;  // the streams' width: live path k goes to element (k % width, k / width)
 layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
+#ifdef FEATURES
+layout(rgba32f) uniform image2D pixelAlbedo;  // per pixel: the albedo and shading normal of its sample
+layout(rgba32f) uniform image2D pixelNormal;
+#endif
 #ifdef PIXEL_LIST
 uniform sampler2D activePixels;  // (stream x, stream y, 0, 0) of each active pixel
 uniform uint listLength;         // how many: the elements from the `listLength`-th on hold none
@@ -84,6 +91,14 @@ vec3 directLight(uvec2 pixel, SurfaceHit s, vec3 d, int b) {
     return local;
 }
 
+// The sample's features at a hit of albedo a and shading normal n (or the background's).
+void recordFeatures(uvec2 pixel, vec3 a, vec3 n) {
+#ifdef FEATURES
+    imageStore(pixelAlbedo, ivec2(pixel) - ivec2(0, tileRow), vec4(a, 0.0f));
+    imageStore(pixelNormal, ivec2(pixel) - ivec2(0, tileRow), vec4(n, 0.0f));
+#endif
+}
+
 void main() {
     lives = vec4(0.0f);
 #ifdef CAMERA
@@ -105,6 +120,7 @@ void main() {
     vec3 color = vec3(0.0f);
     vec3 weight = vec3(1.0f);
     float prevPdf = 0.0f;  // the camera ray: its emission counts in full
+    bool open = true;      // the sample's features are still to be recorded
 #else
     uvec2 element = uvec2(gl_FragCoord.xy);
     if (element.y * uint(packWidth) + element.x >= paths) discard;  // no path in this element
@@ -116,6 +132,7 @@ void main() {
     vec3 color = readStream(colorState).xyz;
     vec3 weight = w.xyz;
     float prevPdf = state.x;
+    bool open = state.w == 0.0f;
 #endif
     setPixelCoverage(pixel);
     bool alive = false;
@@ -132,6 +149,7 @@ void main() {
         }
 #endif
         if (h.w < 0.0f) {
+            if (open) recordFeatures(pixel, vec3(GPURT_BACKGROUND_ALBEDO), vec3(0.0f));
 #ifdef SCENE_ENVIRONMENT
             color = color + clampContribution(weight * (environmentRadiance(d) * environmentHitWeight(prevPdf, environmentLightPdf(d))),
                                               b, clampDirect, clampIndirect);
@@ -141,6 +159,7 @@ void main() {
             break;
         }
         SurfaceHit s = surfaceAt(h, o, d);
+        if (open) recordFeatures(pixel, materialAlbedo(s.m), s.ns);
 #ifdef AOVS
         if (b == 0) normalOut = vec4(s.n, 0.0f);
 #endif
@@ -158,6 +177,7 @@ void main() {
         float pdf, side;
         if (!materialSample(s.m, d, s.n, s.ns, s.front, u, choice.x, dir, factor, pdf, side)) break;
         weight = weight * factor;
+        open = featuresOpenAfter(open, pdf);
         if (!russianRoulette(b, weight, choice.y)) break;
         prevPdf = pdf;
         o = offsetOrigin(s.p, side * s.n, rayOffset);
@@ -178,7 +198,7 @@ void main() {
     imageStore(nextOrigin, at, vec4(o, GPURT_FAR));
     imageStore(nextDir, at, vec4(d, GPURT_A_RAY));
     imageStore(nextWeight, at, vec4(weight, 1.0f));
-    imageStore(nextState, at, vec4(prevPdf, float(pixel.x), float(pixel.y), 0.0f));
+    imageStore(nextState, at, vec4(prevPdf, float(pixel.x), float(pixel.y), open ? 0.0f : 1.0f));
     imageStore(nextColor, at, vec4(color, 0.0f));
     lives = vec4(1.0f, 0.0f, 0.0f, 0.0f);
 }

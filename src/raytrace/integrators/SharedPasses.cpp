@@ -53,6 +53,10 @@ void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& co
         k.addDefine("ODD_SUM").addInOut(p.oddSum, "oddState").setMask(p.activeMask.get(), false);
     }
     if (p.needs.variance) k.addDefine("SQUARE_SUM").addInOut(p.squareSum, "squareState");
+    if (p.needs.features && p.needs.sums) {
+        k.addDefine("FEATURE_SUM").addInput(p.pixelAlbedo, "albedoSample").addInput(p.pixelNormal, "normalSample");
+        k.addInOut(p.albedoSum, "albedoState").addInOut(p.normalSum, "normalState");
+    }
 }
 
 }  // namespace gpurt

@@ -35,9 +35,10 @@ glm::vec3 directLight(const CpuTracer& t, const PixelSample& px, const CpuTracer
 
 glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                      const std::vector<PointLight>& lights, int maxDepth, PathClamp clamp, PixelAovs aovs,
-                     RenderStats& stats) {
+                     RenderStats& stats, SampleFeatures* features) {
     glm::vec3 o = eye, color(0.0f), weight(1.0f);
     float prevPdf = 0.0f;  // the camera ray: its emission counts in full
+    bool open = features != nullptr;  // the sample's features are still to be recorded
     for (int b = 0;; ++b) {
         const TraceHit hit = t.trace(o, d, GPURT_FAR, px.coverageKey());
         stats.addLivePaths(size_t(b), 1);
@@ -45,6 +46,7 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
         if (hit.state == RAY_OVERFLOW) ++stats.overflowRays;
         if (b == 0 && aovs.out) aovs.out->steps[aovs.pixel] = static_cast<float>(hit.steps);
         if (hit.prim < 0) {
+            if (open) *features = {glm::vec3(GPURT_BACKGROUND_ALBEDO), glm::vec3(0.0f)};
             const glm::vec3 sky = t.environment().empty()
                                       ? t.scene().background
                                       : t.environment().radiance(d) * environmentHitWeight(prevPdf, t.environment().pdf(d));
@@ -52,6 +54,7 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
             break;
         }
         const CpuTracer::Surface s = t.surfaceAt(hit, o, d);
+        if (open) *features = {materialAlbedo(s.material), s.ns};
         if (b == 0 && aovs.out) aovs.write(hit.t, static_cast<float>(hit.prim), s.n);
         const float mis = s.material.emitterLight ? emissionWeight(prevPdf, hit.t, s.n, d, t.emitters().totalArea) : 1.0f;
         color += clampContribution(weight * (materialEmitted(s.material, s.ns) * mis), b, clamp.direct, clamp.indirect);
@@ -69,6 +72,7 @@ glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, g
         if (!materialSample(s.material, d, s.n, s.ns, frontFace(tri.e1, tri.e2, d), u, choice.x, dir, factor, pdf, side))
             break;
         weight *= factor;
+        open = featuresOpenAfter(open, pdf);
         if (!russianRoulette(b, weight, choice.y)) break;
         prevPdf = pdf;
         o = offsetOrigin(s.p, side * s.n, t.rayOffset());

@@ -63,6 +63,8 @@ PathGl::PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode ma
         declareLightPass(environmentLight_, p_, true);
     }
     declareSurfacePass(surface_, p_, true);
+    if (p_.needs.features)
+        surface_.addDefine("FEATURES").addImage(p_.pixelAlbedo, "pixelAlbedo").addImage(p_.pixelNormal, "pixelNormal");
     declareShadowgenPass(shadowgen_, p_, true, false);
     declareLightPass(light_, p_, false);
     declareShadowgenPass(emitterShadowgen_, p_, true, true);

@@ -58,6 +58,8 @@ void PathMegakernelGl::declarePass(GPUKernel& k, const SceneTextures& textures, 
     k.addImage(*out.origin, "nextOrigin").addImage(*out.dir, "nextDir").addImage(*out.weight, "nextWeight");
     k.addImage(*out.state, "nextState").addImage(*out.color, "nextColor");
     k.addImage(pixelColor_, "pixelColor");
+    if (p_.needs.features)
+        k.addDefine("FEATURES").addImage(p_.pixelAlbedo, "pixelAlbedo").addImage(p_.pixelNormal, "pixelNormal");
     k.addOutput(lives_);
     k.setUniform("packWidth", p_.width);
 }
