@@ -226,6 +226,78 @@ TEST_F(Cli, AdaptiveStatsAndSppAov) {
     EXPECT_EQ(j["sampler"], "sobol");
 }
 
+// render --denoise writes the denoised picture and keeps the raw mean in the color AOV; gpurt
+// denoise on its AOV files gives the same picture, byte for byte (PNG), on either backend; the
+// stats report the filter.
+TEST_F(Cli, DenoiseOnFilesIsRenderDenoise) {
+    const std::string aovs = " --aov color=" + path("c.pfm") + " --aov albedo=" + path("a.pfm") +
+                             " --aov shading_normal=" + path("n.pfm") + " --aov depth=" + path("d.pfm") +
+                             " --aov variance=" + path("v.pfm");
+    const std::string files = path("c.pfm") + " --albedo " + path("a.pfm") + " --normal " + path("n.pfm") + " --depth " +
+                              path("d.pfm") + " --variance " + path("v.pfm");
+    for (const std::string backend : {"gl", "cpu"}) {
+        const Result r = gpurt("render scenes/cornell_blocks.json --size 40x32 --integrator path --spp 8 --denoise "
+                               "--stats=json --backend " + backend + " -o " + path("render.png") + aovs);
+        ASSERT_EQ(r.code, 0) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        ASSERT_TRUE(j.contains("denoise")) << r.out;
+        EXPECT_EQ(j["denoise"]["refused"], 0);
+        const Result d = gpurt("denoise " + files + " -o " + path("file.png") + " --backend " + backend);
+        ASSERT_EQ(d.code, 0) << d.err;
+        EXPECT_EQ(gpurt::test::readFile(path("file.png")), gpurt::test::readFile(path("render.png"))) << backend;
+        // The colour AOV is the raw mean: rendered to a PNG by gpurt denoise's own tone map it
+        // differs from the denoised picture.
+        const Result raw = gpurt("render scenes/cornell_blocks.json --size 40x32 --integrator path --spp 8 --backend " +
+                                 backend + " -o " + path("raw.png"));
+        ASSERT_EQ(raw.code, 0) << raw.err;
+        EXPECT_NE(gpurt::test::readFile(path("raw.png")), gpurt::test::readFile(path("render.png")));
+    }
+    int w = 0, h = 0, channels = 0;
+    const std::vector<float> albedo = gpurt::readPfm(path("a.pfm"), w, h, channels);
+    EXPECT_EQ(channels, 3);
+    for (float a : albedo) {
+        EXPECT_GE(a, 0.0f);
+        EXPECT_LE(a, 1.0f);
+    }
+    // EXR in and out.
+    const Result exr = gpurt("render scenes/cornell_blocks.json --size 40x32 --integrator path --spp 8 -o " +
+                             path("out.exr") + " --aov color=" + path("c.exr") + " --aov albedo=" + path("a.exr") +
+                             " --aov shading_normal=" + path("n.exr"));
+    ASSERT_EQ(exr.code, 0) << exr.err;
+    const Result d = gpurt("denoise " + path("c.exr") + " --albedo " + path("a.exr") + " --normal " + path("n.exr") +
+                           " -o " + path("den.exr"));
+    EXPECT_EQ(d.code, 0) << d.err;
+    EXPECT_TRUE(fs::exists(path("den.exr")));
+}
+
+// Bad inputs of the denoiser: exit 1 naming the file or option, nothing written.
+TEST_F(Cli, BadDenoiseInputsAreRefused) {
+    const Result r = gpurt("render scenes/cornell_blocks.json --size 20x16 --integrator path --spp 2 -o " + path("r.png") +
+                           " --aov color=" + path("c.pfm") + " --aov albedo=" + path("a.pfm") +
+                           " --aov shading_normal=" + path("n.pfm") + " --aov depth=" + path("d.pfm"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Result small = gpurt("render scenes/cornell_blocks.json --size 10x8 --integrator path -o " + path("s.png") +
+                               " --aov albedo=" + path("small.pfm"));
+    ASSERT_EQ(small.code, 0) << small.err;
+    const std::string normal = " --normal " + path("n.pfm") + " -o " + path("out.png");
+    expectRefused("denoise " + path("c.pfm") + " --albedo " + path("small.pfm") + normal, "small.pfm");
+    expectRefused("denoise " + path("c.pfm") + " --albedo " + path("missing.pfm") + normal, "missing.pfm");
+    expectRefused("denoise " + path("c.pfm") + normal, "--albedo");
+    expectRefused("denoise " + path("r.png") + " --albedo " + path("a.pfm") + normal, "r.png");
+    expectRefused("denoise " + path("c.pfm") + " --albedo " + path("d.pfm") + normal, "d.pfm");  // one channel
+    // A NaN in the colour.
+    int w = 0, h = 0, channels = 0;
+    std::vector<float> color = gpurt::readPfm(path("c.pfm"), w, h, channels);
+    color[7] = std::nanf("");
+    gpurt::writePfm(path("nan.pfm"), w, h, 3, color);
+    expectRefused("denoise " + path("nan.pfm") + " --albedo " + path("a.pfm") + normal, "nan.pfm");
+    expectRefused("render scenes/cornell_blocks.json --size 20x16 --spp 2 --denoise -o " + path("out.png"), "--denoise");
+    expectRefused("render scenes/cornell_blocks.json --size 20x16 --integrator path --tile 0/2 --denoise -o " +
+                      path("out.png"), "--denoise");
+    expectRefused("render scenes/cornell_blocks.json --size 20x16 --aov albedo=" + path("x.pfm") + " -o " +
+                      path("out.png"), "albedo");
+}
+
 TEST_F(Cli, BadSceneFilesAreRefusedWithExit1) {
     expectRefused("render " + path("missing.obj") + " -o " + path("out.png"), "missing.obj");
     write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");

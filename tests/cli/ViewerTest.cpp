@@ -171,14 +171,34 @@ TEST_F(Viewer, FramesAndScreenshotAreTheRenderWithAsManySamples) {
     expectRenderMatches("scenes/boxes.json", camera, "--spp 4", "shot.png");
 }
 
-// The path integrator refines progressively the same way: K frames are `gpurt render
-// --integrator path --spp K`.
+// The path integrator refines progressively the same way and shows the denoised picture: K frames
+// are `gpurt render --integrator path --spp K --denoise`; with --no-denoise the raw mean.
 TEST_F(Viewer, PathTracedFramesAreTheRenderWithAsManySamples) {
     auto v = view("scenes/cornell.json", {"--size", "96x96", "--integrator", "path", "--frames", "6", "--screenshot",
                                           path("shot.png")});
     ASSERT_TRUE(v->started());
     ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
-    expectRenderMatches("scenes/cornell.json", printedCamera(), "--integrator path --spp 6", "shot.png");
+    expectRenderMatches("scenes/cornell.json", printedCamera(), "--integrator path --spp 6 --denoise", "shot.png");
+    auto raw = view("scenes/cornell.json", {"--size", "96x96", "--integrator", "path", "--frames", "6", "--no-denoise",
+                                            "--screenshot", path("raw.png")});
+    ASSERT_EQ(raw->wait(120s), 0) << readFile(dir / "view.err");
+    expectRenderMatches("scenes/cornell.json", printedCamera(), "--integrator path --spp 6", "raw.png");
+}
+
+// Key N turns the denoiser off (and on again): after it the window shows the raw mean, and P
+// writes the screenshot (what the window shows).
+TEST_F(Viewer, KeyNTogglesTheDenoiser) {
+    auto v = view("scenes/cornell.json", {"--size", "96x96", "--integrator", "path", "--spp", "4", "--screenshot",
+                                          path("shot.png")});
+    const std::string id = window();
+    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    xdotool("windowfocus --sync " + id);
+    xdotool("key n");
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
+    xdotool("key Escape");
+    ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
+    const std::string camera = printedCamera();
+    expectRenderMatches("scenes/cornell.json", camera, "--integrator path --spp 4", "shot.png");
 }
 
 // Adaptive sampling in the viewer: its sums stop refining the pixels that converged, in the same
@@ -192,7 +212,7 @@ TEST_F(Viewer, AdaptiveFramesAreTheAdaptiveRender) {
     ASSERT_TRUE(v->started());
     ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
     expectRenderMatches("scenes/cornell_blocks.json", printedCamera(),
-                        "--integrator path --spp 48 --noise-threshold 0.05 --min-spp 16", "shot.png");
+                        "--integrator path --spp 48 --noise-threshold 0.05 --min-spp 16 --denoise", "shot.png");
 }
 
 // A drag and a key move the camera; `gpurt render` with the camera printed on closing is the
