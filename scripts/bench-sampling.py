@@ -20,16 +20,12 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from pfm import read_pfm  # noqa: E402
+from pfm import read_pfm, rel_mse  # noqa: E402
 G = os.path.join(ROOT, "build", "gpurt")
 SCENES = {
     "cornell blocks": ["scenes/cornell_blocks.json"],
     "bunny under the sky": ["../shared/models/bunny.obj", "--env", "scenes/sky.hdr"],
 }
-
-
-def rel_mse(x, ref):
-    return sum((a - b) ** 2 / (b * b + 0.01) for a, b in zip(x, ref)) / len(ref)
 
 
 def render(scene, work, name, size, options):

@@ -13,3 +13,8 @@ def read_pfm(path):
     if scale > 0:
         values.byteswap()
     return w, h, (3 if kind == b"PF" else 1), values
+
+
+def rel_mse(x, ref):
+    """relMSE of values x against ref: the mean of (x - ref)^2 / (ref^2 + 0.01)."""
+    return sum((a - b) ** 2 / (b * b + 0.01) for a, b in zip(x, ref)) / len(ref)

@@ -63,7 +63,9 @@ void main() {
     surfaceShading = vec4(0.0f);
     if (w.w == 0.0f) return;  // path ended at an earlier bounce
     if (h.w < 0.0f) {
+#ifdef PATH
         recordFeatures(vec3(GPURT_BACKGROUND_ALBEDO), vec3(0.0f));
+#endif
 #ifdef SCENE_ENVIRONMENT
         vec3 away = readStream(rayDir).xyz;
         vec3 sky = environmentRadiance(away);

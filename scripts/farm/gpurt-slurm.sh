@@ -5,19 +5,23 @@
 # gpurt putting F in place of OUT's %d. Each task logs to slurm-ARRAYJOB_TASK.out in OUT.tiles/
 # (frames: OUT.frames/, OUT without its %d). --resume submits only the tiles or frames whose files
 # are missing. Every node must see the same paths (a shared folder); tasks run in this folder.
+# --denoise (tiles, --integrator path): each tile writes the denoiser's AOVs as well (color,
+# albedo, shading_normal, depth, variance), the stitch job stitches each (the raw picture to
+# OUT.tiles/raw.png) and `gpurt denoise` writes OUT from them: the filter looks across tiles, so it
+# runs on the whole image, and OUT is `gpurt render --denoise`'s picture.
 #
-#   scripts/farm/gpurt-slurm.sh (--tiles N | --frames A:B) -o OUT [--wait] [--resume] [--gpurt PATH]
-#                             [--sbatch OPT]... SCENE [gpurt render options...]
+#   scripts/farm/gpurt-slurm.sh (--tiles N [--denoise] | --frames A:B) -o OUT [--wait] [--resume]
+#                             [--gpurt PATH] [--sbatch OPT]... SCENE [gpurt render options...]
 #
 # Prints the job ids. --wait waits for the jobs to end, and exits non-zero naming the failed tiles
 # or frames and their logs when any fails (then the stitch job is cancelled); without it the exit
 # status says only whether Slurm took the jobs.
 set -euo pipefail
 
-tiles="" frames="" output="" wait="" resume="" gpurt="$(cd "$(dirname "$0")/../.." && pwd)/build/gpurt"
+tiles="" frames="" output="" wait="" resume="" denoise="" gpurt="$(cd "$(dirname "$0")/../.." && pwd)/build/gpurt"
 sbatch_opts=()
 usage() {
-  echo "usage: $0 (--tiles N | --frames A:B) -o OUT [--wait] [--resume] [--gpurt PATH] [--sbatch OPT]... SCENE [render options...]" >&2
+  echo "usage: $0 (--tiles N [--denoise] | --frames A:B) -o OUT [--wait] [--resume] [--gpurt PATH] [--sbatch OPT]... SCENE [render options...]" >&2
   exit 1
 }
 while [ $# -gt 0 ]; do
@@ -30,12 +34,15 @@ while [ $# -gt 0 ]; do
     -o|--output) output="$2"; shift 2 ;;
     --wait) wait=1; shift ;;
     --resume) resume=1; shift ;;
+    --denoise) denoise=1; shift ;;
     --gpurt) gpurt="$2"; shift 2 ;;
     --sbatch) sbatch_opts+=("$2"); shift 2 ;;
     *) break ;;
   esac
 done
-if [ -z "$output" ] || [ $# -lt 1 ] || { [ -n "$tiles" ] && [ -n "$frames" ]; }; then usage; fi
+if [ -z "$output" ] || [ $# -lt 1 ] || { [ -n "$tiles" ] && [ -n "$frames" ]; } || { [ -n "$denoise" ] && [ -z "$tiles" ]; }; then
+  usage
+fi
 if [ -n "$tiles" ]; then
   [[ "$tiles" =~ ^[1-9][0-9]*$ ]] || usage
 elif [[ "$frames" =~ ^([0-9]+):([0-9]+)$ ]]; then
@@ -115,22 +122,57 @@ if [ -n "$tiles" ]; then
   work="$output.tiles"
   mkdir -p "$work"
   todo=() files=()
+  # --denoise: the AOVs the filter reads, each tile's beside its picture.
+  aovs=()
+  [ -z "$denoise" ] || aovs=(color albedo shading_normal depth variance)
   for ((i = 0; i < tiles; i++)); do
     files+=("$work/tile$i.png")
-    if [ -z "$resume" ] || [ ! -f "$work/tile$i.png" ] || [ ! -f "$work/tile$i.png.tile" ]; then todo+=("$i"); fi
+    missing=""
+    for f in "$work/tile$i.png" "${aovs[@]/#/$work/tile$i.}"; do
+      case "$f" in *.png) ;; *) f="$f.pfm" ;; esac
+      [ -f "$f" ] && [ -f "$f.tile" ] || missing=1
+    done
+    if [ -z "$resume" ] || [ -n "$missing" ]; then todo+=("$i"); fi
   done
+  aovArgs=""
+  for a in "${aovs[@]}"; do aovArgs+=" --aov $(printf %q "$a")=$(printf %q "$work")/tile\$i.$a.pfm"; done
   array=""
   if [ ${#todo[@]} -gt 0 ]; then
     array="$(submit --array="$(ranges "${todo[@]}")" --job-name=gpurt-tile \
                --output="$(pattern "$work")/slurm-%A_%a.out" <<<"#!/bin/bash
 i=\$SLURM_ARRAY_TASK_ID
-exec$(quote "$gpurt" render "$scene" -o)$(quote "$work")/tile\$i.png --tile \"\$i/$tiles\"$(quote "$@")")"
+exec$(quote "$gpurt" render "$scene" -o)$(quote "$work")/tile\$i.png --tile \"\$i/$tiles\"$aovArgs$(quote "$@")")"
     echo "tiles $(ranges "${todo[@]}"): job $array"
   fi
   # kill_invalid_depend in slurm.conf cancels the stitch once a tile fails; --wait does it anyway.
+  # The stitch job: the picture, or (--denoise) the raw picture and each AOV, then the filter with
+  # the render's picture options.
+  if [ -z "$denoise" ]; then
+    job="exec$(quote "$gpurt" stitch -o "$output" "${files[@]}")"
+  else
+    job="set -e
+$(quote "$gpurt" stitch -o "$work/raw.png" "${files[@]}")"
+    for a in "${aovs[@]}"; do
+      parts=()
+      for ((i = 0; i < tiles; i++)); do parts+=("$work/tile$i.$a.pfm"); done
+      job+="
+$(quote "$gpurt" stitch -o "$work/$a.pfm" "${parts[@]}")"
+    done
+    picture=()
+    args=("$@")
+    for ((k = 0; k < ${#args[@]}; k++)); do
+      case "${args[k]}" in
+        --exposure|--tonemap|--gl|--backend) picture+=("${args[k]}" "${args[k + 1]:-}") ;;
+        --exposure=*|--tonemap=*|--gl=*|--backend=*) picture+=("${args[k]}") ;;
+      esac
+    done
+    job+="
+exec$(quote "$gpurt" denoise "$work/color.pfm" --albedo "$work/albedo.pfm" --normal "$work/shading_normal.pfm" \
+        --depth "$work/depth.pfm" --variance "$work/variance.pfm" -o "$output" "${picture[@]}")"
+  fi
   stitch="$(submit ${array:+--dependency=afterok:$array} --job-name=gpurt-stitch \
               --output="$(pattern "$work")/slurm-%j.out" <<<"#!/bin/bash
-exec$(quote "$gpurt" stitch -o "$output" "${files[@]}")")"
+$job")"
   echo "stitch: job $stitch"
   [ -n "$wait" ] || exit 0
   if [ -n "$array" ]; then

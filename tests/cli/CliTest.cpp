@@ -1048,8 +1048,9 @@ class SlurmCluster {
 };
 
 // The Slurm driver (scripts/farm/gpurt-slurm.sh) against a real one-node Slurm: a 4-tile image (a job
-// array and a stitch job after it) and a 3-frame animation of the packed scene equal the whole
-// renders; a failed tile fails --wait, naming it, and --resume re-runs that tile alone.
+// array and a stitch job after it), a 3-tile denoised one (the stitch job stitches the AOVs and
+// denoises) and a 3-frame animation of the packed scene equal the whole renders; a failed tile
+// fails --wait, naming it, and --resume re-runs that tile alone.
 TEST_F(Cli, SlurmDriverRendersTilesAndFramesOnARealCluster) {
     // Short and without spaces: slurm.conf cannot quote paths, munge's socket path is limited.
     const SlurmCluster cluster(fs::temp_directory_path() / ("gpurt-slurm-" + std::to_string(::getpid())));
@@ -1065,6 +1066,14 @@ TEST_F(Cli, SlurmDriverRendersTilesAndFramesOnARealCluster) {
         const auto [code, log] = run(driver + " --tiles 4 -o " + path("farm.png") + scene);
         ASSERT_EQ(code, 0) << log;
         EXPECT_EQ(slurp(dir / "farm.png"), slurp(dir / "whole.png"));
+    }
+    {  // --denoise: the tiles' AOVs, stitched and denoised, are render --denoise's picture.
+        const std::string traced = " scenes/cornell_blocks.json --size 32x26 --spp 4 --integrator path";
+        ASSERT_EQ(gpurt("render" + traced + " --denoise -o " + path("whole_denoised.png")).code, 0);
+        const auto [code, log] = run(driver + " --tiles 3 --denoise -o " + path("denoised.png") + traced);
+        ASSERT_EQ(code, 0) << log;
+        EXPECT_EQ(slurp(dir / "denoised.png"), slurp(dir / "whole_denoised.png"));
+        EXPECT_TRUE(fs::exists(dir / "denoised.png.tiles" / "raw.png"));
     }
     {  // Tile 2 fails (its file's name is taken by a folder); --resume runs it alone, then the stitch.
         fs::create_directories(dir / "again.png.tiles" / "tile2.png");
