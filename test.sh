@@ -6,7 +6,7 @@
 #                         build-sanitize/ (tests/sanitize/: options and leak suppressions)
 #   ./test.sh --fuzz      only the fuzz targets
 #   ./test.sh -R PATTERN  only the tests whose names match (other arguments go to ctest); no fuzzing
-# GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10; four targets).
+# GPURT_FUZZ_SECONDS sets the seconds per fuzz target (default 10).
 set -euo pipefail
 cd "$(dirname "$0")"
 # scripts/install-deps.sh installs every package the build and the tests need, among them xvfb and

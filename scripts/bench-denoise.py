@@ -69,6 +69,7 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "bench-denoise"))
     ap.add_argument("--crops", default="", help="write README's crops (raw 16, denoised 16, raw 1024) here")
     ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--reuse-reference", action="store_true", help="keep the references of an earlier run in --work")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     size = args.size
@@ -77,7 +78,11 @@ def main():
     print("|---|---|---|---|---|---|---|")
     for scene in args.scenes.split(","):
         key = scene.replace(" ", "_")
-        ref = render(scene, args.work, key + "_ref", size, ["--spp", str(args.reference_spp), "--seed", "99"])[0]
+        ref_file = os.path.join(args.work, key + "_ref.pfm")
+        if args.reuse_reference and os.path.exists(ref_file):
+            ref = read_pfm(ref_file)[3]
+        else:
+            ref = render(scene, args.work, key + "_ref", size, ["--spp", str(args.reference_spp), "--seed", "99"])[0]
         raw16, _, raw16_png = render(scene, args.work, key + "_raw16", size, ["--spp", "16"])
         den16, st, den16_png = render(scene, args.work, key + "_den16", size, ["--spp", "16"], denoise=True)
         raw128 = render(scene, args.work, key + "_raw128", size, ["--spp", "128"])[0]

@@ -9,7 +9,7 @@
 //     of its luminance from the colour mean's variance (the variance AOV). A pixel with a value
 //     that is not finite is refused: it weighs nothing, and its own value comes from its
 //     neighbours.
-//  2. GPURT_DENOISE_ITERATIONS iterations i = 0, 1, ... of a 5 x 5 B3-spline kernel with holes of
+//  2. denoiseIterations iterations i = 0, 1, ... of a 5 x 5 B3-spline kernel with holes of
 //     2^i pixels; each tap weighs by how alike its features are to the centre's: the shading
 //     normal and albedo (means over the samples, so that a pixel half covered by an edge takes
 //     part as half of each), the depth (relative), and the irradiance's luminance against the
@@ -27,7 +27,6 @@
 #ifndef GPURT_DENOISE_H
 #define GPURT_DENOISE_H
 
-#define GPURT_DENOISE_ITERATIONS 5
 #define GPURT_DENOISE_ALBEDO_MIN 0.01f
 // The weights' scales: the luminance difference in the centre's standard deviations (SVGF's
 // sigma_l = 4), the squared differences of the normals (16 |n_p - n_q|^2 = 32 (1 - cos) for unit
@@ -38,6 +37,18 @@
 #define GPURT_DENOISE_NORMAL_SHARPNESS 16.0f
 #define GPURT_DENOISE_ALBEDO_SHARPNESS 8.0f
 #define GPURT_DENOISE_DEPTH_SLOPE 0.01f
+
+// The iterations for an image whose smaller side is `side` pixels: 3 up to 255 pixels, and one
+// more each time the side doubles, so that their reach (2 (2^n - 1) pixels) stays about an eighth
+// of the image as its detail grows in pixels with it. Measured at 16 samples a pixel
+// (docs/PERFORMANCE.md, "The denoiser"): at 128 x 128, 3 iterations gave less error than 2, 4, 5
+// or 6 on the Cornell blocks and than 4 to 6 on the bunny; at 256 x 256, 4 gave the Cornell blocks
+// 0.74x the error of 3, the bunny and the textured spheres 1.06-1.08x.
+GPURT_FN int denoiseIterations(int side) {
+    int n = 3;
+    for (int s = side; s >= 256; s = s / 2) n = n + 1;
+    return n;
+}
 
 GPURT_FN float denoiseLuminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 

@@ -199,6 +199,13 @@ std::vector<float> readPfm(const std::filesystem::path& path, int& width, int& h
     if (!std::isspace(in.get())) throw InputError(name + ": not a PFM file (bad header)");
     channels = magic == "PF" ? 3 : 1;
     const size_t rowFloats = size_t(width) * size_t(channels);
+    // The data must be there before its room is taken (a header may claim 2^28 pixels).
+    const std::streampos data = in.tellg();
+    in.seekg(0, std::ios::end);
+    const std::streamoff bytes = in.tellg() - data;
+    in.seekg(data);
+    if (bytes < 0 || uint64_t(bytes) < uint64_t(rowFloats) * uint64_t(height) * sizeof(float))
+        throw InputError(name + ": PFM data is truncated");
     std::vector<float> topFirst(rowFloats * size_t(height));
     const bool fileLittle = scale < 0;
     const bool swap = fileLittle != (std::endian::native == std::endian::little);

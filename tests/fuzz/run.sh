@@ -14,7 +14,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build-fuzz -j"$(nproc)"
 
 status=0
-for name in obj json packed tile ply gltf texture envmap; do
+for name in obj json packed tile ply gltf texture envmap denoise; do
   # Every run first replays its whole corpus: past about a thousand inputs that alone would take
   # the time given (long runs with GPURT_FUZZ_SECONDS collect that many), so start afresh from
   # the seeds then.

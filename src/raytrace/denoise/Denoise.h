@@ -30,8 +30,9 @@ struct DenoiseStats {
     double ms = 0.0;       // the filter's wall time
 };
 
-// The a-trous iterations, the last of holes 2^(n-1) pixels (common/denoise.h).
-int denoiseIterations();
+// The a-trous iterations for a width x height image, the last of holes 2^(n-1) pixels
+// (common/denoise.h denoiseIterations).
+int denoiseIterations(int width, int height);
 
 // The denoiser's input from a render with RenderSettings::features and variance (its depth AOV
 // when it has one).

@@ -5,6 +5,7 @@
 #include "base/Parallel.h"
 #include "raytrace/RayMath.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -37,7 +38,7 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 }  // namespace
 
-int denoiseIterations() { return GPURT_DENOISE_ITERATIONS; }
+int denoiseIterations(int width, int height) { return denoiseIterations(std::min(width, height)); }
 
 DenoiseImages denoiseImages(const RenderOutput& out) {
     DenoiseImages in;
@@ -103,7 +104,8 @@ std::vector<glm::vec3> denoiseCpu(const DenoiseImages& in, int threads, DenoiseS
     }
     // Step 2: the iterations (atrous.frag), rows in parallel.
     const ivec2 size(in.width, in.height);
-    for (int i = 0; i < GPURT_DENOISE_ITERATIONS; ++i) {
+    const int iterations = denoiseIterations(in.width, in.height);
+    for (int i = 0; i < iterations; ++i) {
         const DenoiseTexels texels{&signal, &albedo, &normal, nullptr, in.width};
         parallelChunks(size_t(in.height), 1, threads, [&](size_t row, size_t, size_t) {
             for (int x = 0; x < in.width; ++x)

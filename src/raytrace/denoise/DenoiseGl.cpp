@@ -88,7 +88,7 @@ std::vector<glm::vec3> denoise(Backend backend, const DenoiseImages& in, int thr
 
 // The iterations with holes of 1, 2, 4... pixels; the last remodulates into the output.
 void DenoiserGl::iterate() {
-    const int iterations = denoiseIterations();
+    const int iterations = denoiseIterations(width_, height_);
     for (int i = 0; i < iterations; ++i) {
         GPUKernel& k = i + 1 < iterations ? atrous_ : remodulate_;
         k.setUniform("stride", 1 << i).dispatch();
