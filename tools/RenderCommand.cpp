@@ -262,6 +262,9 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
             addTileSidecar(outputs, files.png, *tile);
         }
     }
+    const std::map<std::string, const std::vector<glm::vec3>*> vectors = {
+        {"normal", &out.normal}, {"color", &out.color}, {"variance", &out.variance},
+        {"albedo", &out.albedo}, {"shading_normal", &out.shadingNormal}};
     for (const auto& [name, file] : files.aovs) {
         std::vector<float> flat;
         int channels = 1;
@@ -270,9 +273,6 @@ void writeOutputs(const OutputFiles& files, const RenderOutput& out, const Colou
         if (name == "steps") flat = out.steps;
         if (name == "spp")  // the samples each pixel took: --spp everywhere without adaptive sampling
             flat = out.spp.empty() ? std::vector<float>(size_t(out.width) * size_t(out.height), float(spp)) : out.spp;
-        const std::map<std::string, const std::vector<glm::vec3>*> vectors = {
-            {"normal", &out.normal}, {"color", &out.color}, {"variance", &out.variance},
-            {"albedo", &out.albedo}, {"shading_normal", &out.shadingNormal}};
         if (const auto v = vectors.find(name); v != vectors.end()) {
             flat = flat3(*v->second, 1.0f);
             channels = 3;

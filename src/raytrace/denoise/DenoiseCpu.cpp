@@ -96,9 +96,7 @@ std::vector<glm::vec3> denoiseCpu(const DenoiseImages& in, int threads, DenoiseS
     const std::vector<glm::vec3> variance = denoiseVariance(in);
     // Step 1: the signal and the guides (demodulate.frag).
     std::vector<vec4> signal(n), next(n), normal(n);
-    std::vector<vec3> albedo(n);
     for (size_t p = 0; p < n; ++p) {
-        albedo[p] = in.albedo[p];
         normal[p] = vec4(in.normal[p], in.depth.empty() ? 0.0f : in.depth[p]);
         signal[p] = denoiseDemodulate(in.color[p], variance[p], in.albedo[p]);
     }
@@ -106,7 +104,7 @@ std::vector<glm::vec3> denoiseCpu(const DenoiseImages& in, int threads, DenoiseS
     const ivec2 size(in.width, in.height);
     const int iterations = denoiseIterations(in.width, in.height);
     for (int i = 0; i < iterations; ++i) {
-        const DenoiseTexels texels{&signal, &albedo, &normal, nullptr, in.width};
+        const DenoiseTexels texels{&signal, &in.albedo, &normal, nullptr, in.width};
         parallelChunks(size_t(in.height), 1, threads, [&](size_t row, size_t, size_t) {
             for (int x = 0; x < in.width; ++x)
                 next[row * size_t(in.width) + size_t(x)] = denoiseIteration(texels, ivec2(x, int(row)), size, 1 << i);
@@ -115,7 +113,7 @@ std::vector<glm::vec3> denoiseCpu(const DenoiseImages& in, int threads, DenoiseS
     }
     // Step 3 (the last iteration's REMODULATE).
     std::vector<glm::vec3> out(n);
-    for (size_t p = 0; p < n; ++p) out[p] = denoiseRemodulate(signal[p], albedo[p]);
+    for (size_t p = 0; p < n; ++p) out[p] = denoiseRemodulate(signal[p], in.albedo[p]);
     if (stats) {
         stats->refused = refusedPixels(in);
         stats->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -69,32 +69,31 @@ std::vector<float> readDenoiseImage(const std::string& file, const std::string& 
 
 DenoiseImages readDenoiseImages(const DenoiseFiles& files) {
     DenoiseImages in;
-    std::vector<float> color = readDenoiseImage(files.color, "color", 3, in.width, in.height);
-    auto vectors = [&](const std::string& file, const std::string& role) {
-        std::vector<glm::vec3> out;
-        if (file.empty()) return out;
+    // An image of the colour's size (the colour's own sets it), or none for an optional one not given.
+    auto read = [&](const std::string& file, const std::string& role, int channels) {
+        if (file.empty()) return std::vector<float>();
         int w = 0, h = 0;
-        const std::vector<float> v = readDenoiseImage(file, role, 3, w, h);
-        if (w != in.width || h != in.height)
+        std::vector<float> v = readDenoiseImage(file, role, channels, w, h);
+        if (role == "color") {
+            in.width = w;
+            in.height = h;
+        } else if (w != in.width || h != in.height) {
             throw InputError(file + ": " + std::to_string(w) + "x" + std::to_string(h) + " pixels, the color image (" +
                              files.color + ") has " + std::to_string(in.width) + "x" + std::to_string(in.height));
-        out.resize(v.size() / 3);
+        }
+        return v;
+    };
+    auto vectors = [&](const std::string& file, const std::string& role) {
+        const std::vector<float> v = read(file, role, 3);
+        std::vector<glm::vec3> out(v.size() / 3);
         for (size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
         return out;
     };
-    in.color.resize(color.size() / 3);
-    for (size_t i = 0; i < in.color.size(); ++i) in.color[i] = glm::vec3(color[3 * i], color[3 * i + 1], color[3 * i + 2]);
+    in.color = vectors(files.color, "color");
     in.albedo = vectors(files.albedo, "albedo");
     in.normal = vectors(files.normal, "normal");
     in.variance = vectors(files.variance, "variance");
-    if (!files.depth.empty()) {
-        int w = 0, h = 0;
-        in.depth = readDenoiseImage(files.depth, "depth", 1, w, h);
-        if (w != in.width || h != in.height)
-            throw InputError(files.depth + ": " + std::to_string(w) + "x" + std::to_string(h) +
-                             " pixels, the color image (" + files.color + ") has " + std::to_string(in.width) + "x" +
-                             std::to_string(in.height));
-    }
+    in.depth = read(files.depth, "depth", 1);
     return in;
 }
 
