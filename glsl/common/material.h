@@ -198,4 +198,15 @@ GPURT_FN bool materialSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool en
     return classicSample(m, d, ng, ns, entering, u, lobe, dir, factor, pdf, side);
 }
 
+// A surface as an integrator meets it (the megakernels' surfaceAt, CpuTracer::surfaceAt): the
+// point, the geometric normal facing the ray, the shading normal, whether the ray meets the front
+// face, and the material record as the ray meets it (materialFacing).
+struct SurfaceHit {
+    vec3 p;
+    vec3 n;
+    vec3 ns;
+    bool front;
+    MaterialRecord m;
+};
+
 #endif

@@ -1,12 +1,13 @@
-// What the integrators' megakernels (path/megakernel.frag, whitted/megakernel.frag) share: a
-// path's work that the wavefront chain spreads over passes (surface.frag, shadowgen.frag,
-// light.frag, bounce.frag) done inside one pass, as the cpu backend does it per ray (CpuTracer's
-// surfaceAt, lightVisible, emitterVisible and environmentVisible, word for word), with the
-// scene's accelerator traced inside (accel/trace.glsl), and the pass's counters.
+// What the integrators' megakernels (path/megakernel.frag, whitted/megakernel.frag) share: the
+// hooks of the shared integrators (common/integrators/README.md) for kernels that trace their own
+// rays, with the scene's accelerator traced inside (accel/trace.glsl) where the wavefront chain
+// spreads the work over passes (surface.frag, shadowgen.frag, light.frag, bounce.frag), and the
+// pass's counters.
 #include "accel/trace.glsl"
 #include "scene/shading.glsl"
 #include "scene/camera.glsl"
 #include "common/sampling.h"
+#include "integrators/hooks.glsl"
 
 // The point lights (GpuTracer's list): texels 2k and 2k + 1 hold light k's (position, intensity)
 // and (colour, 0).
@@ -27,13 +28,25 @@ layout(r32ui) uniform uimage2D counters;
 int shadowRays = 0;
 bool cameraOverflow = false;
 
-// The coverage key of the rays of `pixel` (alpha: scene/alpha.glsl's coverageSample and seed).
-
-void setPixelCoverage(uvec2 pixel) {
+// The element's pixel: its sample's numbers (integrators/hooks.glsl) and the coverage key of its
+// rays (alpha: scene/alpha.glsl's coverageSample and seed).
+void beginPixel(uvec2 pixel) {
+    samplePixel = pixel;
 #ifdef SCENE_ALPHA
     rayCoverageKey = coverageKey(pixel.x, pixel.y, coverageSample, coverageSeed);
 #endif
 }
+
+// AOVS: the megakernel writes its camera rays' AOVs too (aovs.frag, the pixel centres' own pass,
+// declares its outputs itself).
+#if defined(AOVS) && !defined(PIXEL_CENTRE_AOVS)
+#define MEGAKERNEL_AOVS
+#endif
+#ifdef MEGAKERNEL_AOVS
+layout(location = 1) out vec4 hitOut;     // (t, u, v, triangle | -1) of the camera ray
+layout(location = 2) out vec4 normalOut;  // (facing geometric normal, 0)
+layout(location = 3) out ivec4 stepsOut;  // w: the cells or nodes its trace visited
+#endif
 
 // The closest hit of o + t d, as the trace kernels write it: (t, u, v, triangle | -1). camera:
 // the ray is the element's camera ray (its overflow is counted).
@@ -46,8 +59,30 @@ vec4 traceClosest(vec3 o, vec3 d, float tLimit, bool camera, out int steps) {
     return vec4(id >= 0 ? t : GPURT_FAR, u, v, float(id));
 }
 
+// The shared integrators' trace (common/integrators/README.md): the closest hit of a ray of depth
+// (round) b; the camera ray's hit and steps are AOVs.
+vec4 integratorTrace(vec3 o, vec3 d, int b) {
+    int steps;
+    vec4 h = traceClosest(o, d, GPURT_FAR, b == 0, steps);
+#ifdef MEGAKERNEL_AOVS
+    if (b == 0) {
+        hitOut = h;
+        stepsOut = ivec4(0, 0, 0, steps);
+        normalOut = vec4(0.0f);
+    }
+#endif
+    return h;
+}
+
+// The camera ray's hit h and its facing normal n (AOVS).
+void recordPrimary(vec4 h, vec3 n) {
+#ifdef MEGAKERNEL_AOVS
+    normalOut = vec4(n, 0.0f);
+#endif
+}
+
 // Whether nothing blocks the shadow ray from origin along dir up to limit (CpuTracer::unblocked).
-bool unblocked(vec3 origin, vec3 dir, float limit) {
+bool unblockedRay(vec3 origin, vec3 dir, float limit) {
     shadowRays += 1;
     float t, u, v;
     int steps, state;
@@ -56,14 +91,6 @@ bool unblocked(vec3 origin, vec3 dir, float limit) {
 
 // The surface record of hit h of the ray o + t d (surface.frag; CpuTracer::surfaceAt): the point,
 // the geometric normal facing the ray, the shading normal, and the material as the ray meets it.
-struct SurfaceHit {
-    vec3 p;
-    vec3 n;
-    vec3 ns;
-    bool front;
-    MaterialRecord m;
-};
-
 SurfaceHit surfaceAt(vec4 h, vec3 o, vec3 d) {
     int id = int(h.w);
     vec3 v0, e1, e2;
@@ -87,25 +114,21 @@ void pointLight(int k, out vec3 position, out vec3 color, out float intensity) {
     color = texelFetch(pointLights, ivec2(2 * k + 1, 0), 0).xyz;
 }
 
-// Whether point light `position` is in front of p and unblocked (CpuTracer::lightVisible).
-bool lightVisible(vec3 p, vec3 n, vec3 position) {
-    if (!lightInFront(p, n, position)) return false;
-    vec3 o, d;
-    float limit;
-    shadowRay(p, n, rayOffset, position, o, d, limit);
-    return unblocked(o, d, limit);
+// The emitter point for the sample numbers u, on a triangle of edges e1, e2 and its emission
+// (scene/shading.glsl emitterPointOf).
+void emitterPointAt(vec2 u, out vec3 q, out vec3 e1, out vec3 e2, out vec3 emission) {
+#ifdef SCENE_EMITTERS
+    int id;
+    q = emitterPointOf(u, id);
+    vec3 v0;
+    int material;
+    fetchTriangle(id, v0, e1, e2, material);
+    emission = fetchEmission(material);
+#endif
 }
 
-// The emitter point of the pixel's sample in dimension GPURT_DIM_EMITTER + depth, q on triangle
-// `id`, when it is in front of p and unblocked (shadowgen.frag EMITTER; CpuTracer::emitterVisible).
-bool emitterVisible(uvec2 pixel, int depth, vec3 p, vec3 n, out vec3 q, out int id) {
-    q = emitterSamplePoint(pixel, sampleIndex, sampleCount, seed, samplerKind, uint(depth), id);
-    if (!lightInFront(p, n, q)) return false;
-    vec3 o, d;
-    float limit;
-    emitterShadowRay(p, n, rayOffset, q, o, d, limit);
-    return unblocked(o, d, limit);
-}
+#define GPURT_TRACE_HOOKS
+#include "common/integrators/lights.h"
 
 // Adds the element's counters to the pass's: its shadow rays, its camera ray's overflow, and that
 // its last ray in the pass was at depth `last`. (Overflows are counted as the wavefront chain

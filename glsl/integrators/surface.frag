@@ -19,6 +19,10 @@ uniform sampler2D pathState;  // (pdf of the ray's direction at the last hit, 0:
 uniform int depth;            // the hits' depth (0: the camera rays')
 uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
 uniform float clampIndirect;  // --clamp-indirect
+uniform uint sampleIndex;     // the sample's numbers (unused here: integrators/hooks.glsl needs them)
+uniform uint sampleCount;
+uniform uint seed;
+uniform uint samplerKind;
 #ifdef FEATURES
 layout(rgba32f) uniform image2D pixelAlbedo;
 layout(rgba32f) uniform image2D pixelNormal;
@@ -40,16 +44,33 @@ layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
 layout(location = 5) out vec4 surfaceShading; // (shading normal, barycentric v): the normal
                                               // smooth, facing as the geometric one
 
-// The sample's features, albedo a and shading normal n, when they are still open.
+#ifdef PATH
+// The sample's features, albedo a and shading normal n (common/integrators/path.h records them
+// while they are open).
 void recordFeatures(vec3 a, vec3 n) {
-#if defined(PATH) && defined(FEATURES)
-    vec4 state = readStream(pathState);
-    if (state.w != 0.0f) return;
-    ivec2 pixel = pathPixel(state, depth) - ivec2(0, tileRow);
+#ifdef FEATURES
+    ivec2 pixel = pathPixel(readStream(pathState), depth) - ivec2(0, tileRow);
     imageStore(pixelAlbedo, pixel, vec4(a, 0.0f));
     imageStore(pixelNormal, pixel, vec4(n, 0.0f));
 #endif
 }
+
+#include "integrators/hooks.glsl"
+#include "common/integrators/path.h"
+
+// The path of this element as it arrives (its ray, colour c and throughput w so far).
+PathState arrivingPath(vec4 c, vec4 w) {
+    vec4 state = readStream(pathState);
+    PathState st;
+    st.o = readStream(rayOrigin).xyz;
+    st.d = readStream(rayDir).xyz;
+    st.color = c.xyz;
+    st.weight = w.xyz;
+    st.prevPdf = state.x;
+    st.open = state.w == 0.0f;
+    return st;
+}
+#endif
 
 void main() {
     vec4 w = readStream(weight);
@@ -62,21 +83,15 @@ void main() {
     localColor = vec4(0.0f);
     surfaceShading = vec4(0.0f);
     if (w.w == 0.0f) return;  // path ended at an earlier bounce
+#ifdef PATH
+    PathState st = arrivingPath(c, w);
+#endif
     if (h.w < 0.0f) {
 #ifdef PATH
-        recordFeatures(vec3(GPURT_BACKGROUND_ALBEDO), vec3(0.0f));
-#endif
-#ifdef SCENE_ENVIRONMENT
-        vec3 away = readStream(rayDir).xyz;
-        vec3 sky = environmentRadiance(away);
-#ifdef PATH
-        sky = sky * environmentHitWeight(readStream(pathState).x, environmentLightPdf(away));
-        color = vec4(c.xyz + clampContribution(w.xyz * sky, depth, clampDirect, clampIndirect), 0.0f);
-#else
-        color = vec4(c.xyz + w.xyz * sky, 0.0f);
-#endif
-#elif defined(PATH)
-        color = vec4(c.xyz + clampContribution(w.xyz * background, depth, clampDirect, clampIndirect), 0.0f);
+        pathMiss(st, depth);
+        color = vec4(st.color, 0.0f);
+#elif defined(SCENE_ENVIRONMENT)
+        color = vec4(c.xyz + w.xyz * environmentRadiance(readStream(rayDir).xyz), 0.0f);
 #else
         color = vec4(c.xyz + w.xyz * background, 0.0f);
 #endif
@@ -96,9 +111,14 @@ void main() {
     surfaceShading = vec4(ns, h.z);
     surfaceView = vec4(d, h.y);
 #ifdef PATH
-    recordFeatures(materialAlbedo(m), ns);
-    float mis = m.emitterLight ? emissionWeight(readStream(pathState).x, h.x, ng, d, emitterArea) : 1.0f;
-    color = vec4(c.xyz + clampContribution(w.xyz * (materialEmitted(m, ns) * mis), depth, clampDirect, clampIndirect), 0.0f);
+    SurfaceHit s;
+    s.p = surfacePoint.xyz;
+    s.n = ng;
+    s.ns = ns;
+    s.front = frontFace(e1, e2, d);
+    s.m = materialFacing(m, s.front);
+    pathArrive(st, s, h.x, depth);
+    color = vec4(st.color, 0.0f);
 #else
     color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);
 #ifdef SCENE_ENVIRONMENT

@@ -8,11 +8,9 @@
 uniform float rayOffset;  // UniformGrid::rayOffset: how far secondary rays start off the surface
 
 #include "../common/sampling.h"
-// The emitters' point of a pixel's sample (s of n, seed, sampler) in dimension GPURT_DIM_EMITTER + depth,
-// uniform by area (the emitter by a binary search of the area table, EmitterTable::pick): q on
-// triangle `id` (CpuTracer::emitterVisible).
-vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint sampler, uint depth, out int id) {
-    vec2 u = sample2D(sampler, pixel.x, pixel.y, s, n, seed, GPURT_DIM_EMITTER + depth);
+// The emitters' point for the sample numbers u, uniform by area (the emitter by a binary search of
+// the area table, EmitterTable::pick): q on triangle `id`.
+vec3 emitterPointOf(vec2 u, out int id) {
     int k = pickEmitter(u.x);
     vec2 entry = texelFetch(emitters, k).xy;
     float lower = k == 0 ? 0.0f : texelFetch(emitters, k - 1).x;
@@ -21,6 +19,12 @@ vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint sampler, ui
     id = int(entry.y);
     fetchTriangle(id, v0, e1, e2, material);
     return emitterPoint(v0, e1, e2, vec2(remapToUnit(u.x, lower, entry.x), u.y));
+}
+
+// The emitters' point of a pixel's sample (s of n, seed, sampler) in dimension
+// GPURT_DIM_EMITTER + depth (common/integrators/lights.h emitterVisible).
+vec3 emitterSamplePoint(uvec2 pixel, uint s, uint n, uint seed, uint sampler, uint depth, out int id) {
+    return emitterPointOf(sample2D(sampler, pixel.x, pixel.y, s, n, seed, GPURT_DIM_EMITTER + depth), id);
 }
 
 // The image coordinates at barycentrics (u, v) of triangle `id` (zeros without texture coordinates).
@@ -190,6 +194,18 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 // paths are packed after each round (integrators/path/bounce.frag).
 ivec2 pathPixel(vec4 state, int depth) { return depth == 0 ? ivec2(imagePixel()) : ivec2(state.yz); }
 
+#include "../common/environment.h"
 #ifdef SCENE_ENVIRONMENT  // SceneTextures::bind: the scene has an environment light
 #include "environment.glsl"
+#else
+// No environment: the shared integrators (common/integrators/) see sceneHasEnvironment false and
+// environmentSampled false (integrators/hooks.glsl), so nothing calls these.
+vec3 environmentRadiance(vec3 d) { return vec3(0.0f); }
+float environmentLightPdf(vec3 d) { return 0.0f; }
+bool sampleEnvironment(vec2 u, out vec3 dir, out float pdf) {
+    dir = vec3(0.0f);
+    pdf = 0.0f;
+    return false;
+}
+vec3 environmentAmbient(vec3 n) { return vec3(0.0f); }
 #endif

@@ -64,41 +64,11 @@ bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t
     return blocker.prim < 0;
 }
 
-bool CpuTracer::lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint32_t coverageKey, RenderStats& stats) const {
-    if (!lightInFront(p, n, lightPos)) return false;
-    glm::vec3 origin, dir;
-    float limit;
-    shadowRay(p, n, rayOffset_, lightPos, origin, dir, limit);
-    return unblocked(origin, dir, limit, coverageKey, stats);
-}
-
-bool CpuTracer::emitterVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
-                               glm::vec3& q, uint32_t& id) const {
-    if (emitters_.empty()) return false;
-    const vec2 u = px.sample2D(GPURT_DIM_EMITTER + uint32_t(depth));
-    const size_t k = emitters_.pick(u.x);
-    id = emitters_.triangles[k];
-    const PreparedTriangle& e = triangles_[id];
-    q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, emitters_.lower(k), emitters_.cdf[k]), u.y));
-    if (!lightInFront(p, n, q)) return false;
-    glm::vec3 origin, dir;
-    float limit;
-    emitterShadowRay(p, n, rayOffset_, q, origin, dir, limit);
-    return unblocked(origin, dir, limit, px.coverageKey(), stats);
-}
-
-bool CpuTracer::environmentVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
-                                   glm::vec3& l, float& pdf) const {
-    if (!environment_.sampled) return false;
-    const vec2 u = px.sample2D(GPURT_DIM_ENVIRONMENT + uint32_t(depth));
-    if (!environment_.sample(u, l, pdf) || !(dot(n, l) > 0.0f)) return false;
-    return unblocked(offsetOrigin(p, n, rayOffset_), l, GPURT_FAR, px.coverageKey(), stats);
-}
-
-CpuTracer::Surface CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
+SurfaceHit CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
     const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
-    Surface s;
-    s.material = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), frontFace(tri.e1, tri.e2, d));
+    SurfaceHit s;
+    s.front = frontFace(tri.e1, tri.e2, d);
+    s.m = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), s.front);
     s.p = o + hit.t * d;
     s.n = facingNormal(tri.e1, tri.e2, d);
     s.ns = s.n;  // the shading normal (surface.frag)

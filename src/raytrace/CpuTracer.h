@@ -80,31 +80,12 @@ class CpuTracer {
     const EmitterTable& emitters() const { return emitters_; }
     const EnvironmentTable& environment() const { return environment_; }
     // The surface at a hit of the ray from o along d: the point, the facing geometric normal, the
-    // shading normal (common/shading.h) and the material record.
-    struct Surface {
-        glm::vec3 p, n, ns;
-        raymath::MaterialRecord material;
-    };
-    Surface surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const;
-    // Whether the point light at lightPos lights the hit p (facing normal n): in front of it and
-    // its shadow ray unblocked (shadowgen.frag, the trace, light.frag), counted in stats.
-    bool lightVisible(glm::vec3 p, glm::vec3 n, glm::vec3 lightPos, uint32_t coverageKey, RenderStats& stats) const;
-    // The emitter point q (on triangle id) that the pixel sample px takes at hit depth `depth`
-    // (sampling.h GPURT_DIM_EMITTER + depth), and whether it lights p: in front and unblocked
-    // (shadowgen.frag EMITTER). False without emitters.
-    bool emitterVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats, glm::vec3& q,
-                        uint32_t& id) const;
-
-    // The environment direction l (pdf `pdf`) that the pixel sample px draws at hit depth `depth`
-    // (GPURT_DIM_ENVIRONMENT + depth), and whether it lights p: in front of the facing normal n
-    // and unblocked (shadowgen.frag ENVIRONMENT). False when the environment is not sampled.
-    bool environmentVisible(const PixelSample& px, int depth, glm::vec3 p, glm::vec3 n, RenderStats& stats,
-                            glm::vec3& l, float& pdf) const;
-
-  private:
+    // shading normal (common/shading.h), the side and the material record (common/material.h).
+    raymath::SurfaceHit surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const;
     // Traces one shadow ray (counted in stats); true when nothing blocks it.
     bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const;
 
+  private:
     const Scene& scene_;
     std::unique_ptr<CpuAccelerator> accel_;
     std::vector<PreparedTriangle> triangles_;

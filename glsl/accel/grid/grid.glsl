@@ -32,6 +32,19 @@ int fetchListTriangle(uint k, out vec3 v0, out vec3 v1, out vec3 v2, out float f
     return int(a.w);
 }
 
+// How common/grid.h reads the grid here (the kernel defines GRID_COVERED, then includes it).
+#define GPURT_GRID_PARAMS
+#define GPURT_GRID_ARGS
+#define GPURT_GRID_MIN gridMin
+#define GPURT_GRID_BOX_MAX gridMax
+#define GPURT_GRID_CELL cellSize
+#define GPURT_GRID_RES gridRes
+#define GPURT_GRID_TOLERANCE cellTolerance
+#define GPURT_GRID_RANGE(cell) cellRange(cell)
+#define GPURT_GRID_SKIP(cell, range) int((range).x)  // an empty cell's entry holds its skip distance
+#define GPURT_GRID_TRI(k, v0, v1, v2, flags) fetchListTriangle(k, v0, v1, v2, flags)
+#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2) GRID_COVERED(id, flags, u, v, d, e1, e2)
+
 // The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX (-1) when the
 // segment [0, tLimit] misses the box.
 float gridEntry(vec3 o, vec3 d, float tLimit) { return boxEntry(o, d, tLimit, gridMin, gridMax); }

@@ -1,6 +1,6 @@
 // Intersector (Purcell et al. 2002, 4.3; Christen 2005, 5.4.4): the watertight triangle test
-// (common/raymath.h intersectTriangle) against every
-// triangle of the WAIT ray's cell. A hit counts only inside the current cell (up to its exit
+// (common/raymath.h intersectTriangle) against every triangle of the WAIT ray's cell
+// (common/grid.h gridCellHits). A hit counts only inside the current cell (up to its exit
 // parameter plus a small tolerance): a triangle that spans several cells must not end the ray
 // before a nearer triangle in a later cell is tested. The closest hit wins; ties keep the lower
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
@@ -12,6 +12,7 @@
 #else
 #define GRID_COVERED(id, flags, u, v, d, e1, e2) true
 #endif
+#include "common/grid.h"
 
 uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
@@ -39,20 +40,8 @@ void main() {
     float bestT = tLimit;
     int bestId = -1;
     float bestU = 0.0f, bestV = 0.0f;
-    WatertightRay ray = watertightRay(o, d);
-    for (uint i = range.x; i < range.x + range.y; ++i) {
-        vec3 v0, v1, v2;
-        float flags;
-        int id = fetchListTriangle(i, v0, v1, v2, flags);
-        float t, u, w;
-        if (intersectTriangle(ray, v0, v1, v2, t, u, w) && t > 0.0f && t < bestT &&
-            t <= tExit + cellTolerance && GRID_COVERED(id, flags, u, w, d, v1 - v0, v2 - v0)) {
-            bestT = t;
-            bestId = id;
-            bestU = u;
-            bestV = w;
-        }
-    }
+    int tests = 0;  // unused here (the cpu's cost estimate)
+    gridCellHits(range, watertightRay(o, d), d, tExit, false, bestT, bestId, bestU, bestV, tests);
 
     int state = RAY_ACTIVE;
     if (bestId >= 0) {

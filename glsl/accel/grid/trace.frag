@@ -1,5 +1,5 @@
-// Fused traverser and intersector: the per-ray loop of the CPU backend (GridCpu::traceRay) as one
-// kernel (grid_trace.glsl). Each pass takes every ACTIVE ray through up to TRACE_STEPS grid cells,
+// Fused traverser and intersector: the per-ray loop of the CPU backend (common/grid.h, GridCpu) as
+// one kernel (grid_trace.glsl). Each pass takes every ACTIVE ray through up to TRACE_STEPS grid cells,
 // intersecting the triangles of each non-empty cell as it reaches it (the Purcell/Christen
 // intersector test, with the same cell-exit rule), so a ray needs no WAIT state and no second
 // kernel. The split traverse.frag / intersect.frag pair is the other end of the same range;
@@ -64,8 +64,8 @@ void main() {
     // The whole traversal in this pass, so the voxel precalculation (precalc.frag) is done here
     // and needs no pass of its own.
     float t, u, v;
-    int steps, state;
-    int id = gridTrace(o, d, tLimit, TRACE_ANY_HIT, t, u, v, steps, state);
+    int steps, tests, state;
+    int id = gridTrace(o, d, tLimit, TRACE_ANY_HIT, maxCellSteps, t, u, v, steps, tests, state);
     voxelOut = ivec4(0, 0, 0, steps);
     hitOut = vec4(id >= 0 ? t : GPURT_FAR, u, v, float(id));
 #else
@@ -80,6 +80,7 @@ void main() {
     float bestT = tLimit;
     int bestId = -1;
     float bestU = 0.0f, bestV = 0.0f;
+    int tests = 0;  // unused here (the cpu's cost estimate)
     WatertightRay ray = watertightRay(o, d);
     for (int i = 0; i < TRACE_STEPS; ++i) {
         if (steps >= maxCellSteps) {
@@ -87,11 +88,7 @@ void main() {
             break;
         }
         steps += 1;  // this cell is visited
-        float tExit = ddaCellExit(tMax);
-        uvec2 range = cellRange(cell);
-        gridCellHits(range, ray, d, tExit, TRACE_ANY_HIT, bestT, bestId, bestU, bestV);
-        int skip = range.y == 0u ? int(range.x) : 1;  // an empty cell's skip distance
-        if (bestId >= 0 || tExit > tLimit || !ddaAdvance(o, d, gridMin, cellSize, gridRes, skip, cell, tMax)) {
+        if (!gridVisit(o, d, ray, tLimit, TRACE_ANY_HIT, cell, tMax, bestT, bestId, bestU, bestV, tests)) {
             state = RAY_DEAD;
             break;
         }

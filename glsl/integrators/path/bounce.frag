@@ -31,6 +31,7 @@ uniform uint samplerKind;
 uniform int depth;  // the hits' depth (0: the camera rays' hits)
 uniform float clampDirect;    // --clamp-direct (common/path.h clampContribution)
 uniform float clampIndirect;  // --clamp-indirect
+uniform vec3 background;      // (unused here: common/integrators/path.h's pathMiss needs it)
 layout(rgba32f) uniform image2D pixelColor;  // per pixel: the colour of its path once it has ended
 #ifdef PACK
 // The live paths, packed for the next round: slot k is element (k % W, k / W), k from the counter.
@@ -51,18 +52,28 @@ layout(location = 3) out vec4 rayDirOut;
 layout(location = 4) out vec4 pathStateOut;
 #endif
 
-// The path's next ray from its hit; false when it ends here.
-bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput, out vec3 o, out vec3 dir,
-             out float pdf) {
+// The sample's features: the surface pass has recorded them (pathScatter only closes them).
+void recordFeatures(vec3 a, vec3 n) {}
+
+#include "integrators/hooks.glsl"
+#include "common/integrators/path.h"
+
+// The path's next ray from its hit (common/integrators/path.h pathScatter), after the light that
+// next-event estimation gathered there; false when it ends here.
+bool nextRay(vec4 s, inout PathState st) {
     vec4 nm = readStream(surfaceNormal);
     vec4 view = readStream(surfaceView);
     vec4 shading = readStream(surfaceShading);
-    vec3 d = view.xyz;
+    SurfaceHit hit;
     vec3 v0, e1, e2;
     int material;
     fetchTriangle(int(s.w), v0, e1, e2, material);
-    MaterialRecord m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w)), frontFace(e1, e2, d));
-    vec3 n = shading.xyz;
+    hit.p = s.xyz;
+    hit.n = nm.xyz;
+    hit.ns = shading.xyz;
+    hit.front = frontFace(e1, e2, view.xyz);
+    hit.m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w)), hit.front);
+    st.d = view.xyz;
     vec3 local = readStream(localColor).xyz;
 #ifdef SCENE_EMITTERS  // SceneTextures::bind: compiled out without emitters
     vec4 q = readStream(lightSample);
@@ -70,24 +81,13 @@ bool nextRay(vec4 s, vec3 w, ivec2 pixel, inout vec3 color, out vec3 throughput,
         vec3 qv0, qe1, qe2;
         int emitterMaterial;
         fetchTriangle(int(q.w), qv0, qe1, qe2, emitterMaterial);
-        local = local + pathLightContribution(m, s.xyz, n, d, q.xyz, fetchEmission(emitterMaterial),
-                                              emitterIntensity(s.xyz, q.xyz, qe1, qe2, emitterArea)) *
-                            emitterSampleWeight(m, s.xyz, q.xyz, qe1, qe2, emitterArea, n, d);
+        local = local + pathLightContribution(hit.m, hit.p, hit.ns, st.d, q.xyz, fetchEmission(emitterMaterial),
+                                              emitterIntensity(hit.p, q.xyz, qe1, qe2, emitterArea)) *
+                            emitterSampleWeight(hit.m, hit.p, q.xyz, qe1, qe2, emitterArea, hit.ns, st.d);
     }
 #endif
-    color = color + clampContribution(w * local, depth, clampDirect, clampIndirect);
-
-    uint dim = GPURT_DIM_SCATTER + 2u * uint(depth);
-    vec2 u = sample2D(samplerKind, uint(pixel.x), uint(pixel.y), sampleIndex, sampleCount, seed, dim);
-    vec2 choice = sampleChoice(samplerKind, uint(pixel.x), uint(pixel.y), sampleIndex, sampleCount, seed, dim + 1u);
-    vec3 factor;
-    float side;
-    if (!materialSample(m, d, nm.xyz, n, frontFace(e1, e2, d), u, choice.x, dir, factor, pdf, side))
-        return false;
-    throughput = w * factor;
-    if (!russianRoulette(depth, throughput, choice.y)) return false;
-    o = offsetOrigin(s.xyz, side * nm.xyz, rayOffset);
-    return true;
+    pathAdd(st, local, depth);
+    return pathScatter(st, hit, depth);
 }
 
 void main() {
@@ -105,30 +105,32 @@ void main() {
     vec4 s = readStream(surfacePoint);
     vec4 ps = readStream(pathStateIn);
     ivec2 pixel = pathPixel(ps, depth);
-    vec3 color = readStream(colorState).xyz;
-    vec3 throughput, o, dir;
-    float pdf;
+    samplePixel = uvec2(pixel);
+    PathState st;
+    st.color = readStream(colorState).xyz;
+    st.weight = w.xyz;
+    st.open = ps.w == 0.0f;
     // A path that missed in this round (its background added by the surface pass) ends.
-    if (s.w < 0.0f || !nextRay(s, w.xyz, pixel, color, throughput, o, dir, pdf)) {
-        imageStore(pixelColor, pixel - ivec2(0, tileRow), vec4(color, 0.0f));  // the stream element of the pixel
+    if (s.w < 0.0f || !nextRay(s, st)) {
+        imageStore(pixelColor, pixel - ivec2(0, tileRow), vec4(st.color, 0.0f));  // the stream element of the pixel
         return;
     }
-    vec4 origin = vec4(o, GPURT_FAR);
-    vec4 direction = vec4(dir, GPURT_A_RAY);
-    vec4 state = vec4(pdf, float(pixel.x), float(pixel.y), featuresOpenAfter(ps.w == 0.0f, pdf) ? 0.0f : 1.0f);
+    vec4 origin = vec4(st.o, GPURT_FAR);
+    vec4 direction = vec4(st.d, GPURT_A_RAY);
+    vec4 state = vec4(st.prevPdf, float(pixel.x), float(pixel.y), st.open ? 0.0f : 1.0f);
 #ifdef PACK
     uint k = imageAtomicAdd(pathCount, ivec2(0), 1u);
     int width = textureSize(colorState, 0).x;
     ivec2 at = ivec2(int(k) % width, int(k) / width);
     imageStore(nextOrigin, at, origin);
     imageStore(nextDir, at, direction);
-    imageStore(nextWeight, at, vec4(throughput, 1.0f));
+    imageStore(nextWeight, at, vec4(st.weight, 1.0f));
     imageStore(nextState, at, state);
-    imageStore(nextColor, at, vec4(color, 0.0f));
+    imageStore(nextColor, at, vec4(st.color, 0.0f));
     lives = vec4(1.0f, 0.0f, 0.0f, 0.0f);
 #else
-    colorOut = vec4(color, 0.0f);
-    weightOut = vec4(throughput, 1.0f);
+    colorOut = vec4(st.color, 0.0f);
+    weightOut = vec4(st.weight, 1.0f);
     rayOriginOut = origin;
     rayDirOut = direction;
     pathStateOut = state;

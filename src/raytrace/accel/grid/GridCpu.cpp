@@ -1,9 +1,6 @@
-// The grid on the CPU. traceRay() is the per-ray algorithm the GL kernels run as a chain of passes
-// (Christen 2005, chapter 5): a ray that misses the grid's box is INACTIVE; otherwise the voxel
-// precalculation (ddaSetup) makes it ACTIVE, and it alternates between traversal (ddaStep to the
-// next cell) and intersection (WAIT: all triangles of a non-empty cell) until it is DEAD. A hit
-// is accepted in a cell only if it lies before the cell's exit (plus a small tolerance), because
-// a triangle spanning several cells may be hit farther along, behind triangles of later cells.
+// The grid on the CPU: traceRay() runs glsl/common/grid.h, the per-ray algorithm the GL kernels
+// run in one pass (trace.frag, the megakernels) or as a chain of passes (Christen 2005, chapter 5:
+// precalc, traverse, intersect).
 #include "raytrace/accel/grid/GridCpu.h"
 
 #include <limits>
@@ -21,64 +18,53 @@ GridCpu::GridCpu(const Scene& scene, const UniformGrid& grid)
     for (const Triangle& t : scene.triangles) triangles_.push_back({t.v0, t.v1, t.v2});
 }
 
-// glsl/accel/grid/trace.frag is this function as one kernel.
+namespace {
+
+// How glsl/common/grid.h reads the grid on the cpu.
+struct GridCells {
+    const UniformGrid& grid;
+    const GridCpu::PreparedTriangle* triangles;
+    float tolerance;
+    const AlphaCoverage* coverage;
+    uint32_t coverageKey;
+
+    uvec2 range(ivec3 cell) const {
+        const size_t c = size_t(grid.cellIndex(cell));
+        return uvec2(grid.cellStart[c], grid.cellStart[c + 1] - grid.cellStart[c]);
+    }
+    int triangle(uint32_t k, vec3& v0, vec3& v1, vec3& v2, float& flags) const {
+        const uint32_t id = grid.cellTriangles[k];
+        v0 = triangles[id].v0;
+        v1 = triangles[id].v1;
+        v2 = triangles[id].v2;
+        flags = 1.0f;  // hitCovered asks the coverage of every triangle (none: all count)
+        return int(id);
+    }
+};
+
+#define GPURT_GRID_PARAMS const GridCells &cells,
+#define GPURT_GRID_ARGS cells,
+#define GPURT_GRID_MIN cells.grid.min
+#define GPURT_GRID_BOX_MAX cells.grid.max
+#define GPURT_GRID_CELL cells.grid.cellSize
+#define GPURT_GRID_RES cells.grid.resolution
+#define GPURT_GRID_TOLERANCE cells.tolerance
+#define GPURT_GRID_RANGE(cell) cells.range(cell)
+#define GPURT_GRID_SKIP(cell, range) cells.grid.skipDistance(size_t(cells.grid.cellIndex(cell)))
+#define GPURT_GRID_TRI(k, v0, v1, v2, flags) cells.triangle(k, v0, v1, v2, flags)
+#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(cells.coverage, id, u, v, cells.coverageKey, d, e1, e2)
+#include "../../../../glsl/common/grid.h"
+
+}  // namespace
+
+// The traversal of glsl/common/grid.h, which the kernels run too (glsl/accel/grid/).
 template <bool AnyHit>
 TraceHit GridCpu::traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
-    TraceHit hit{std::numeric_limits<float>::infinity(), -1, 0.0f, 0.0f, 0, 0, RAY_INACTIVE};
-
-    // Ray generation: clip against the grid's box.
-    const float tEnter = boxEntry(o, d, tLimit, grid_.min, grid_.max);
-    if (tEnter < 0.0f) return hit;
-
-    // Voxel precalculation.
-    glm::ivec3 voxel;
-    glm::vec3 tMax;
-    ddaSetup(o, d, tEnter, grid_.min, grid_.cellSize, grid_.resolution, voxel, tMax);
-    const WatertightRay ray = watertightRay(o, d);  // the triangle test's per-ray part
-    hit.state = RAY_ACTIVE;
-
-    while (true) {
-        if (hit.steps >= maxSteps_) {
-            hit.state = RAY_OVERFLOW;
-            return hit;
-        }
-        hit.steps += 1;
-        const float cellExit = ddaCellExit(tMax);
-        const int cell = grid_.cellIndex(voxel);
-        const uint32_t begin = grid_.cellStart[cell], end = grid_.cellStart[cell + 1];
-        if (begin != end) {
-            // Intersection (state WAIT): the closest accepted hit among the cell's triangles;
-            // strict < keeps the lowest id on ties, as ids are ascending.
-            hit.state = RAY_WAIT;
-            for (uint32_t k = begin; k < end; ++k) {
-                const uint32_t id = grid_.cellTriangles[k];
-                hit.tests += 1;
-                const PreparedTriangle& tri = triangles_[id];
-                float t, u, v;
-                if (!intersectTriangle(ray, tri.v0, tri.v1, tri.v2, t, u, v)) continue;
-                if (t > 0.0f && t < tLimit && (AnyHit || t <= cellExit + hitTolerance_) && t < hit.t &&
-                    hitCovered(coverage_.get(), int(id), u, v, coverageKey, d, tri.v1 - tri.v0, tri.v2 - tri.v0)) {
-                    hit.t = t;
-                    hit.prim = static_cast<int>(id);
-                    hit.u = u;
-                    hit.v = v;
-                    if (AnyHit) break;
-                }
-            }
-            if (hit.prim >= 0) {
-                hit.state = RAY_DEAD;
-                return hit;
-            }
-            hit.state = RAY_ACTIVE;
-        }
-        // Traversal: stop when the next cell starts beyond the ray's limit or outside the grid.
-        const int skip = begin == end ? grid_.skipDistance(size_t(cell)) : 1;
-        if (cellExit > tLimit ||
-            !ddaAdvance(o, d, grid_.min, grid_.cellSize, grid_.resolution, skip, voxel, tMax)) {
-            hit.state = RAY_DEAD;
-            return hit;
-        }
-    }
+    const GridCells cells{grid_, triangles_.data(), hitTolerance_, coverage_.get(), coverageKey};
+    TraceHit hit{};
+    hit.prim = gridTrace(cells, o, d, tLimit, AnyHit, maxSteps_, hit.t, hit.u, hit.v, hit.steps, hit.tests, hit.state);
+    if (hit.prim < 0) hit.t = std::numeric_limits<float>::infinity();
+    return hit;
 }
 
 template TraceHit GridCpu::traceRay<false>(glm::vec3, glm::vec3, float, uint32_t) const;

@@ -24,13 +24,13 @@ class GridCpu final : public CpuAccelerator {
         return traceRay<true>(o, d, tLimit, coverageKey);
     }
 
-  private:
-    template <bool AnyHit>
-    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const;
-
     struct PreparedTriangle {
         glm::vec3 v0, v1, v2;  // the vertices, as the GL side's cell lists hold them
     };
+
+  private:
+    template <bool AnyHit>
+    TraceHit traceRay(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const;
 
     const UniformGrid& grid_;
     std::vector<PreparedTriangle> triangles_;
