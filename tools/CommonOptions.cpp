@@ -1,12 +1,14 @@
 #include "CommonOptions.h"
 
 #include "raytrace/SceneScale.h"
+#include "raytrace/integrators/Registry.h"
 #include "scene/SmoothNormals.h"
 #include "stream/StreamErrors.h"
 
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -242,14 +244,22 @@ void PictureCliOptions::add(CLI::App& cmd) {
                    "Path integrator: mis (next-event estimation of the environment by its luminance, weighed by MIS "
                    "with BSDF sampling; default) or bsdf (only BSDF directions find it; for comparison)")
         ->check(CLI::IsMember({"mis", "bsdf"}));
-    cmd.add_option("--integrator", integrator,
-                   "whitted (ray tree: shadows, mirror, glass; default) or path (path tracing with next-event "
-                   "estimation; --bounces is then the longest path, default " + std::to_string(kDefaultPathBounces) + ")")
-        ->check(CLI::IsMember({"whitted", "path"}));
+    std::string help;
+    std::vector<std::string> names;
+    for (const IntegratorInfo* info : integrators()) {
+        help += (help.empty() ? "" : ", ") + info->help;
+        names.emplace_back(info->id.name());
+        for (const IntegratorOption& option : info->options)
+            cmd.add_option("--" + option.name, integratorOptions[option.uniform], option.help)->check(kNotEmpty);
+    }
+    cmd.add_option("--integrator", integrator, help)->check(CLI::IsMember(names));
 }
 
-RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size, int given, const Scene& scene) {
+RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size, int given, const Scene& scene,
+                                           int scaleExponent) {
     RenderSettings settings;
+    for (const auto& [uniform, value] : values.integratorOptions)  // distances, in the scene's units
+        settings.integratorOptions[uniform] = std::ldexp(value, -scaleExponent);
     settings.width = size.x;
     settings.height = size.y;
     settings.maxBounces = bounces(given, scene, values.integrator);
@@ -266,7 +276,8 @@ RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size
 
 int PictureCliOptions::bounces(int given, const Scene& scene, Integrator integrator) {
     if (given >= 0) return given;
-    return integrator == Integrator::Path ? kDefaultPathBounces : scene.maxBounces;
+    const int own = integratorInfo(integrator).defaultBounces;
+    return own >= 0 ? own : scene.maxBounces;
 }
 
 PictureCliOptions::Values PictureCliOptions::values() const {
@@ -275,7 +286,24 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     if (std::abs(v.colour.exposure) > 64.0f)
         throw InputError("--exposure: " + exposure + " is outside [-64, 64]");
     parseToneMap(tonemap, v.colour.toneMap);
-    v.integrator = integrator == "path" ? Integrator::Path : Integrator::Whitted;
+    const IntegratorInfo* chosen = findIntegrator(integrator);
+    if (!chosen) throw InputError("--integrator: no integrator named '" + integrator + "'");
+    v.integrator = chosen->id;
+    for (const IntegratorInfo* info : integrators())
+        for (const IntegratorOption& option : info->options) {
+            const std::string& text = integratorOptions.at(option.uniform);
+            if (text.empty()) continue;
+            const std::string flag = "--" + option.name;
+            if (info != chosen)
+                throw InputError(flag + ": only with --integrator " + std::string(info->id.name()));
+            const float value = text == "unlimited" ? std::numeric_limits<float>::infinity() : parseFiniteFloat(flag, text);
+            if (!(value > option.above)) {
+                std::ostringstream above;
+                above << option.above;
+                throw InputError(flag + ": " + text + " is not above " + above.str());
+            }
+            v.integratorOptions[option.uniform] = value;
+        }
     // The per-pixel sums take the same memory for any sample count; the bound keeps sample
     // indices and counts exact in float (2^24).
     v.samples = parseCount("--spp", spp, 1, 1u << 24);
@@ -286,7 +314,7 @@ PictureCliOptions::Values PictureCliOptions::values() const {
     v.noiseThreshold = parseFiniteFloat("--noise-threshold", noiseThreshold);
     if (v.noiseThreshold < 0.0f || v.noiseThreshold >= 1.0f)
         throw InputError("--noise-threshold: " + noiseThreshold + " is not in [0, 1) (0: off)");
-    if (v.noiseThreshold > 0.0f && v.integrator != Integrator::Path)
+    if (v.noiseThreshold > 0.0f && !chosen->adaptive)
         throw InputError("--noise-threshold: adaptive sampling needs --integrator path");
     for (auto [option, text, value] : {std::tuple{"--clamp-direct", &clampDirect, &v.clampDirect},
                                        std::tuple{"--clamp-indirect", &clampIndirect, &v.clampIndirect}}) {

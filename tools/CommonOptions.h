@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -104,6 +105,8 @@ struct PictureCliOptions {
     std::string spp = "1", seed = "0", exposure = "0", tonemap = "aces", smooth = "60", integrator = "whitted";
     std::string env, envStrength, envRotate, envSampling = "mis";
     std::string sampler = "sobol", noiseThreshold = "0", minSpp, clampDirect = "0", clampIndirect = "10";
+    // The integrators' own options (IntegratorInfo::options) as given, by their uniform names.
+    std::map<std::string, std::string> integratorOptions;
     CLI::Option* sppOption = nullptr;
 
     void add(CLI::App& cmd);
@@ -121,13 +124,16 @@ struct PictureCliOptions {
         std::optional<float> envStrength;    // --env-strength
         std::optional<float> envRotate;      // --env-rotate, degrees
         bool envSampled = true;              // --env-sampling mis (true) or bsdf
+        std::map<std::string, float> integratorOptions;  // those given, in scene units
     };
     Values values() const;
     // --bounces as given (>= 0), else the integrator's default: the scene's for Whitted (its
     // mirror and glass levels, 3 unless it says), kDefaultPathBounces for path.
     static int bounces(int given, const Scene& scene, Integrator integrator);
-    // The render settings of the values for an image of `size`, with bounces(given, ...).
-    static RenderSettings settings(const Values& values, glm::ivec2 size, int given, const Scene& scene);
+    // The render settings of the values for an image of `size`, with bounces(given, ...), for the
+    // scene rescaled by 2^-scaleExponent (loadSceneToRender: distances scale with it).
+    static RenderSettings settings(const Values& values, glm::ivec2 size, int given, const Scene& scene,
+                                   int scaleExponent);
 };
 
 // The scene as render and view trace it: loaded, turned up (turnSceneUp), with smooth normals for the crease angle

@@ -3,6 +3,7 @@
 // is rendered with the grid it carries.
 #include "Commands.h"
 #include "CommonOptions.h"
+#include "raytrace/integrators/Registry.h"
 #include "Progress.h"
 #include "raytrace/SceneLoader.h"
 
@@ -95,13 +96,17 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
     add(c, sizeof(c));
     const glm::ivec3 grid = accel.kind == AccelKind::Grid ? accel.grid->resolution : glm::ivec3(0);
     const int ints[] = {camera.width, camera.height, grid.x, grid.y, grid.z, int(accel.kind),
-                        settings.maxBounces, int(settings.integrator), int(settings.samples), int(settings.seed)};
+                        settings.maxBounces, int(settings.samples), int(settings.seed)};
     add(ints, sizeof(ints));
     const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend + "|" +
                              picture.sampler + "|" + std::to_string(settings.noiseThreshold) + "|" +
                              std::to_string(settings.minSamples) + "|" + std::to_string(settings.clampDirect) + "|" +
-                             std::to_string(settings.clampIndirect);
+                             std::to_string(settings.clampIndirect) + "|" + std::string(settings.integrator.name());
     add(text.data(), text.size());
+    for (const auto& [name, value] : settings.integratorOptions) {
+        add(name.data(), name.size());
+        add(&value, sizeof(value));
+    }
     char hex[9];
     std::snprintf(hex, sizeof(hex), "%08x", crc);
     return hex;
@@ -458,14 +463,15 @@ int runRender(const RenderOptions& o) {
     TileInfo tile;
     const bool tiled = !o.tile.empty();
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
-    RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
+    RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene, scaleExponent);
     settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
     settings.variance = frames.names.aovs.count("variance") > 0;  // the squares summed only for that AOV
     settings.features = frames.names.aovs.count("albedo") > 0 || frames.names.aovs.count("shading_normal") > 0;
-    if (settings.features && settings.integrator != Integrator::Path)
+    const bool features = integratorInfo(settings.integrator).features;
+    if (settings.features && !features)
         throw InputError("--aov albedo, shading_normal: the path integrator's features (--integrator path)");
     if (o.denoise) {  // the filter's guides: these AOVs, as gpurt denoise reads them from files
-        if (settings.integrator != Integrator::Path)
+        if (!features)
             throw InputError("--denoise: needs --integrator path (its features guide the filter)");
         if (tiled)
             throw InputError("--denoise: not with --tile (the filter looks across tiles: stitch the color, albedo, "

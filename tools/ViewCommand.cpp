@@ -7,6 +7,7 @@
 // CONTRACT.md, "Viewer"; README.
 #include "Commands.h"
 #include "CommonOptions.h"
+#include "raytrace/integrators/Registry.h"
 
 #include "image/AtomicFile.h"
 #include "raytrace/Renderer.h"
@@ -145,8 +146,9 @@ class Viewer {
           bounds_(scene.bounds()), toneMapMode_(toneMapCode(picture.colour.toneMap)),
           exposure_(exposureScale(picture.colour.exposure)) {
         // The path integrator's picture is denoised (N toggles): its features and variance summed.
-        denoising_ = settings_.integrator == Integrator::Path && !o.noDenoise;
-        if (settings_.integrator == Integrator::Path) settings_.features = settings_.variance = true;
+        const bool features = integratorInfo(settings_.integrator).features;
+        denoising_ = features && !o.noDenoise;
+        if (features) settings_.features = settings_.variance = true;
         try {
             window_ = std::make_unique<GLWindow>(settings.width, settings.height, "gpurt view");
         } catch (const EnvironmentError& e) {
@@ -207,7 +209,7 @@ class Viewer {
             } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_P) {
                 screenshotNow = true;
             } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_N &&
-                       settings_.integrator == Integrator::Path) {
+                       integratorInfo(settings_.integrator).features) {
                 denoising_ = !denoising_;
             } else {
                 const CameraSpec before = control_.spec;
@@ -371,7 +373,7 @@ int runView(const ViewOptions& o) {
     const Bounds bounds = scene.bounds();
     const float diagonal = bounds.empty() ? 1.0f : 2.0f * glm::length(bounds.halfExtent());
     control.step = 0.02f * (diagonal > 0.0f ? diagonal : 1.0f);
-    const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene);
+    const RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene, scaleExponent);
     // Samples of one camera: --spp, else --frames (so that N frames are N samples, as render
     // --spp N), else 256; --bench: one a frame for all its frames.
     const bool sppGiven = o.picture.sppOption && o.picture.sppOption->count() > 0;

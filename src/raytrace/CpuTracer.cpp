@@ -12,7 +12,7 @@
 
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/accel/grid/GridCpu.h"
-#include "raytrace/integrators/path/PathCpu.h"
+#include "raytrace/integrators/Registry.h"
 #include "raytrace/integrators/whitted/WhittedCpu.h"
 #include "base/Parallel.h"
 #include "raytrace/RayMath.h"
@@ -115,8 +115,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.steps.assign(pixels, 0.0f);
     }
 
-    const bool path = settings.integrator == Integrator::Path;
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, path);
+    const IntegratorInfo& info = integratorInfo(settings.integrator);
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);
@@ -125,7 +125,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
     std::vector<float> counts(pixels, 0.0f);
     std::vector<glm::vec3> squares(settings.variance ? pixels : 0, glm::vec3(0.0f));
-    const bool features = settings.features && path;
+    const bool features = settings.features && info.features;
     std::vector<glm::vec3> albedoSums(features ? pixels : 0, glm::vec3(0.0f)), normalSums(albedoSums);
     std::vector<uint8_t> active(pixels, 1);
     auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
@@ -141,10 +141,8 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
             const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed, settings.sampler);
             SampleFeatures f;
-            const glm::vec3 c = path ? pathSample(*this, px, camera.eye, d, lights, bounces,
-                                                  {settings.clampDirect, settings.clampIndirect}, aovs, stats,
-                                                  features ? &f : nullptr)
-                                     : whittedSample(*this, px, camera.eye, d, lights, bounces, stackSlots, aovs, stats);
+            const glm::vec3 c = info.cpuSample(*this, px, camera.eye, d, lights, settings, aovs, stats,
+                                               features ? &f : nullptr);
             if (features) {
                 albedoSums[pixel] += f.albedo;
                 normalSums[pixel] += f.normal;

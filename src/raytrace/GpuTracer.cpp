@@ -4,10 +4,9 @@
 #include "raytrace/RayMath.h"
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/accel/grid/GridGl.h"
-#include "raytrace/integrators/path/PathGl.h"
-#include "raytrace/integrators/path/PathMegakernelGl.h"
+#include "raytrace/integrators/Megakernel.h"
+#include "raytrace/integrators/Registry.h"
 #include "raytrace/integrators/whitted/WhittedGl.h"
-#include "raytrace/integrators/whitted/WhittedMegakernelGl.h"
 
 #include "../../glsl/common/scene_layout.h"
 
@@ -69,16 +68,18 @@ bool parseTraceKernel(const std::string& text, TraceKernel& kernel) {
 }
 
 int GpuTracer::stackSlots(const RenderSettings& settings) const {
-    if (!splits_ || settings.integrator == Integrator::Path) return 0;
+    if (!splits_ || !integratorInfo(settings.integrator).rayTree) return 0;
     return std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
 }
 
-GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool paths, bool progressive, bool sums,
-                                 bool integrating, bool aovs, bool adaptive, bool variance, bool features) {
+GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, const IntegratorInfo* integrator,
+                                 bool progressive, bool sums, bool aovs, bool adaptive, bool variance, bool features) {
     // The megakernels for the integrators' samples: the wavefront rounds' streams are then 1 x 1
     // (each full-size stream costs its allocation: llvmpipe zeroes it, page by page), and a
-    // pass of their own takes the pixel centres' AOVs.
-    const bool megakernel = integrating && kernel_ == IntegratorKernel::Megakernel;
+    // pass of their own takes the pixel centres' AOVs. An integrator without a wavefront chain
+    // runs as its megakernel whatever the kernel asked for.
+    const bool megakernel = integrator && (kernel_ == IntegratorKernel::Megakernel || !integrator->hasWavefront);
+    const bool paths = integrator && integrator->pathStreams;
     GpuPipeline::Needs needs;
     needs.emitters = !textures_.emitterTable().empty();
     needs.environment = paths && textures_.environmentTable().sampled;
@@ -88,32 +89,30 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
     needs.aovs = aovs || progressive;
     needs.adaptive = adaptive;
     needs.variance = variance;
-    needs.features = features && paths;
+    needs.features = features && integrator && integrator->features;
     if (!pipeline_ || pipeline_->width != width || pipeline_->height != height || stackSlots_ != stackSlots ||
-        paths_ != paths || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
+        integrator_ != integrator || pipeline_->progressive != progressive || !(pipeline_->needs == needs)) {
         megakernelAovs_.reset();
-        pathMegakernel_.reset();
-        whittedMegakernel_.reset();
-        path_.reset();
-        whitted_.reset();
+        chosen_.reset();
+        whittedAovs_.reset();
+        centres_ = nullptr;
         pipeline_.reset();
         stackSlots_ = stackSlots;
-        paths_ = paths;
+        integrator_ = integrator;
         const MaskMode mask = options_.mask == MaskMode::None ? defaultMaskMode() : options_.mask;
         pipeline_ = std::make_unique<GpuPipeline>(width, height, textures_, *accel_, mask, paths, progressive, needs);
         ++pipelineGeneration_;
-        if (!megakernel) {
-            whitted_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
-            path_ = std::make_unique<PathGl>(*pipeline_, textures_, mask, paths, options_.maskPaths);
-        } else {
+        if (megakernel && needs.aovs) megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
+        if (integrator) {
             const size_t lights = scene_.lights.size() + 1;  // the scene's, or the headlight
-            if (needs.aovs) megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
-            if (paths) {
-                pathMegakernel_ = std::make_unique<PathMegakernelGl>(*pipeline_, textures_, lights, megakernelAovs_.get());
-                pathMegakernel_->setBouncesPerPass(options_.megakernelBounces);
-            } else {
-                whittedMegakernel_ = std::make_unique<WhittedMegakernelGl>(*pipeline_, textures_, stackSlots, lights,
-                                                                           megakernelAovs_.get());
+            chosen_ = integrator->gl({*pipeline_, textures_, megakernel, mask, options_.maskPaths, stackSlots, spawns_,
+                                      lights, megakernelAovs_.get(), options_.megakernelBounces});
+        }
+        if (!megakernel) {  // the pixel centres' AOVs: Whitted's first round (pixelCentreAovs)
+            centres_ = dynamic_cast<WhittedGl*>(chosen_.get());
+            if (!centres_) {
+                whittedAovs_ = std::make_unique<WhittedGl>(*pipeline_, textures_, stackSlots, spawns_);
+                centres_ = whittedAovs_.get();
             }
         }
         for (GPUKernel* k : accel_->kernels()) {
@@ -129,24 +128,18 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, bool pat
 // (its trace and surface passes), or with megakernels a pass of its own.
 void GpuTracer::pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats) {
     if (!pipeline_->needs.stages) megakernelAovs_->trace(out, stats);
-    else whitted_->sample(lights, -1, out, stats);
+    else centres_->sample(lights, -1, out, stats);
 }
 
-GlIntegrator& GpuTracer::integrator(const RenderSettings& settings) {
-    if (settings.integrator == Integrator::Path) {
-        if (pathMegakernel_) return *pathMegakernel_;
-        return *path_;
-    }
-    if (whittedMegakernel_) return *whittedMegakernel_;
-    return *whitted_;
+GlIntegrator& GpuTracer::integrator() {
+    if (!chosen_) throw UsageError("GpuTracer: no integrator on a pipeline made for tracing alone");
+    return *chosen_;
 }
 
 std::vector<GPUKernel*> GpuTracer::integratorKernels() {
     std::vector<GPUKernel*> all;
     if (megakernelAovs_) all = megakernelAovs_->kernels();
-    for (GlIntegrator* integrator : {static_cast<GlIntegrator*>(whitted_.get()), static_cast<GlIntegrator*>(path_.get()),
-                                     static_cast<GlIntegrator*>(pathMegakernel_.get()),
-                                     static_cast<GlIntegrator*>(whittedMegakernel_.get())})
+    for (GlIntegrator* integrator : {chosen_.get(), static_cast<GlIntegrator*>(whittedAovs_.get())})
         if (integrator)
             for (GPUKernel* k : integrator->kernels()) all.push_back(k);
     return all;
@@ -158,6 +151,20 @@ std::vector<GPUKernel*> GpuTracer::allKernels() {
     for (const std::vector<GPUKernel*>& ks : {pipeline_->kernels(), accel_->kernels(), integratorKernels()})
         all.insert(all.end(), ks.begin(), ks.end());
     return all;
+}
+
+// The uniforms of a render's settings on every kernel: the background, the sampler, the clamps and
+// the integrator's own options (GPURT_FAR for an unlimited one).
+void GpuTracer::setRenderUniforms(const RenderSettings& settings) {
+    const IntegratorInfo& info = integratorInfo(settings.integrator);
+    for (GPUKernel* k : allKernels()) {
+        k->setUniform("background", scene_.background)
+            .setUniform("samplerKind", unsigned(settings.sampler))
+            .setUniform("clampDirect", settings.clampDirect)
+            .setUniform("clampIndirect", settings.clampIndirect);
+        for (const IntegratorOption& option : info.options)
+            k->setUniform(option.uniform, std::min(integratorOption(settings, option.uniform), GPURT_FAR));
+    }
 }
 
 void GpuTracer::setCamera(const CameraBasis& camera) {
@@ -176,10 +183,8 @@ void GpuTracer::setCoverageSample(uint32_t s, uint32_t seed) {
 void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     setCoverageSample(s, seed);
     pipeline_->setSample(s, n, seed);
-    if (whitted_) whitted_->setSample(s, n, seed);
-    if (path_) path_->setSample(s, n, seed);
-    if (pathMegakernel_) pathMegakernel_->setSample(s, n, seed);
-    if (whittedMegakernel_) whittedMegakernel_->setSample(s, n, seed);
+    if (chosen_) chosen_->setSample(s, n, seed);
+    if (whittedAovs_) whittedAovs_->setSample(s, n, seed);
 }
 
 // The sample loop (--spp), each sample one of the integrator's (integrators/): its rounds of
@@ -189,24 +194,20 @@ void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 // first round) before the samples.
 RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
-    const bool paths = settings.integrator == Integrator::Path;
+    const IntegratorInfo& info = integratorInfo(settings.integrator);
     const uint32_t samples = std::max(1u, settings.samples);
     const bool adaptive = settings.adaptive() && samples > 1;
     const bool variance = settings.variance && samples > 1;
-    const bool features = settings.features && paths;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, false, samples > 1, true,
+    const bool features = settings.features && info.features;
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), &info, false, samples > 1,
                               settings.aovs, adaptive, variance, features);
-    GlIntegrator& chosen = integrator(settings);
+    GlIntegrator& chosen = integrator();
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.rows();
 
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, paths);
-    for (GPUKernel* k : allKernels())
-        k->setUniform("background", scene_.background)
-            .setUniform("samplerKind", unsigned(settings.sampler))
-            .setUniform("clampDirect", settings.clampDirect)
-            .setUniform("clampIndirect", settings.clampIndirect);
+    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    setRenderUniforms(settings);
     setCamera(camera);
     setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)
     if (samples > 1 && settings.aovs) pixelCentreAovs(lights, &out, out.stats);
@@ -289,16 +290,12 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
 }
 
 void GpuTracer::beginProgressive(const CameraBasis& camera, const RenderSettings& settings) {
-    const bool paths = settings.integrator == Integrator::Path;
-    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), paths, true, false, true, true,
+    const IntegratorInfo& info = integratorInfo(settings.integrator);
+    GpuPipeline& p = pipeline(camera.width, camera.rows(), stackSlots(settings), &info, true, false, true,
                               settings.adaptive(), settings.variance, settings.features);
     progressive_.settings = settings;
-    progressive_.lights = lightsOrHeadlight(scene_, camera.eye, paths);
-    for (GPUKernel* k : allKernels())
-        k->setUniform("background", scene_.background)
-            .setUniform("samplerKind", unsigned(settings.sampler))
-            .setUniform("clampDirect", settings.clampDirect)
-            .setUniform("clampIndirect", settings.clampIndirect);
+    progressive_.lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    setRenderUniforms(settings);
     setCamera(camera);
     setCoverageSample(0, settings.seed);
     pixelCentreAovs(progressive_.lights, nullptr, progressive_.output.stats);
@@ -326,7 +323,7 @@ void GpuTracer::addSample(uint32_t s, uint32_t n) {
     setSample(s, n, settings.seed);
     if (pipeline_->needs.adaptive)
         for (GPUKernel* k : integratorKernels()) k->setUniform("odd", float(s & 1u));
-    GlIntegrator& chosen = integrator(settings);
+    GlIntegrator& chosen = integrator();
     chosen.sample(progressive_.lights, std::max(0, settings.maxBounces), nullptr, progressive_.output.stats);
     chosen.accumulate();
     progressive_.output.stats.samples += uint64_t(pipeline_->width) * uint64_t(pipeline_->height);

@@ -25,10 +25,8 @@ namespace gpurt {
 struct GpuPipeline;
 class GlIntegrator;
 class WhittedGl;
-class PathGl;
-class PathMegakernelGl;
-class WhittedMegakernelGl;
 class MegakernelAovs;
+struct IntegratorInfo;
 
 class GpuTracer {
   public:
@@ -74,20 +72,20 @@ class GpuTracer {
     void flushStats();
 
   private:
-    // The pipeline and integrators for this size, ray stacks and integrator (paths: the path
-    // integrator's streams; progressive: the viewer's AOV copies; sums: more than one sample).
-    // integrating: for the integrators' samples (render, the viewer), which may be megakernels;
-    // false: for the accelerator's traces alone (gpurt bench).
+    // The pipeline and integrator for this size, ray stacks and integrator (its passes and streams;
+    // none: for the accelerator's traces alone, gpurt bench; progressive: the viewer's AOV
+    // copies; sums: more than one sample).
     // adaptive: adaptive sampling's streams and passes (GpuPipeline::beginAdaptive).
     // variance: the samples' squares summed too (the variance AOV).
     // features: the denoiser's features (the path integrators write and sum them).
-    GpuPipeline& pipeline(int width, int height, int stackSlots = 0, bool paths = false, bool progressive = false,
-                          bool sums = false, bool integrating = false, bool aovs = true, bool adaptive = false,
+    GpuPipeline& pipeline(int width, int height, int stackSlots = 0, const IntegratorInfo* integrator = nullptr,
+                          bool progressive = false, bool sums = false, bool aovs = true, bool adaptive = false,
                           bool variance = false, bool features = false);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
     void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
-    // The integrator `settings` asks for.
-    GlIntegrator& integrator(const RenderSettings& settings);
+    // The integrator the pipeline was made for.
+    GlIntegrator& integrator();
+    void setRenderUniforms(const RenderSettings& settings);
     // Sets the camera on the pipeline and every integrator's kernels (the tile's first row).
     void setCamera(const CameraBasis& camera);
     void setSample(uint32_t s, uint32_t n, uint32_t seed);
@@ -105,15 +103,15 @@ class GpuTracer {
     SceneTextures textures_;
     std::unique_ptr<GlAccelerator> accel_;
     std::unique_ptr<GpuPipeline> pipeline_;
-    // The integrators as the wavefront chain (unless kernel_ asks for megakernels).
-    std::unique_ptr<WhittedGl> whitted_;
-    std::unique_ptr<PathGl> path_;
-    // The integrators as megakernels (when kernel_ says so; the one the pipeline's streams are for).
-    std::unique_ptr<PathMegakernelGl> pathMegakernel_;
-    std::unique_ptr<WhittedMegakernelGl> whittedMegakernel_;
+    // The pipeline's integrator (integrators/Registry.h): its entry and its passes, as the
+    // wavefront chain or a megakernel. The pixel centres' AOVs: with megakernels a pass of their
+    // own, else Whitted's first round (centres_: the integrator itself or whittedAovs_).
+    const IntegratorInfo* integrator_ = nullptr;
+    std::unique_ptr<GlIntegrator> chosen_;
     std::unique_ptr<MegakernelAovs> megakernelAovs_;
-    int stackSlots_ = -1;  // the pipeline's: the stack slots and integrator it was made for
-    bool paths_ = false;
+    std::unique_ptr<WhittedGl> whittedAovs_;
+    WhittedGl* centres_ = nullptr;
+    int stackSlots_ = -1;  // the pipeline's: the stack slots it was made for
     IntegratorKernel kernel_;  // options_.integratorKernel, Auto resolved
     bool splits_ = false;  // some material may spawn two rays (glass): the ray tree needs its stacks
     bool spawns_ = false;  // some material spawns rays (mirror, glass)

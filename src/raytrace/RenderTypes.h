@@ -4,15 +4,31 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace gpurt {
 
-// --integrator: Whitted's ray tree (shadows, mirror, glass; the default) or path tracing with
-// next-event estimation (glsl/common/path.h).
-enum class Integrator { Whitted, Path };
+// --integrator: an integrator of the registry (integrators/Registry.h, which says what each can
+// do), by its name: Whitted's ray tree (shadows, mirror, glass; the default), path tracing with
+// next-event estimation (glsl/common/integrators/path.h), ambient occlusion, ...
+class Integrator {
+  public:
+    static const Integrator Whitted, Path;
+    constexpr explicit Integrator(std::string_view name) : name_(name) {}
+    constexpr std::string_view name() const { return name_; }
+    constexpr bool operator==(const Integrator& o) const { return name_ == o.name_; }
+    constexpr bool operator!=(const Integrator& o) const { return name_ != o.name_; }
+
+  private:
+    std::string_view name_;  // a registry entry's (static storage)
+};
+inline constexpr Integrator Integrator::Whitted{"whitted"};
+inline constexpr Integrator Integrator::Path{"path"};
 
 // --sampler: where each sample's random numbers come from (glsl/common/sampling.h; the values are
 // its GPURT_SAMPLER_*).
@@ -44,6 +60,9 @@ struct RenderSettings {
     // --clamp-direct, --clamp-indirect (path integrator; common/path.h clampContribution): 0 is
     // off. The library's default is off; the command's indirect default is Cycles' 10.
     float clampDirect = 0.0f, clampIndirect = 0.0f;
+    // The integrator's own options (IntegratorInfo::options) by their uniform names; an option
+    // not given takes its default.
+    std::map<std::string, float> integratorOptions;
     // The variance AOV (RenderOutput::variance): the sums of the samples' squares as well.
     bool variance = false;
     // The denoiser's features (RenderOutput::albedo, shadingNormal; the path integrator only).

@@ -1,5 +1,7 @@
 #include "raytrace/Renderer.h"
 
+#include "raytrace/integrators/Registry.h"
+
 #include "raytrace/CpuTracer.h"
 #include "raytrace/GpuTracer.h"
 #include "raytrace/accel/bvh/BvhGl.h"
@@ -120,7 +122,7 @@ TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, cons
 // measured, as are the path integrator's packed streams on GL (7 x 16 bytes and 4); a glass
 // scene's ray stacks (48 bytes a slot, up to 8) are not counted.
 double renderBytes(Backend backend, Integrator integrator, double pixels) {
-    const bool paths = integrator == Integrator::Path;
+    const bool paths = integratorInfo(integrator).pathStreams;
     const double perPixel = backend == Backend::Gl ? 256.0 + 112.0 + (paths ? 116.0 : 0.0) : 64.0;
     return perPixel * pixels + 256e6;
 }

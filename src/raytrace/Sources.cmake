@@ -37,8 +37,11 @@ set(GPURT_RAYTRACE_GL_SOURCES
   integrators/path/PathGl.cpp
   integrators/path/PathMegakernelGl.cpp
   integrators/Megakernel.cpp
-  integrators/whitted/WhittedMegakernelGl.cpp
-  integrators/whitted/WhittedGl.cpp)
+  integrators/Registry.cpp
+  integrators/ao/AoIntegrator.cpp
+  integrators/path/PathIntegrator.cpp
+  integrators/whitted/WhittedGl.cpp
+  integrators/whitted/WhittedIntegrator.cpp)
 # Full paths, so that tests/fuzz/CMakeLists.txt can use them from its own folder.
 list(TRANSFORM GPURT_RAYTRACE_CPU_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)
 list(TRANSFORM GPURT_RAYTRACE_GL_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)

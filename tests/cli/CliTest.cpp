@@ -1367,4 +1367,35 @@ TEST_F(Cli, StitchRefusesMissingRepeatedForeignAndDamagedTiles) {
         expectRefused(scene + " -o " + path("out.png") + " " + bad, "--tile");
 }
 
+// --integrator ao (integrators/ao, one registry entry): the same samples on both backends, tiles
+// that stitch to the whole render, its option refused where it means nothing or is out of range,
+// and --help naming every registered integrator.
+TEST_F(Cli, AmbientOcclusionRendersOnBothBackendsAndStitches) {
+    const std::string scene = "render scenes/cornell_blocks.json --size 24x20 --integrator ao --spp 4 --ao-distance 200";
+    for (const char* backend : {"gl", "cpu"}) {
+        const std::string b = std::string(" --backend ") + backend;
+        ASSERT_EQ(gpurt(scene + b + " -o " + path(std::string(backend) + ".png") + " --aov color=" +
+                        path(std::string(backend) + ".pfm")).code, 0);
+        for (int i = 0; i < 2; ++i) {
+            const Result r = gpurt(scene + b + " --tile " + std::to_string(i) + "/2 -o " + path("t" + std::to_string(i) + ".pfm.png") +
+                                   " --aov color=" + path("t" + std::to_string(i) + ".pfm"));
+            ASSERT_EQ(r.code, 0) << r.err;
+        }
+        ASSERT_EQ(gpurt("stitch -o " + path("stitched.pfm") + " " + path("t0.pfm") + " " + path("t1.pfm")).code, 0);
+        EXPECT_EQ(slurp(dir / "stitched.pfm"), slurp(dir / (std::string(backend) + ".pfm"))) << backend;
+    }
+    EXPECT_EQ(slurp(dir / "gl.pfm"), slurp(dir / "cpu.pfm"));  // the same rays, the same 0s and 1s
+    int w = 0, h = 0, channels = 0;
+    const std::vector<float> ao = gpurt::readPfm(path("cpu.pfm"), w, h, channels);
+    for (float v : ao) EXPECT_TRUE(v >= 0.0f && v <= 1.0f) << v;  // means of 0s and 1s
+    expectRefused("render scenes/cornell_blocks.json --integrator path --ao-distance 2 -o " + path("x.png"), "--ao-distance");
+    expectRefused("render scenes/cornell_blocks.json --integrator ao --ao-distance 0 -o " + path("x.png"), "--ao-distance");
+    expectRefused("render scenes/cornell_blocks.json --integrator ao --ao-distance -3 -o " + path("x.png"), "--ao-distance");
+    expectRefused("render scenes/cornell_blocks.json --integrator ao --ao-distance far -o " + path("x.png"), "--ao-distance");
+    expectRefused("render scenes/cornell_blocks.json --integrator ao --denoise -o " + path("x.png"), "--denoise");
+    const Result help = gpurt("render --help");
+    for (const char* name : {"whitted", "path", "ao"}) EXPECT_NE(help.out.find(name), std::string::npos) << name;
+    EXPECT_NE(help.out.find("--ao-distance"), std::string::npos);
+}
+
 }  // namespace

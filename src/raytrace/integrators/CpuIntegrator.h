@@ -23,4 +23,9 @@ struct PixelAovs {
     }
 };
 
+// The denoiser's features of a sample (common/path.h featuresOpenAfter).
+struct SampleFeatures {
+    glm::vec3 albedo{0.0f}, normal{0.0f};
+};
+
 }  // namespace gpurt

@@ -1,5 +1,6 @@
 #include "raytrace/integrators/Megakernel.h"
 
+#include "raytrace/integrators/SharedPasses.h"
 #include "stream/StreamErrors.h"
 
 #include <algorithm>
@@ -83,6 +84,48 @@ void MegakernelAovs::trace(RenderOutput* out, RenderStats& stats) {
     if (!out) return;
     p_.readHitAovs(*out, &steps_, false);
     p_.readNormalAov(*out, &normals_);
+}
+
+OnePassMegakernelGl::OnePassMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, const std::string& name,
+                                         const std::string& kernel, size_t maxLights, MegakernelAovs* aovs)
+    : p_(pipeline),
+      inputs_(maxLights),
+      colour_(p_.width, p_.height, 4, name + "Colour"),
+      aovs_(aovs),
+      samples_(name, kernel),
+      centres_(name, kernel, passDefines(kPixelCentre)),
+      centresAovs_(name, kernel, passDefines(kPixelCentre | kAovPass)),
+      accumulate_(name + "Accumulate", "integrators/accumulate.frag") {
+    for (GPUKernel* k : {&samples_, &centres_, &centresAovs_}) {
+        inputs_.declare(*k, textures, p_.accel);
+        k->addOutput(colour_);
+    }
+    if (aovs_) centresAovs_.addOutput(p_.hit).addOutput(aovs_->normals()).addOutput(aovs_->steps());
+    declareAccumulatePass(accumulate_, p_, colour_);
+}
+
+std::vector<GPUKernel*> OnePassMegakernelGl::kernels() { return {&samples_, &centres_, &centresAovs_, &accumulate_}; }
+
+void OnePassMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
+    for (GPUKernel* k : {&samples_, &centres_, &centresAovs_})
+        k->setUniform("sampleIndex", unsigned(s)).setUniform("sampleCount", unsigned(n)).setUniform("seed", unsigned(seed));
+    sampleCount_ = n;
+}
+
+// One pass: every pixel's sample (maxBounces >= 0; the AOVs' pixel-centre pass of a render with
+// several samples is MegakernelAovs').
+void OnePassMegakernelGl::sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs,
+                                 RenderStats& stats) {
+    const std::vector<GPUKernel*> passes = {&samples_, &centres_, &centresAovs_};
+    inputs_.setLights(lights, passes);
+    if (aovs && !aovs_) throw UsageError(samples_.name() + ": AOVs asked of a pipeline made without them");
+    GPUKernel& k = aovs ? centresAovs_ : sampleCount_ == 1 ? centres_ : samples_;
+    k.setUniform("maxBounces", std::max(0, maxBounces));
+    inputs_.run(k, 0, false, stats);
+    if (aovs) {
+        p_.readHitAovs(*aovs, &aovs_->steps(), false);
+        p_.readNormalAov(*aovs, &aovs_->normals());
+    }
 }
 
 }  // namespace gpurt

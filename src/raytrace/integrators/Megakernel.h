@@ -1,4 +1,4 @@
-// What the megakernel integrators (integrators/path/PathMegakernelGl, whitted/WhittedMegakernelGl)
+// What the megakernel integrators (integrators/path/PathMegakernelGl, OnePassMegakernelGl below)
 // share: a megakernel pass's scene, accelerator and light inputs, the point lights' texture, and
 // the pass's counters (glsl/integrators/megakernel.glsl) read into RenderStats.
 #pragma once
@@ -7,6 +7,7 @@
 #include "raytrace/RenderTypes.h"
 #include "raytrace/SceneTextures.h"
 #include "raytrace/accel/GlAccelerator.h"
+#include "raytrace/integrators/GlIntegrator.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
 
@@ -56,6 +57,34 @@ class MegakernelAovs {
     MegakernelInputs inputs_;
     GPUFloatArray steps_, normals_;
     GPUKernel kernel_;
+};
+
+// An integrator whose megakernel takes each pixel's whole sample in one pass (Whitted's ray tree:
+// glsl/integrators/whitted/megakernel.frag; ambient occlusion: ao/megakernel.frag): the kernel
+// writes the sample's colour, and with AOVS the camera rays' AOVs (the variant run for one sample
+// a pixel with AOVs). Its uniform maxBounces is the sample's bounces.
+class OnePassMegakernelGl final : public GlIntegrator {
+  public:
+    // name: the passes' name; kernel: the megakernel's GLSL file; maxLights: the most point lights
+    // a sample is given; aovs: the streams the pass writes the primary AOVs to when it takes them
+    // (none: renders without AOVs).
+    OnePassMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, const std::string& name,
+                        const std::string& kernel, size_t maxLights, MegakernelAovs* aovs);
+
+    void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
+    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    const GPUFloatArray& colour() const override { return colour_; }
+    void accumulate() override { accumulate_.dispatch(); }
+    std::vector<GPUKernel*> kernels() override;
+
+  private:
+    GpuPipeline& p_;
+    MegakernelInputs inputs_;
+    GPUFloatArray colour_;
+    MegakernelAovs* aovs_;  // its streams: the AOV variant's outputs (none: no AOVs)
+    uint32_t sampleCount_ = 1;
+    // Through the sample points, through the pixel centres, and the latter with the AOVs.
+    GPUKernel samples_, centres_, centresAovs_, accumulate_;
 };
 
 }  // namespace gpurt

@@ -15,11 +15,6 @@ struct PathClamp {
     float direct = 0.0f, indirect = 0.0f;
 };
 
-// The denoiser's features of a sample (common/path.h featuresOpenAfter).
-struct SampleFeatures {
-    glm::vec3 albedo{0.0f}, normal{0.0f};
-};
-
 // The colour of the path of the camera ray from eye along d, with hits up to maxDepth; with
 // `features`, the sample's features there.
 glm::vec3 pathSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,

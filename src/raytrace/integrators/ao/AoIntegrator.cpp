@@ -1,0 +1,63 @@
+// Ambient occlusion (--integrator ao; glsl/common/integrators/ao.h) in the registry
+// (integrators/Registry.h): its cpu sample over the cpu's hooks, and its megakernel on the gl
+// backend (it has no wavefront chain: one trace and one occlusion ray a sample leave nothing for
+// passes to share).
+#include "raytrace/integrators/CpuHooks.h"
+#include "raytrace/integrators/Megakernel.h"
+#include "raytrace/integrators/Registry.h"
+
+#include <limits>
+
+namespace gpurt {
+
+namespace raymath {
+namespace {
+
+struct AoHooks : CpuHooks {
+    AoHooks(const CpuTracer& tracer, const PixelSample& px, const std::vector<PointLight>& lights, PixelAovs aovs,
+            RenderStats& stats, float aoDistance)
+        : CpuHooks(tracer, px, lights, aovs, stats), aoDistance(aoDistance) {}
+
+    float aoDistance;
+
+    vec4 integratorTrace(vec3 o, vec3 d, int b) { return traceClosest(o, d, b); }
+
+#include "../../../../glsl/common/integrators/ao.h"
+};
+
+}  // namespace
+}  // namespace raymath
+
+namespace {
+
+glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+                    const std::vector<PointLight>& lights, const RenderSettings& settings, PixelAovs aovs,
+                    RenderStats& stats, SampleFeatures*) {
+    const float distance = std::min(integratorOption(settings, "aoDistance"), GPURT_FAR);  // as the kernel's uniform
+    raymath::AoHooks hooks(tracer, px, lights, aovs, stats, distance);
+    return hooks.aoTrace(eye, d);
+}
+
+std::unique_ptr<GlIntegrator> gl(const GlIntegratorSetup& s) {
+    return std::make_unique<OnePassMegakernelGl>(s.pipeline, s.textures, "aoMegakernel", "integrators/ao/megakernel.frag",
+                                                 s.maxLights, s.aovs);
+}
+
+}  // namespace
+
+const IntegratorInfo& aoIntegrator() {
+    static const IntegratorInfo info = [] {
+        IntegratorInfo i{Integrator("ao"), "ao (ambient occlusion, as pbrt's: the unoccluded fraction of the "
+                                           "cosine-weighted hemisphere within --ao-distance; the clay render)"};
+        i.options.push_back({"ao-distance", "aoDistance",
+                             "Ambient occlusion: only what lies within this distance of a point occludes it (scene "
+                             "units; default: unlimited)",
+                             std::numeric_limits<float>::infinity(), 0.0f});
+        i.cpuSample = cpuSample;
+        i.gl = gl;
+        return i;
+    }();
+    return info;
+}
+
+}  // namespace gpurt
