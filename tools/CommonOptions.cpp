@@ -357,13 +357,16 @@ void addUpAxisOption(CLI::App& cmd, std::string& upAxis) {
         ->check(kNotEmpty);
 }
 
-void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption) {
-    UpAxis axis = loaded.scene.upAxis;
-    if (!upAxisOption.empty() && !parseUpAxis(upAxisOption, axis))
+std::optional<UpAxis> upAxisOf(const std::string& upAxisOption) {
+    if (upAxisOption.empty()) return std::nullopt;
+    UpAxis axis;
+    if (!parseUpAxis(upAxisOption, axis))
         throw InputError("--up-axis: '" + upAxisOption + "' is not one of y, z, x, -y, -z, -x");
-    if (axis == UpAxis::PosY) return;
-    rotateUpToY(loaded.scene, axis);
-    loaded.grid.reset();  // built for the file's coordinates
+    return axis;
+}
+
+void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption) {
+    turnSceneUp(loaded, upAxisOf(upAxisOption).value_or(loaded.scene.upAxis));
 }
 
 void applyEnvironmentOptions(Scene& scene, const PictureCliOptions::Values& values) {
@@ -386,16 +389,7 @@ void applyEnvironmentOptions(Scene& scene, const PictureCliOptions::Values& valu
 
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
                               int& scaleExponent, double* normalsMs) {
-    LoadedScene loaded = loadScene(path);
-    turnSceneUp(loaded, upAxisOption);
-    const auto normalsStart = std::chrono::steady_clock::now();
-    smoothNormals(loaded.scene, crease);
-    if (normalsMs)
-        *normalsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - normalsStart).count();
-    scaleExponent = renderScaleExponent(loaded.scene);
-    rescaleScene(loaded.scene, scaleExponent);
-    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
-    return loaded;
+    return prepareScene(path, upAxisOf(upAxisOption), crease, scaleExponent, normalsMs);
 }
 
 }  // namespace gpurt

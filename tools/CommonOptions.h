@@ -61,9 +61,10 @@ void checkRenderFitsInMemory(glm::ivec2 size, Backend backend, Integrator integr
 // --up-axis y|z|x|-y|-z|-x: the axis that is up in the scene file; the scene is turned so that it
 // is up (+y) before anything else (the default camera, --eye and --target are in the turned scene).
 void addUpAxisOption(CLI::App& cmd, std::string& upAxis);
-// Turns the loaded scene so that --up-axis (when given, else the scene's own) points up; a packed
-// scene's grid is then dropped (the commands build one for the turned triangles). InputError for
-// a bad --up-axis.
+// --up-axis as an axis (none when not given); InputError for a bad one.
+std::optional<UpAxis> upAxisOf(const std::string& upAxisOption);
+// Turns the loaded scene so that --up-axis (when given, else the scene's own) points up, with its
+// accelerator (the library's turnSceneUp, raytrace/SceneLoader.h). InputError for a bad --up-axis.
 void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption);
 
 // Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
@@ -136,10 +137,9 @@ struct PictureCliOptions {
                                    int scaleExponent);
 };
 
-// The scene as render and view trace it: loaded, turned up (turnSceneUp), with smooth normals for the crease angle
-// (--smooth; < 0: faceted), and, far from unit size where float32 tracing would over- or
-// underflow, rescaled by 2^-scaleExponent, which gives the same image (SceneScale.h).
-// `normalsMs`, if given, gets the smooth normals' share of the time (--stats' normals phase).
+// The scene as render and view trace it: the library's prepareScene (raytrace/SceneLoader.h) with
+// --up-axis and --smooth (crease < 0: faceted). `normalsMs`, if given, gets the smooth normals'
+// share of the time (--stats' normals phase).
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,
                               int& scaleExponent, double* normalsMs = nullptr);
 

@@ -2,12 +2,15 @@
 #include "raytrace/SceneLoader.h"
 
 #include <cctype>
+#include <chrono>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <string>
 
 #include "image/AtomicFile.h"
+#include "raytrace/SceneScale.h"
+#include "scene/SmoothNormals.h"
 #include "image/InputError.h"
 #include "scene/GltfLoader.h"
 #include "scene/JsonScene.h"
@@ -82,6 +85,28 @@ LoadedScene loadScene(const std::filesystem::path& path) {
             break;
     }
     return LoadedScene{loadObj(path), std::nullopt, std::nullopt, std::nullopt};
+}
+
+void turnSceneUp(LoadedScene& loaded, UpAxis axis) {
+    if (axis == UpAxis::PosY) return;
+    rotateUpToY(loaded.scene, axis);
+    loaded.grid.reset();  // built for the file's coordinates
+    if (loaded.bvh) loaded.bvh->turnUp(axis);
+}
+
+LoadedScene prepareScene(const std::filesystem::path& path, std::optional<UpAxis> upAxis, float crease,
+                         int& scaleExponent, double* normalsMs) {
+    LoadedScene loaded = loadScene(path);
+    turnSceneUp(loaded, upAxis.value_or(loaded.scene.upAxis));
+    const auto normalsStart = std::chrono::steady_clock::now();
+    smoothNormals(loaded.scene, crease);
+    if (normalsMs)
+        *normalsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - normalsStart).count();
+    scaleExponent = renderScaleExponent(loaded.scene);
+    rescaleScene(loaded.scene, scaleExponent);
+    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
+    if (loaded.bvh) loaded.bvh->rescale(scaleExponent);
+    return loaded;
 }
 
 }  // namespace gpurt

@@ -36,4 +36,17 @@ struct LoadedScene {
 // (readPackedScene, loadJsonSceneFile, loadObj).
 LoadedScene loadScene(const std::filesystem::path& path);
 
+// Turns the loaded scene so that `axis` is up (rotateUpToY), with its accelerator: a packed BVH's
+// boxes turn with it (Bvh::turnUp, exact); a packed grid is dropped, to be built again for the
+// turned scene (its cells are laid out along the file's axes).
+void turnSceneUp(LoadedScene& loaded, UpAxis axis);
+
+// The scene as the renderers take it (render, view): loaded (loadScene), turned up (`upAxis`, else
+// the file's own up axis), with smooth normals for the crease angle (< 0: faceted; smoothNormals),
+// and, far from unit size where float32 tracing would over- or underflow, rescaled by
+// 2^-scaleExponent with its accelerator (SceneScale.h: the same image). normalsMs: the time the
+// normals took.
+LoadedScene prepareScene(const std::filesystem::path& path, std::optional<UpAxis> upAxis, float crease,
+                         int& scaleExponent, double* normalsMs = nullptr);
+
 }  // namespace gpurt

@@ -274,6 +274,38 @@ void Bvh::quantisation(glm::vec3& origin, glm::vec3& step) const {
 
 float Bvh::rayOffset() const { return sceneRayOffset(min, max); }
 
+namespace {
+
+// Applies f to the corners of box [lo, hi] and makes the result a box again (f maps each axis to
+// an axis, with or without its sign: exact).
+template <typename F>
+void mapBox(glm::vec3& lo, glm::vec3& hi, F f) {
+    const glm::vec3 a = f(lo), b = f(hi);
+    lo = glm::min(a, b);
+    hi = glm::max(a, b);
+}
+
+template <typename F>
+void mapBoxes(Bvh& bvh, F f) {
+    mapBox(bvh.min, bvh.max, f);
+    for (Bvh::Node& node : bvh.nodes)
+        for (Bvh::Child& child : node.child)
+            if (child.count > 0 || child.ref > 0) mapBox(child.min, child.max, f);  // an empty child keeps its empty box
+}
+
+}  // namespace
+
+void Bvh::turnUp(UpAxis axis) {
+    if (axis != UpAxis::PosY) mapBoxes(*this, [axis](glm::vec3 v) { return upAxisToY(v, axis); });
+}
+
+void Bvh::rescale(int exponent) {
+    if (exponent == 0) return;
+    mapBoxes(*this, [exponent](glm::vec3 v) {
+        return glm::vec3(std::ldexp(v.x, -exponent), std::ldexp(v.y, -exponent), std::ldexp(v.z, -exponent));
+    });
+}
+
 double Bvh::sahCost() const {
     auto area = [](const Child& c) {
         if (c.ref < 0 && c.count == 0) return 0.0;

@@ -38,6 +38,11 @@ struct Bvh {
     // The frame the kernels' nodes quantise the boxes in (bvhNodeTexels, glsl/common/bvh.h): a
     // box coordinate is origin + k * step, k in 0..65535; the frame holds every child box.
     void quantisation(glm::vec3& origin, glm::vec3& step) const;
+    // The same tree for its scene turned by rotateUpToY(axis) (an accelerator owns its data): every
+    // box's corners turned, an axis permutation with signs, exact in float; the leaves unchanged.
+    void turnUp(UpAxis axis);
+    // The same tree for its scene scaled by 2^-exponent (rescaleScene): exact in float.
+    void rescale(int exponent);
     // Offset of secondary ray origins: the same as the grid's for the same scene.
     float rayOffset() const;
     // The nodes a ray may visit before both backends stop it (RAY_OVERFLOW): every node once and
