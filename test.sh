@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds and runs the whole test suite with ctest.
 #   ./test.sh             Release build in build/, the suite, then each libFuzzer target for a
-#                         bounded time (tests/fuzz/run.sh: clang, build-fuzz/, about 30 s)
+#                         bounded time (tests/fuzz/run.sh: clang, build-fuzz/, 10 s a target, nine targets)
 #   ./test.sh --sanitize  the suite built with AddressSanitizer and UndefinedBehaviorSanitizer in
 #                         build-sanitize/ (tests/sanitize/: options and leak suppressions)
 #   ./test.sh --fuzz      only the fuzz targets

@@ -295,7 +295,7 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--grid", o->grid, "Grid resolution: auto (default) or NX,NY,NZ");
     auto* lambda = cmd->add_option("--lambda", o->lambda,
                                    "With --grid auto: cells along the longest axis ~ lambda * "
-                                   "N^(1/3) (default 2, as gpurt render)")
+                                   "N^(1/3) (default 3, as gpurt render)")
                        ->check(CLI::Range(0.01f, 64.0f));
     cmd->add_option("--dump", o->dump,
                     "Also write the scene textures as PFM and the grid occupancy as PNG into DIR");

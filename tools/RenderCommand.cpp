@@ -556,8 +556,9 @@ void addRenderCommand(CLI::App& app, std::function<int()>& run) {
         ->required()
         ->check(kNotEmpty);
     cmd->add_option("--aov", o->aovs,
-                    "Also write an AOV: depth|prim|normal|steps|color|spp|variance=FILE, FILE .pfm or .exr (32-bit float); "
-                    "spp: the samples each pixel took; variance: of each pixel's mean, per channel");
+                    "Also write an AOV: depth|prim|normal|steps|color|spp|variance|albedo|shading_normal=FILE, FILE .pfm "
+                    "or .exr (32-bit float); spp: the samples each pixel took; variance: of each pixel's mean, per "
+                    "channel; albedo, shading_normal: the denoiser's features (path integrator)");
     cmd->add_option("--backend", o->backend, "gl (stream kernels, default) or cpu (same algorithm in C++)")
         ->check(CLI::IsMember({"gl", "cpu"}));
     auto* stats = cmd->add_option("--stats", o->stats, "Print statistics (--stats=json: one JSON object)")

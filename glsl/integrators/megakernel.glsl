@@ -127,6 +127,18 @@ void emitterPointAt(vec2 u, out vec3 q, out vec3 e1, out vec3 e2, out vec3 emiss
 #endif
 }
 
+// The element's camera ray of the pass's sample (through the pixel centre with PIXEL_CENTRE): its
+// direction from the eye, the pixel begun (beginPixel).
+vec3 beginCameraSample() {
+    uvec2 pixel = imagePixel();
+    beginPixel(pixel);
+#ifdef PIXEL_CENTRE
+    return primaryDirection();
+#else
+    return sampleDirection();
+#endif
+}
+
 #define GPURT_TRACE_HOOKS
 #include "common/integrators/lights.h"
 

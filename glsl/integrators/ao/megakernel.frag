@@ -12,13 +12,6 @@ layout(location = 0) out vec4 colorOut;  // (the sample's value, 0)
 #include "common/integrators/ao.h"
 
 void main() {
-    uvec2 pixel = imagePixel();
-    beginPixel(pixel);
-#ifdef PIXEL_CENTRE
-    vec3 d = primaryDirection();
-#else
-    vec3 d = sampleDirection();
-#endif
-    colorOut = vec4(aoTrace(eye, d), 0.0f);
+    colorOut = vec4(aoTrace(eye, beginCameraSample()), 0.0f);
     countRays(0);
 }

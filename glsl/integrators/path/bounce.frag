@@ -14,14 +14,7 @@
 #include "common/sampling.h"
 #include "common/path.h"
 
-uniform sampler2D surfacePoint;
-uniform sampler2D surfaceNormal;
-uniform sampler2D surfaceView;
-uniform sampler2D surfaceShading;
-uniform sampler2D localColor;
-uniform sampler2D colorState;   // the path's colour so far
-uniform sampler2D weightState;  // (throughput, alive)
-uniform sampler2D pathStateIn;  // (pdf of the ray's direction, pixel x, pixel y, 0)
+#include "integrators/surface_streams.glsl"
 uniform sampler2D hitState;     // the emitter shadow rays' hits
 uniform sampler2D lightSample;  // (q, emitting triangle | -1): the emitter point of the hit
 uniform uint sampleIndex;

@@ -15,14 +15,8 @@
 // scene, or no bounce allowed): only the colour, one output instead of five.
 #include "scene/shading.glsl"
 
-uniform sampler2D surfacePoint;
-uniform sampler2D surfaceNormal;
-uniform sampler2D surfaceView;
-uniform sampler2D surfaceShading;
-uniform sampler2D localColor;
-uniform sampler2D colorState;   // in place
-uniform sampler2D weightState;  // in place
-uniform sampler2D pathStateIn;  // in place
+// colorState, weightState and pathStateIn in place
+#include "integrators/surface_streams.glsl"
 layout(rgba32f) uniform image2D stackOrigin;  // (o, depth)
 layout(rgba32f) uniform image2D stackDir;     // (d, 0)
 layout(rgba32f) uniform image2D stackWeight;  // (weight, 0)

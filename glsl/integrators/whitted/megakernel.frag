@@ -16,15 +16,8 @@ layout(location = 0) out vec4 colorOut;  // (the sample's colour, 0)
 #include "common/integrators/whitted.h"
 
 void main() {
-    uvec2 pixel = imagePixel();
-    beginPixel(pixel);
-#ifdef PIXEL_CENTRE
-    vec3 d = primaryDirection();
-#else
-    vec3 d = sampleDirection();
-#endif
     int rounds;
-    vec3 color = whittedTrace(eye, d, rounds);
+    vec3 color = whittedTrace(eye, beginCameraSample(), rounds);
     countRays(rounds);
     colorOut = vec4(color, 0.0f);
 }

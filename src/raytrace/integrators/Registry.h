@@ -52,6 +52,8 @@ struct IntegratorOption {
 };
 
 struct IntegratorInfo {
+    IntegratorInfo(Integrator id, std::string help) : id(id), help(std::move(help)) {}
+
     Integrator id;
     std::string help;             // --integrator's help: one line
     bool rayTree = false;         // its rays split (Whitted's tree: the pipeline's ray stacks)

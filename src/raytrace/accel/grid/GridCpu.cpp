@@ -28,9 +28,11 @@ struct GridCells {
     const AlphaCoverage* coverage;
     uint32_t coverageKey;
 
+    // (first entry, count), or for an empty cell (skip distance, 0), as the kernels' voxel index.
     uvec2 range(ivec3 cell) const {
         const size_t c = size_t(grid.cellIndex(cell));
-        return uvec2(grid.cellStart[c], grid.cellStart[c + 1] - grid.cellStart[c]);
+        const uint32_t begin = grid.cellStart[c], end = grid.cellStart[c + 1];
+        return begin == end ? uvec2(uint32_t(grid.skipDistance(c)), 0u) : uvec2(begin, end - begin);
     }
     int triangle(uint32_t k, vec3& v0, vec3& v1, vec3& v2, float& flags) const {
         const uint32_t id = grid.cellTriangles[k];
@@ -42,6 +44,7 @@ struct GridCells {
     }
 };
 
+#define GPURT_GRID_FN inline __attribute__((always_inline))
 #define GPURT_GRID_PARAMS const GridCells &cells,
 #define GPURT_GRID_ARGS cells,
 #define GPURT_GRID_MIN cells.grid.min
@@ -50,7 +53,7 @@ struct GridCells {
 #define GPURT_GRID_RES cells.grid.resolution
 #define GPURT_GRID_TOLERANCE cells.tolerance
 #define GPURT_GRID_RANGE(cell) cells.range(cell)
-#define GPURT_GRID_SKIP(cell, range) cells.grid.skipDistance(size_t(cells.grid.cellIndex(cell)))
+#define GPURT_GRID_SKIP(cell, range) int((range).x)
 #define GPURT_GRID_TRI(k, v0, v1, v2, flags) cells.triangle(k, v0, v1, v2, flags)
 #define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(cells.coverage, id, u, v, cells.coverageKey, d, e1, e2)
 #include "../../../../glsl/common/grid.h"

@@ -48,10 +48,11 @@ std::unique_ptr<GlIntegrator> gl(const GlIntegratorSetup& s) {
 const IntegratorInfo& aoIntegrator() {
     static const IntegratorInfo info = [] {
         IntegratorInfo i{Integrator("ao"), "ao (ambient occlusion, as pbrt's: the unoccluded fraction of the "
-                                           "cosine-weighted hemisphere within --ao-distance; the clay render)"};
+                                           "cosine-weighted hemisphere within --ao-distance; the clay render; one megakernel pass "
+                                           "under any --kernel)"};
         i.options.push_back({"ao-distance", "aoDistance",
                              "Ambient occlusion: only what lies within this distance of a point occludes it (scene "
-                             "units; default: unlimited)",
+                             "units, > 0; default 'unlimited')",
                              std::numeric_limits<float>::infinity(), 0.0f});
         i.cpuSample = cpuSample;
         i.gl = gl;
