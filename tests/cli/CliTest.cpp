@@ -624,7 +624,9 @@ TEST_F(Cli, SingleSidedCornellBoxFromBehindShowsItsInside) {
             const float g = gltf.bottomFirst[k], o = obj.bottomFirst[k];
             EXPECT_TRUE(o == -1.0f || o == 8.0f || o == 9.0f) << "the OBJ shows only the back wall, pixel " << k / step << ": " << o;
             EXPECT_TRUE(g != 8.0f && g != 9.0f) << "the glTF's back wall is culled, pixel " << k / step;
-            if (o == -1.0f) EXPECT_EQ(g, -1.0f) << "pixel " << k / step;
+            if (o == -1.0f) {
+                EXPECT_EQ(g, -1.0f) << "pixel " << k / step;
+            }
             wall += o != -1.0f;
             inside += g != -1.0f;
         }
@@ -888,8 +890,12 @@ TEST_F(Cli, BenchPrimaryReportsEveryBackendOnTheSameRays) {
             EXPECT_TRUE(b.contains(key)) << b["backend"] << " " << key;
         EXPECT_EQ(b["rays"], 40 * 30) << b["backend"];  // primary: one per pixel, all counted
         EXPECT_GT(b["mrays_per_s"].get<double>(), 0.0);
-        if (b.contains("agreement")) EXPECT_GE(b["agreement"].get<double>(), 0.999) << b["backend"];
-        if (b["backend"] == "embree") EXPECT_DOUBLE_EQ(b["ratio_to_embree"].get<double>(), 1.0);
+        if (b.contains("agreement")) {
+            EXPECT_GE(b["agreement"].get<double>(), 0.999) << b["backend"];
+        }
+        if (b["backend"] == "embree") {
+            EXPECT_DOUBLE_EQ(b["ratio_to_embree"].get<double>(), 1.0);
+        }
     }
     EXPECT_TRUE(names.count("gl") && names.count("cpu"));
     for (const auto& b : j["backends"])
@@ -1235,7 +1241,9 @@ TEST_F(Cli, AKilledTaskLeavesNoHalfWrittenOutput) {
         // Writing takes milliseconds: a poll can miss it (the task then ends whole), so the kills
         // while writing are reported, not required.
         std::printf("[   INFO   ] %s: %s\n", name.c_str(), !event ? "not killed" : seen ? "killed" : "ended first");
-        if (!event) EXPECT_EQ(task.wait(std::chrono::seconds(300)), 0) << gpurt::test::readFile(dir / "err");
+        if (!event) {
+            EXPECT_EQ(task.wait(std::chrono::seconds(300)), 0) << gpurt::test::readFile(dir / "err");
+        }
         const bool png = fs::exists(dir / "t.png"), sidecar = fs::exists(dir / "t.png.tile"),
                    depth = fs::exists(dir / "t.pfm"), depthSidecar = fs::exists(dir / "t.pfm.tile");
         EXPECT_TRUE(png >= sidecar && sidecar >= depth && depth >= depthSidecar);
@@ -1243,9 +1251,15 @@ TEST_F(Cli, AKilledTaskLeavesNoHalfWrittenOutput) {
             ASSERT_TRUE(seen) << "no progress line: " << gpurt::test::readFile(dir / "err");
             EXPECT_FALSE(png) << "an output before the render's end";
         }
-        if (!event) EXPECT_TRUE(depthSidecar) << "the whole task left no complete output";
-        if (sidecar) EXPECT_EQ(gpurt("stitch -o " + path("s.png") + " " + path("t.png")).code, 0);
-        if (depthSidecar) EXPECT_EQ(gpurt("stitch -o " + path("s.pfm") + " " + path("t.pfm")).code, 0);
+        if (!event) {
+            EXPECT_TRUE(depthSidecar) << "the whole task left no complete output";
+        }
+        if (sidecar) {
+            EXPECT_EQ(gpurt("stitch -o " + path("s.png") + " " + path("t.png")).code, 0);
+        }
+        if (depthSidecar) {
+            EXPECT_EQ(gpurt("stitch -o " + path("s.pfm") + " " + path("t.pfm")).code, 0);
+        }
     }
 }
 

@@ -228,7 +228,7 @@ TEST_F(DailyUse, UpAxisZIsTheMeshTurnedByHand) {
     ASSERT_EQ(gpurt("pack " + quoted("zup.json") + " -o " + quoted("zup.gpscene")).code, 0);
     const std::string aovs = " --aov depth=", prim = " --aov prim=";
     for (const char* backend : kBackends) {
-        for (const std::string camera : {std::string(), std::string(" --eye 3,2.5,4 --target 0,1,0 --fovy 40")}) {
+        for (const std::string& camera : {std::string(), std::string(" --eye 3,2.5,4 --target 0,1,0 --fovy 40")}) {
             SCOPED_TRACE(std::string(backend) + camera);
             const std::string common = std::string(" --size 48x40 --spp 2 --backend ") + backend + camera;
             auto render = [&](const std::string& scene, const std::string& name) {

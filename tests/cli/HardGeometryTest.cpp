@@ -605,7 +605,7 @@ TEST_F(HardGeometry, CameraInsideTheGridAndInACellWithTriangles) {
     obj.box({-4, -4, -4}, {4, 4, 4});
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> inRoom(-3.5f, 3.5f), edge(-0.4f, 0.4f);
-    glm::vec3 first[3];
+    glm::vec3 first[3] = {};
     for (int t = 0; t < 400; ++t) {
         const glm::vec3 c(inRoom(rng), inRoom(rng), inRoom(rng));
         const glm::vec3 v[3] = {c, c + glm::vec3(edge(rng), edge(rng), edge(rng)),

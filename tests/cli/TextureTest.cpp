@@ -100,7 +100,9 @@ TEST_F(Textures, QuadrantsLandWhereTheImageHasThem) {
                     for (int c = 0; c < 3; ++c) {
                         float s = white[c];
                         for (int k = 0; k < 4; ++k) s = std::min(s, color.at(k & 1 ? far : near, k & 2 ? far : near)[c]);
-                        if (std::string(scene) == "quad.obj") EXPECT_EQ(s, 0.0f) << "Lambert: black is black";
+                        if (std::string(scene) == "quad.obj") {
+                            EXPECT_EQ(s, 0.0f) << "Lambert: black is black";
+                        }
                         EXPECT_NEAR((color.at(px, py)[c] - s) / (white[c] - s), srgbToLinear(texel[c]), 1e-4)
                             << "quadrant " << qx << "," << qy << " channel " << c;
                     }

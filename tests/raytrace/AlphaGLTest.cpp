@@ -144,8 +144,9 @@ TEST_F(AlphaCoverageGL, MaskShowsTheBackgroundWhereAlphaIsBelowTheCutoff) {
                         ++covered;
                     } else {
                         ASSERT_EQ(out.prim[at], -1.0f) << "pixel " << i << ", " << j;
-                        if (integrator == Integrator::Whitted)
+                        if (integrator == Integrator::Whitted) {
                             ASSERT_EQ(out.color[at], kBackground) << "pixel " << i << ", " << j;
+                        }
                         ++holes;
                     }
                 }
@@ -236,10 +237,14 @@ TEST_F(AlphaCoverageGL, BlendCoverageIsTheAlphaOnAverage) {
         const double mean = meanCoverage(scene, v, kSamples, kSize);
         EXPECT_NEAR(mean, alpha, 5.0 * std::sqrt(alpha * (1.0 - alpha) / n));
         if (v.backend == Backend::Gl) {
-            if (gl >= 0.0) EXPECT_DOUBLE_EQ(mean, gl) << "the accelerators agree";
+            if (gl >= 0.0) {
+                EXPECT_DOUBLE_EQ(mean, gl) << "the accelerators agree";
+            }
             gl = mean;
         } else {
-            if (gl >= 0.0) EXPECT_NEAR(mean, gl, 1e-6) << "the backends agree";
+            if (gl >= 0.0) {
+                EXPECT_NEAR(mean, gl, 1e-6) << "the backends agree";
+            }
         }
     }
 }

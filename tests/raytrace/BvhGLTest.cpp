@@ -127,7 +127,9 @@ TEST_F(BvhGL, RaysPastTheNodeLimitAreCountedAsOverflow) {
                                 ->render(v.camera, settings);
     EXPECT_EQ(gl.stats.overflowRays, expected);
     for (size_t i = 0; i < gl.prim.size(); ++i)
-        if (cpu.steps[i] > 4.0f) EXPECT_EQ(gl.prim[i], -1.0f) << "pixel " << i << " went on past the limit";
+        if (cpu.steps[i] > 4.0f) {
+            EXPECT_EQ(gl.prim[i], -1.0f) << "pixel " << i << " went on past the limit";
+        }
 }
 
 }  // namespace

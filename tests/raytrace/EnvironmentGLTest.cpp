@@ -115,7 +115,9 @@ TEST_F(Environments, LambertSphereUnderALinearSkyMatchesTheClosedForm) {
             for (const Estimate* e : {&upper, &lower}) {
                 ASSERT_GT(e->count, 100u);
                 EXPECT_NEAR(e->mean, 0.0, 5.0 * e->error + 4e-3) << (e == &upper ? "upper" : "lower") << " half, standard error " << e->error;
-                if (path) EXPECT_LT(e->error, 0.01) << "enough samples to tell";
+                if (path) {
+                    EXPECT_LT(e->error, 0.01) << "enough samples to tell";
+                }
             }
         }
     }
@@ -144,7 +146,9 @@ TEST_F(Environments, LambertSphereUnderAConstantSkyShowsItsAlbedo) {
                             continue;
                         }
                         // Whitted: the harmonics of a 64 x 32 map, to a part in a thousand.
-                        if (!path) ASSERT_NEAR(out.color[i][c], albedo[c] * sky, 1e-3f * albedo[c] * sky) << i;
+                        if (!path) {
+                            ASSERT_NEAR(out.color[i][c], albedo[c] * sky, 1e-3f * albedo[c] * sky) << i;
+                        }
                         e.add(out.color[i][c]);
                     }
                 EXPECT_NEAR(e.mean, albedo[c] * sky, 5.0 * e.error + 1e-3 * albedo[c] * sky)

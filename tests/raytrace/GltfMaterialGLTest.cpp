@@ -526,9 +526,10 @@ TEST_F(GltfMaterials, TransmissionTextureScalesTheFactorPerHit) {
                                           c * (t * (1.0 - schlick(nv)) * le);
                     if (!path) expected += 0.1 * c * (1.0 - t);
                     for (int k = 0; k < 3; ++k) {
-                        if (!path)
+                        if (!path) {
                             ASSERT_NEAR(out.color[at][k], expected[k], 1e-4 * expected[k] + 1e-5)
                                 << "pixel " << i << ", " << j << " band " << band << " channel " << k;
+                        }
                         bands[band][k].add(out.color[at][k] - expected[k]);
                     }
                 }

@@ -76,8 +76,9 @@ TEST_F(Paths, ConvexObjectsUnderAUniformSkyShowTheirAlbedo) {
                     continue;
                 }
                 ++hits;
-                if (kind < 2)
+                if (kind < 2) {
                     for (int c = 0; c < 3; ++c) ASSERT_NEAR(out->color[i][c], albedo[c], 1e-5f) << i;
+                }
             }
             ASSERT_GT(hits, 300u);
             if (kind == 2) {

@@ -127,10 +127,11 @@ size_t expectQuadSeen(const Scene& scene, const Scene& withoutQuad, bool fromAbo
                 EXPECT_TRUE(out.prim[at] == 0.0f || out.prim[at] == 1.0f) << "pixel " << i << ", " << j << ": " << out.prim[at];
             } else {
                 EXPECT_TRUE(out.prim[at] == 2.0f || out.prim[at] == 3.0f) << "pixel " << i << ", " << j << ": " << out.prim[at];
-                if (integrator == Integrator::Whitted)
+                if (integrator == Integrator::Whitted) {
                     for (int c = 0; c < 3; ++c)
                         EXPECT_NEAR(out.color[at][c], bare.color[at][c], 1e-6f + 1e-6f * bare.color[at][c])
                             << "pixel " << i << ", " << j;
+                }
             }
             if (testing::Test::HasFailure()) return checked;
             ++checked;
@@ -210,7 +211,9 @@ TEST_F(BackFaceCullingGL, SingleSidedQuadShadowsOnlyWhereShadowRaysMeetItsFront)
                 if (!clear) continue;
                 const size_t at = size_t(j) * kSize + size_t(i);
                 ASSERT_TRUE(frontDown.prim[at] == 0.0f || frontDown.prim[at] == 1.0f) << "the floor, pixel " << i << ", " << j;
-                if (blocked) ASSERT_GT(lit.color[at].x, dark.color[at].x * 1.5f) << "pixel " << i << ", " << j;
+                if (blocked) {
+                    ASSERT_GT(lit.color[at].x, dark.color[at].x * 1.5f) << "pixel " << i << ", " << j;
+                }
                 const glm::vec3 down = blocked ? dark.color[at] : lit.color[at];
                 for (int c = 0; c < 3; ++c) {
                     ASSERT_NEAR(frontDown.color[at][c], down[c], 1e-5f + 1e-5f * down[c])

@@ -295,8 +295,13 @@ TEST_F(TraceKernels, IntersectorFindsTheClosestWatertightHit) {
 TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     LoadedScene source;
     source.scene = randomTriangles(1500, 9);
-    source.scene.materials.push_back(
-        Material{{0.1f, 0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}, 7.0f, {0.25f, 0.5f, 0.75f}, "m"});
+    Material m;
+    m.diffuse = {0.1f, 0.2f, 0.3f};
+    m.specular = {0.4f, 0.5f, 0.6f};
+    m.shininess = 7.0f;
+    m.reflectivity = {0.25f, 0.5f, 0.75f};
+    m.name = "m";
+    source.scene.materials.push_back(m);
     source.scene.materials.back().emission = {1.0f, 2.0f, 3.0f};  // every other triangle emits
     for (size_t t = 0; t < source.scene.materialIds.size(); t += 2) source.scene.materialIds[t] = 1;
     for (size_t t = 0; t < source.scene.triangles.size(); ++t)  // vertex normals, in the packed file too

@@ -320,7 +320,9 @@ TEST(StreamContext, EglContextReportsRendererAndLimits) {
     bool sawRenderer = false;
     for (const auto& [name, value] : glInfo()) {
         if (name == "renderer") sawRenderer = !value.empty() && value != "?";
-        if (name == "max_draw_buffers") EXPECT_GE(std::stoi(value), 8);
+        if (name == "max_draw_buffers") {
+            EXPECT_GE(std::stoi(value), 8);
+        }
     }
     EXPECT_TRUE(sawRenderer);
 }

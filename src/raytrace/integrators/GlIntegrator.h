@@ -1,8 +1,7 @@
 // The integrator seam on the gl backend: an integrator takes one sample of every pixel as rounds
 // of passes over the shared streams (GpuPipeline), tracing through the accelerator, into a colour
-// stream; GpuTracer runs the sample loop, the sums and the AOVs around it. Whitted
-// (integrators/whitted) and path (integrators/path) are the two; docs/ARCHITECTURE.md says how to
-// add another.
+// stream; GpuTracer runs the sample loop, the sums and the AOVs around it. Each is
+// made by its registry entry (integrators/Registry.h); docs/ARCHITECTURE.md says how to add one.
 #pragma once
 
 #include "raytrace/RenderTypes.h"

@@ -1,7 +1,8 @@
-// The path integrator on the cpu backend (common/path.h): one path through a pixel, iteration b
-// here being round b of the gl twin (PathGl) in the same order of operations: the hit's emission
-// (weighed against next-event estimation), then below the last depth the point lights and one
-// emitter point, each with a shadow ray, then the next direction and Russian roulette.
+// The path integrator on the cpu backend: one path through a pixel, the control flow of
+// glsl/common/integrators/path.h (which the megakernel and the wavefront stages run too) over the
+// cpu's hooks (CpuHooks): the hit's emission (weighed against next-event estimation), then below
+// the last depth the point lights, the environment direction and one emitter point, each with a
+// shadow ray, then the next direction and Russian roulette.
 #pragma once
 
 #include "raytrace/integrators/CpuIntegrator.h"

@@ -1,7 +1,8 @@
 // Whitted's integrator on the cpu backend: one sample's ray tree through a pixel, depth first
 // with a stack of pending rays exactly as the gl rounds take it (common/raytree.h), so that the
 // colour sums in the same order; every hit is shaded with a shadow ray per light in front of it
-// and one to the emitters. GL twin: WhittedGl.
+// and one to the emitters (glsl/common/integrators/whitted.h over the cpu's hooks; the megakernel
+// runs the same file, the wavefront chain WhittedGl the same steps as passes).
 #pragma once
 
 #include "raytrace/integrators/CpuIntegrator.h"
