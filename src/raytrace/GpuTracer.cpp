@@ -5,7 +5,7 @@
 #include "raytrace/MaterialRecord.h"
 #include "raytrace/accel/grid/GridGl.h"
 #include "raytrace/integrators/Megakernel.h"
-#include "raytrace/integrators/Registry.h"
+#include "raytrace/integrators/GlRegistry.h"
 #include "raytrace/integrators/whitted/WhittedGl.h"
 
 #include "../../glsl/common/scene_layout.h"
@@ -105,7 +105,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, const In
         if (megakernel && needs.aovs) megakernelAovs_ = std::make_unique<MegakernelAovs>(*pipeline_, textures_);
         if (integrator) {
             const size_t lights = scene_.lights.size() + 1;  // the scene's, or the headlight
-            chosen_ = integrator->gl({*pipeline_, textures_, megakernel, mask, options_.maskPaths, stackSlots, spawns_,
+            chosen_ = makeGlIntegrator(*integrator, {*pipeline_, textures_, megakernel, mask, options_.maskPaths, stackSlots, spawns_,
                                       lights, megakernelAovs_.get(), options_.megakernelBounces});
         }
         if (!megakernel) {  // the pixel centres' AOVs: Whitted's first round (pixelCentreAovs)

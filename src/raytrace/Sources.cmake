@@ -23,8 +23,12 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   accel/grid/UniformGrid.cpp
   denoise/DenoiseCpu.cpp
   denoise/DenoiseFiles.cpp
+  integrators/Registry.cpp
+  integrators/ao/AoIntegrator.cpp
   integrators/path/PathCpu.cpp
-  integrators/whitted/WhittedCpu.cpp)
+  integrators/path/PathIntegrator.cpp
+  integrators/whitted/WhittedCpu.cpp
+  integrators/whitted/WhittedIntegrator.cpp)
 set(GPURT_RAYTRACE_GL_SOURCES
   GpuPipeline.cpp
   GpuTracer.cpp
@@ -37,11 +41,9 @@ set(GPURT_RAYTRACE_GL_SOURCES
   integrators/path/PathGl.cpp
   integrators/path/PathMegakernelGl.cpp
   integrators/Megakernel.cpp
-  integrators/Registry.cpp
-  integrators/ao/AoIntegrator.cpp
-  integrators/path/PathIntegrator.cpp
-  integrators/whitted/WhittedGl.cpp
-  integrators/whitted/WhittedIntegrator.cpp)
+  integrators/GlRegistry.cpp
+  integrators/ao/AoGl.cpp
+  integrators/whitted/WhittedGl.cpp)
 # Full paths, so that tests/fuzz/CMakeLists.txt can use them from its own folder.
 list(TRANSFORM GPURT_RAYTRACE_CPU_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)
 list(TRANSFORM GPURT_RAYTRACE_GL_SOURCES PREPEND ${CMAKE_CURRENT_LIST_DIR}/)

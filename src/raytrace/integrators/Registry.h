@@ -1,44 +1,23 @@
 // The integrators' registry: each integrator declares itself once, in its own folder
 // (integrators/<name>/<Name>Integrator.cpp: name, help, what it can do, its options, its cpu
-// sample and its gl passes), and Registry.cpp lists it. The tracers, the commands' options and
+// sample), and Registry.cpp lists it; GlRegistry.cpp lists its gl passes (the gl layer: the
+// registry itself builds without GL, as the fuzz targets build the cpu backend). The tracers, the commands' options and
 // --help, and the benchmarks read the registry; docs/ARCHITECTURE.md says how to add one.
 #pragma once
 
 #include "raytrace/RenderTypes.h"
 #include "raytrace/integrators/CpuIntegrator.h"
-#include "raytrace/integrators/GlIntegrator.h"
-#include "raytrace/GlOptions.h"
 
-#include <memory>
 #include <string>
 #include <vector>
 
 namespace gpurt {
-
-struct GpuPipeline;
-class SceneTextures;
-class MegakernelAovs;
 
 // One sample of pixel px through the camera ray eye + t d on the cpu; with `features`, the
 // sample's features there (integrators with IntegratorInfo::features).
 using CpuSample = glm::vec3 (*)(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                                 const std::vector<PointLight>& lights, const RenderSettings& settings, PixelAovs aovs,
                                 RenderStats& stats, SampleFeatures* features);
-
-// What the gl backend gives an integrator's passes.
-struct GlIntegratorSetup {
-    GpuPipeline& pipeline;
-    const SceneTextures& textures;
-    bool megakernel;            // the megakernel form (else the wavefront chain, where it has one)
-    MaskMode mask;              // the wavefront chain's masking
-    bool maskPaths;             // --mask-paths
-    int stackSlots;             // the ray tree's pending rays (GpuTracer::stackSlots)
-    bool spawns;                // some material spawns rays (mirror, glass)
-    size_t maxLights;           // the most point lights a sample is given
-    MegakernelAovs* aovs;       // a megakernel's AOV streams (none: no AOVs)
-    int megakernelBounces;      // --megakernel-bounces (0: default)
-};
-using GlIntegratorFactory = std::unique_ptr<GlIntegrator> (*)(const GlIntegratorSetup& setup);
 
 // An option of an integrator's own: --NAME VALUE on the commands, uniform `uniform` of its kernels
 // and RenderSettings::integratorOptions[uniform] on the cpu. A value above `above`, up to infinity
@@ -64,9 +43,8 @@ struct IntegratorInfo {
     int defaultBounces = -1;      // --bounces when none is given (-1: the scene's)
     std::vector<IntegratorOption> options;
     CpuSample cpuSample = nullptr;
-    // The gl form: the megakernel always; the wavefront chain when hasWavefront (else --kernel
-    // fused and split run the megakernel too).
-    GlIntegratorFactory gl = nullptr;
+    // The gl form (integrators/GlRegistry.h makes it): the megakernel always; the wavefront chain
+    // when hasWavefront (else --kernel fused and split run the megakernel too).
     bool hasWavefront = false;
 };
 

@@ -1,9 +1,6 @@
 // Ambient occlusion (--integrator ao; glsl/common/integrators/ao.h) in the registry
-// (integrators/Registry.h): its cpu sample over the cpu's hooks, and its megakernel on the gl
-// backend (it has no wavefront chain: one trace and one occlusion ray a sample leave nothing for
-// passes to share).
+// (integrators/Registry.h): its cpu sample over the cpu's hooks (its gl form: AoGl.cpp).
 #include "raytrace/integrators/CpuHooks.h"
-#include "raytrace/integrators/Megakernel.h"
 #include "raytrace/integrators/Registry.h"
 
 #include <limits>
@@ -38,11 +35,6 @@ glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 ey
     return hooks.aoTrace(eye, d);
 }
 
-std::unique_ptr<GlIntegrator> gl(const GlIntegratorSetup& s) {
-    return std::make_unique<OnePassMegakernelGl>(s.pipeline, s.textures, "aoMegakernel", "integrators/ao/megakernel.frag",
-                                                 s.maxLights, s.aovs);
-}
-
 }  // namespace
 
 const IntegratorInfo& aoIntegrator() {
@@ -55,7 +47,6 @@ const IntegratorInfo& aoIntegrator() {
                              "units, > 0; default 'unlimited')",
                              std::numeric_limits<float>::infinity(), 0.0f});
         i.cpuSample = cpuSample;
-        i.gl = gl;
         return i;
     }();
     return info;

@@ -1,6 +1,8 @@
 #include "raytrace/integrators/path/PathGl.h"
 
 #include "raytrace/RayMath.h"
+#include "raytrace/integrators/GlRegistry.h"
+#include "raytrace/integrators/path/PathMegakernelGl.h"
 #include "raytrace/integrators/SharedPasses.h"
 
 #include "../../../../glsl/common/scene_layout.h"
@@ -227,6 +229,16 @@ void PathGl::maskPasses(bool on) {
     pack_.setMask(on ? &aliveMask_ : nullptr, false);
     for (GPUKernel* k : {&shadowgen_, &light_, &emitterShadowgen_, &environmentShadowgen_, &environmentLight_})
         k->setMask(on ? &surfaceMask_ : nullptr, false);
+}
+
+// The path integrator's gl form (integrators/GlRegistry.h).
+std::unique_ptr<GlIntegrator> makePathGl(const GlIntegratorSetup& s) {
+    if (s.megakernel) {
+        auto k = std::make_unique<PathMegakernelGl>(s.pipeline, s.textures, s.maxLights, s.aovs);
+        k->setBouncesPerPass(s.megakernelBounces);
+        return k;
+    }
+    return std::make_unique<PathGl>(s.pipeline, s.textures, s.mask, true, s.maskPaths);
 }
 
 }  // namespace gpurt

@@ -1,8 +1,6 @@
 // The path integrator in the registry (integrators/Registry.h).
 #include "raytrace/integrators/Registry.h"
 #include "raytrace/integrators/path/PathCpu.h"
-#include "raytrace/integrators/path/PathGl.h"
-#include "raytrace/integrators/path/PathMegakernelGl.h"
 
 #include <algorithm>
 
@@ -17,15 +15,6 @@ glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 ey
                       {settings.clampDirect, settings.clampIndirect}, aovs, stats, features);
 }
 
-std::unique_ptr<GlIntegrator> gl(const GlIntegratorSetup& s) {
-    if (s.megakernel) {
-        auto k = std::make_unique<PathMegakernelGl>(s.pipeline, s.textures, s.maxLights, s.aovs);
-        k->setBouncesPerPass(s.megakernelBounces);
-        return k;
-    }
-    return std::make_unique<PathGl>(s.pipeline, s.textures, s.mask, true, s.maskPaths);
-}
-
 }  // namespace
 
 const IntegratorInfo& pathIntegrator() {
@@ -38,7 +27,6 @@ const IntegratorInfo& pathIntegrator() {
         i.clamps = true;
         i.defaultBounces = kDefaultPathBounces;
         i.cpuSample = cpuSample;
-        i.gl = gl;
         i.hasWavefront = true;
         return i;
     }();

@@ -1,6 +1,8 @@
 #include "raytrace/integrators/whitted/WhittedGl.h"
 
 #include "raytrace/RayMath.h"
+#include "raytrace/integrators/GlRegistry.h"
+#include "raytrace/integrators/Megakernel.h"
 #include "raytrace/integrators/SharedPasses.h"
 
 #include <algorithm>
@@ -160,6 +162,17 @@ void WhittedGl::setRoundRect(std::optional<StreamRect> rect) {
     for (GPUKernel* k : {&surface_, &shadowgen_, &light_, &emitterShadowgen_, &emitterLight_, &bounce_, &lastBounce_})
         k->setRect(rect);
     p_.accel.setRect(rect);
+}
+
+// Whitted's gl form (integrators/GlRegistry.h).
+std::unique_ptr<GlIntegrator> makeWhittedGl(const GlIntegratorSetup& s) {
+    if (s.megakernel) {  // glsl/integrators/whitted/megakernel.frag: each pixel's tree in one pass
+        auto k = std::make_unique<OnePassMegakernelGl>(s.pipeline, s.textures, "whittedMegakernel",
+                                                       "integrators/whitted/megakernel.frag", s.maxLights, s.aovs);
+        for (GPUKernel* pass : k->kernels()) pass->setUniform("stackSlots", s.stackSlots);
+        return k;
+    }
+    return std::make_unique<WhittedGl>(s.pipeline, s.textures, s.stackSlots, s.spawns);
 }
 
 }  // namespace gpurt
