@@ -258,8 +258,12 @@ void PictureCliOptions::add(CLI::App& cmd) {
 RenderSettings PictureCliOptions::settings(const Values& values, glm::ivec2 size, int given, const Scene& scene,
                                            int scaleExponent) {
     RenderSettings settings;
-    for (const auto& [uniform, value] : values.integratorOptions)  // distances, in the scene's units
-        settings.integratorOptions[uniform] = std::ldexp(value, -scaleExponent);
+    for (const IntegratorOption& option : integratorInfo(values.integrator).options) {
+        auto given = values.integratorOptions.find(option.uniform);
+        if (given != values.integratorOptions.end())  // lengths scale with the scene
+            settings.integratorOptions[option.uniform] =
+                option.sceneUnits ? std::ldexp(given->second, -scaleExponent) : given->second;
+    }
     settings.width = size.x;
     settings.height = size.y;
     settings.maxBounces = bounces(given, scene, values.integrator);

@@ -3,7 +3,6 @@
 // megakernels) and the cpu backend (accel/grid/GridCpu.cpp), after raymath.h. The split
 // traverse.frag / intersect.frag pair runs the same steps as two kernels.
 // The includer defines how the grid is read:
-//   GPURT_GRID_FN          (optional) how the functions are declared, GPURT_FN by default
 //   GPURT_GRID_PARAMS      leading parameters of the functions (empty in GLSL: the samplers are
 //                          uniforms), GPURT_GRID_ARGS the matching arguments
 //   GPURT_GRID_MIN, GPURT_GRID_CELL (vec3), GPURT_GRID_RES (ivec3), GPURT_GRID_TOLERANCE (float):
@@ -25,17 +24,11 @@
 #ifndef GPURT_GRID_H
 #define GPURT_GRID_H
 
-// How the functions are declared (the cpu backend inlines them into each of its closest-hit and
-// any-hit traversals, so that anyHit is a constant there).
-#ifndef GPURT_GRID_FN
-#define GPURT_GRID_FN GPURT_FN
-#endif
-
 // The triangles of the cell of list range `range` (exit parameter tExit) against the ray o + t d
 // (ray: its watertightRay): the closest hit in the cell nearer than bestT replaces (bestT, bestId,
 // bestU, bestV); with anyHit the first hit nearer than bestT. tests counts the triangle tests.
 // Entries are in ascending id order and the test is strict, so the lowest id wins a tie.
-GPURT_GRID_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit,
+GPURT_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit,
                            GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU,
                            GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
     for (uint k = range.x; k < range.x + range.y; ++k) {
@@ -62,7 +55,7 @@ GPURT_GRID_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray
 // One cell of the traversal of o + t d (limit tLimit): its triangles, then the step to the next
 // cell (cell and tMax, the DDA's state). False when the ray is done: it hit (bestId >= 0), the
 // next cell starts beyond its limit, or it left the grid.
-GPURT_GRID_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, float tLimit, bool anyHit,
+GPURT_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, float tLimit, bool anyHit,
                         GPURT_INOUT(ivec3) cell, GPURT_INOUT(vec3) tMax, GPURT_INOUT(float) bestT,
                         GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV,
                         GPURT_INOUT(int) tests) {
@@ -78,7 +71,7 @@ GPURT_GRID_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray
 // triangle id or -1, with t (tLimit when none), u, v; steps counts the cells visited (at most
 // maxSteps), tests the triangle tests, state is RAY_INACTIVE (the ray misses the box), RAY_DEAD,
 // or RAY_OVERFLOW (maxSteps cells visited: a bug or a damaged grid, reported, never a hang).
-GPURT_GRID_FN int gridTrace(GPURT_GRID_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
+GPURT_FN int gridTrace(GPURT_GRID_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
                        GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV, GPURT_OUT(int) steps,
                        GPURT_OUT(int) tests, GPURT_OUT(int) state) {
     bestT = tLimit;

@@ -116,6 +116,11 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     }
 
     const IntegratorInfo& info = integratorInfo(settings.integrator);
+    // The integrator's own options, each resolved once (its default where none is given; an
+    // unlimited one as GPURT_FAR, as the kernels' uniforms hold it), not once a sample.
+    RenderSettings sampleSettings = settings;
+    for (const IntegratorOption& option : info.options)
+        sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
     const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
@@ -141,7 +146,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
             const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed, settings.sampler);
             SampleFeatures f;
-            const glm::vec3 c = info.cpuSample(*this, px, camera.eye, d, lights, settings, aovs, stats,
+            const glm::vec3 c = info.cpuSample(*this, px, camera.eye, d, lights, sampleSettings, aovs, stats,
                                                features ? &f : nullptr);
             if (features) {
                 albedoSums[pixel] += f.albedo;

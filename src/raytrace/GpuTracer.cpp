@@ -156,14 +156,15 @@ std::vector<GPUKernel*> GpuTracer::allKernels() {
 // The uniforms of a render's settings on every kernel: the background, the sampler, the clamps and
 // the integrator's own options (GPURT_FAR for an unlimited one).
 void GpuTracer::setRenderUniforms(const RenderSettings& settings) {
-    const IntegratorInfo& info = integratorInfo(settings.integrator);
+    std::vector<std::pair<std::string, float>> options;
+    for (const IntegratorOption& option : integratorInfo(settings.integrator).options)
+        options.emplace_back(option.uniform, std::min(integratorOption(settings, option.uniform), GPURT_FAR));
     for (GPUKernel* k : allKernels()) {
         k->setUniform("background", scene_.background)
             .setUniform("samplerKind", unsigned(settings.sampler))
             .setUniform("clampDirect", settings.clampDirect)
             .setUniform("clampIndirect", settings.clampIndirect);
-        for (const IntegratorOption& option : info.options)
-            k->setUniform(option.uniform, std::min(integratorOption(settings, option.uniform), GPURT_FAR));
+        for (const auto& [uniform, value] : options) k->setUniform(uniform, value);
     }
 }
 

@@ -14,7 +14,8 @@
 namespace gpurt {
 
 // One sample of pixel px through the camera ray eye + t d on the cpu; with `features`, the
-// sample's features there (integrators with IntegratorInfo::features).
+// sample's features there (integrators with IntegratorInfo::features). settings.integratorOptions
+// holds every option of the integrator (CpuTracer::render resolves them).
 using CpuSample = glm::vec3 (*)(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                                 const std::vector<PointLight>& lights, const RenderSettings& settings, PixelAovs aovs,
                                 RenderStats& stats, SampleFeatures* features);
@@ -28,6 +29,7 @@ struct IntegratorOption {
     std::string help;
     float defaultValue;
     float above;
+    bool sceneUnits;  // a length in scene units: it scales with the scene (SceneScale.h)
 };
 
 struct IntegratorInfo {

@@ -44,7 +44,6 @@ struct GridCells {
     }
 };
 
-#define GPURT_GRID_FN inline __attribute__((always_inline))
 #define GPURT_GRID_PARAMS const GridCells &cells,
 #define GPURT_GRID_ARGS cells,
 #define GPURT_GRID_MIN cells.grid.min

@@ -30,8 +30,7 @@ namespace {
 glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                     const std::vector<PointLight>& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures*) {
-    const float distance = std::min(integratorOption(settings, "aoDistance"), GPURT_FAR);  // as the kernel's uniform
-    raymath::AoHooks hooks(tracer, px, lights, aovs, stats, distance);
+    raymath::AoHooks hooks(tracer, px, lights, aovs, stats, settings.integratorOptions.at("aoDistance"));
     return hooks.aoTrace(eye, d);
 }
 
@@ -45,7 +44,7 @@ const IntegratorInfo& aoIntegrator() {
         i.options.push_back({"ao-distance", "aoDistance",
                              "Ambient occlusion: only what lies within this distance of a point occludes it (scene "
                              "units, > 0; default 'unlimited')",
-                             std::numeric_limits<float>::infinity(), 0.0f});
+                             std::numeric_limits<float>::infinity(), 0.0f, true});
         i.cpuSample = cpuSample;
         return i;
     }();
