@@ -6,6 +6,7 @@
 #include "stream/StreamErrors.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -126,6 +127,27 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
     if (!eye.empty()) spec.eye = rescalePoint(parseVec3("--eye", eye), scaleExponent);
     if (!target.empty()) spec.target = rescalePoint(parseVec3("--target", target), scaleExponent);
     if (!up.empty()) spec.up = parseVec3("--up", up);
+    spec.metre = std::ldexp(1.0f, -scaleExponent);
+    if (!lensRadius.empty()) {
+        spec.lensRadius = std::ldexp(parseFiniteFloat("--lens-radius", lensRadius), -scaleExponent);
+        if (spec.lensRadius < 0.0f) throw InputError("--lens-radius: " + lensRadius + " is negative");
+        spec.fstop = 0.0f;
+    }
+    if (!fstop.empty()) {
+        spec.fstop = parseFiniteFloat("--fstop", fstop);
+        if (!(spec.fstop > 0.0f)) throw InputError("--fstop: " + fstop + " is not above 0");
+        spec.lensRadius = 0.0f;
+    }
+    if (!focusDistance.empty()) {
+        spec.focusDistance = std::ldexp(parseFiniteFloat("--focus-distance", focusDistance), -scaleExponent);
+        if (!(spec.focusDistance > 0.0f)) throw InputError("--focus-distance: " + focusDistance + " is not above 0");
+    }
+    if (!blades.empty()) {
+        spec.blades = int(parseCount("--blades", blades, 0, 64));
+        if (spec.blades == 1 || spec.blades == 2)
+            throw InputError("--blades: " + blades + " blades make no aperture (0 for a disc, or 3 to 64)");
+    }
+    if (!bladeRotation.empty()) spec.bladeRotation = parseFiniteFloat("--blade-rotation", bladeRotation);
     return spec;
 }
 

@@ -74,6 +74,7 @@ inline const CLI::Validator kNotEmpty(
 
 struct CameraOptions {
     std::string eye, target, up, fovy, size;
+    std::string lensRadius, fstop, focusDistance, blades, bladeRotation;  // depth of field
     std::string upAxis;  // --up-axis; empty: the scene's own (a JSON scene's "up_axis", else y)
 
     void add(CLI::App& cmd) {
@@ -84,6 +85,25 @@ struct CameraOptions {
         cmd.add_option("--fovy", fovy, "Vertical field of view in degrees (default 45)")
             ->check(kNotEmpty);
         cmd.add_option("--size", size, "Image size WxH (default 512x512, or the scene's)")
+            ->check(kNotEmpty);
+        CLI::Option* radius = cmd.add_option("--lens-radius", lensRadius,
+                                             "Depth of field: the thin lens's radius in scene units (default 0: "
+                                             "a pinhole camera, everything sharp)")
+                                  ->check(kNotEmpty);
+        cmd.add_option("--fstop", fstop,
+                       "Depth of field: the lens's f-number N, as Cycles (radius = f / (2 N), f the focal length "
+                       "of a 36 mm sensor across the image's larger side; a scene unit is a metre)")
+            ->check(kNotEmpty)
+            ->excludes(radius);
+        cmd.add_option("--focus-distance", focusDistance,
+                       "Depth of field: the distance of the sharp plane along the view direction (default: "
+                       "from the eye to the target)")
+            ->check(kNotEmpty);
+        cmd.add_option("--blades", blades, "Depth of field: aperture blades, 0 (a disc, default) or 3 to 64")
+            ->check(kNotEmpty);
+        cmd.add_option("--blade-rotation", bladeRotation,
+                       "Depth of field: the angle in degrees of the first blade corner from the right, "
+                       "counter-clockwise (default 0)")
             ->check(kNotEmpty);
         addUpAxisOption(cmd, upAxis);
     }

@@ -208,6 +208,8 @@ class Viewer {
                 window_->requestClose();
             } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_P) {
                 screenshotNow = true;
+            } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_F) {
+                focusUnderMouse();
             } else if (e.type == WindowEvent::Key && e.press && e.key == GLFW_KEY_N &&
                        integratorInfo(settings_.integrator).features) {
                 denoising_ = !denoising_;
@@ -224,6 +226,20 @@ class Viewer {
             }
         }
         return screenshotNow;
+    }
+
+    // F: the plane of focus through what the pixel centre under the mouse sees (its distance along
+    // the view direction); nothing where it sees nothing. Without a lens (--lens-radius, --fstop)
+    // everything stays sharp, and a line says so.
+    void focusUnderMouse() {
+        if (dirty_) restart();  // the AOVs of the camera on screen
+        const int x = int(std::floor(control_.lastX)), y = int(std::floor(control_.lastY));
+        const float t = progressive_->hitDistance(x, y);
+        if (!std::isfinite(t)) return;
+        const CameraBasis camera = makeCamera(control_.spec, width_, height_);
+        control_.spec.focusDistance = t * glm::dot(primaryDirection(camera, x, y), camera.forward);
+        if (!control_.spec.hasLens()) std::fprintf(stderr, "gpurt: F sets the focus; no lens (--lens-radius or --fstop) blurs\n");
+        dirty_ = true;
     }
 
     // A new camera or size: the pixel centres' AOVs, and the sample sums start again.
@@ -387,10 +403,16 @@ int runView(const ViewOptions& o) {
     // viewer turned the scene); on stderr with --bench, whose stdout is its JSON object alone.
     const CameraSpec& c = viewer.camera();
     const std::string upAxis = o.camera.upAxis.empty() ? std::string() : " --up-axis " + o.camera.upAxis;
-    std::fprintf(o.bench ? stderr : stdout, "--eye %s --target %s --up %s --fovy %s --size %dx%d%s\n",
+    std::string lens;
+    if (c.fstop > 0.0f) lens += " --fstop " + formatFloat(c.fstop);
+    else if (c.lensRadius > 0.0f) lens += " --lens-radius " + formatFloat(std::ldexp(c.lensRadius, scaleExponent));
+    if (c.focusDistance > 0.0f) lens += " --focus-distance " + formatFloat(std::ldexp(c.focusDistance, scaleExponent));
+    if (c.blades > 0) lens += " --blades " + std::to_string(c.blades);
+    if (c.bladeRotation != 0.0f) lens += " --blade-rotation " + formatFloat(c.bladeRotation);
+    std::fprintf(o.bench ? stderr : stdout, "--eye %s --target %s --up %s --fovy %s --size %dx%d%s%s\n",
                  formatVec3(unscaled(c.eye, scaleExponent)).c_str(),
                  formatVec3(unscaled(c.target, scaleExponent)).c_str(), formatVec3(c.up).c_str(),
-                 formatFloat(c.fovy).c_str(), viewer.size().x, viewer.size().y, upAxis.c_str());
+                 formatFloat(c.fovy).c_str(), viewer.size().x, viewer.size().y, lens.c_str(), upAxis.c_str());
     return 0;
 }
 

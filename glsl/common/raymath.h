@@ -47,6 +47,42 @@ GPURT_FN vec3 cameraRayDirection(vec3 forward, vec3 right, vec3 upOrtho, float t
                             height);
 }
 
+// The thin lens (CONTRACT.md, depth of field). aperturePoint: the point of the aperture that the
+// sample numbers u in [0, 1)^2 choose, in lens radii along (right, upOrtho): uniform on the unit
+// disc for blades 0 (Shirley and Chiu's concentric map, which keeps the sampler's strata), else
+// uniform on the regular polygon of `blades` corners on the unit circle, the first `rotation`
+// radians from right towards upOrtho (u.x chooses the triangle (centre, corner k, corner k + 1),
+// all of one area, and stretched back to [0, 1) places the point in it with u.y).
+GPURT_FN vec2 aperturePoint(vec2 u, int blades, float rotation) {
+    if (blades == 0) {
+        vec2 a = u * 2.0f - 1.0f;
+        if (a.x == 0.0f && a.y == 0.0f) return vec2(0.0f);
+        float r = a.y;
+        float phi = 1.57079633f - 0.785398163f * (a.x / a.y);
+        if (abs(a.x) > abs(a.y)) {
+            r = a.x;
+            phi = 0.785398163f * (a.y / a.x);
+        }
+        return vec2(cos(phi), sin(phi)) * r;
+    }
+    float k = min(floor(u.x * float(blades)), float(blades - 1));
+    float s = sqrt(min(u.x * float(blades) - k, 1.0f));
+    float a0 = rotation + 6.28318531f * k / float(blades);
+    float a1 = rotation + 6.28318531f * (k + 1.0f) / float(blades);
+    return vec2(cos(a0), sin(a0)) * (s * (1.0f - u.y)) + vec2(cos(a1), sin(a1)) * (s * u.y);
+}
+
+// The ray through the lens point `lens` (aperturePoint, in lens radii) for the pinhole camera's
+// ray direction dir: towards the point where dir meets the plane of focus, focusDistance along
+// forward from the eye.
+GPURT_FN void thinLensRay(vec3 eye, vec3 forward, vec3 right, vec3 upOrtho, vec3 dir, float lensRadius,
+                          float focusDistance, vec2 lens, GPURT_OUT(vec3) origin, GPURT_OUT(vec3) direction) {
+    vec3 focus = eye + dir * (focusDistance / dot(dir, forward));
+    vec3 o = eye + right * (lens.x * lensRadius) + upOrtho * (lens.y * lensRadius);
+    origin = o;
+    direction = contractNormalize(focus - o);
+}
+
 // The parametric range [x, y] in which the ray o + t d lies inside the box; x > y when it misses.
 // Axis-parallel rays are handled without dividing by zero.
 GPURT_FN vec2 intersectBox(vec3 o, vec3 d, vec3 boxMin, vec3 boxMax) {

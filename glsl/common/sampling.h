@@ -25,6 +25,7 @@
 // The sample dimensions (each a 2D pattern of its own).
 #define GPURT_DIM_PIXEL 0u    // position in the pixel
 #define GPURT_DIM_EMITTER 1u  // the point on an emitter (area lights)
+#define GPURT_DIM_LENS 8190u  // the point on the lens (raymath.h aperturePoint)
 
 // The samplers (RenderTypes.h SamplerKind: the same values).
 #define GPURT_SAMPLER_SOBOL 0u

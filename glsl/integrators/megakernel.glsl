@@ -127,15 +127,15 @@ void emitterPointAt(vec2 u, out vec3 q, out vec3 e1, out vec3 e2, out vec3 emiss
 #endif
 }
 
-// The element's camera ray of the pass's sample (through the pixel centre with PIXEL_CENTRE): its
-// direction from the eye, the pixel begun (beginPixel).
-vec3 beginCameraSample() {
+// The element's camera ray of the pass's sample (through the pixel centre with PIXEL_CENTRE), the
+// pixel begun (beginPixel).
+void beginCameraSample(out vec3 o, out vec3 d) {
     uvec2 pixel = imagePixel();
     beginPixel(pixel);
 #ifdef PIXEL_CENTRE
-    return primaryDirection();
+    cameraRay(pixel, primaryDirection(), o, d);
 #else
-    return sampleDirection();
+    cameraRay(pixel, sampleDirection(), o, d);
 #endif
 }
 

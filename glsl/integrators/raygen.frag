@@ -14,6 +14,8 @@ void main() {
 #else
     vec3 d = sampleDirection();
 #endif
-    rayOrigin = vec4(eye, GPURT_FAR);
+    vec3 o;
+    cameraRay(imagePixel(), d, o, d);
+    rayOrigin = vec4(o, GPURT_FAR);
     rayDir = vec4(d, GPURT_A_RAY);
 }

@@ -14,6 +14,10 @@ uniform uint sampleIndex;  // the sample of this pass
 uniform uint sampleCount;  // --spp (1: the pixel centre)
 uniform uint seed;         // --seed
 uniform uint samplerKind;  // --sampler (sampling.h GPURT_SAMPLER_*)
+uniform float lensRadius;     // 0: the pinhole camera (Camera.h CameraBasis)
+uniform float focusDistance;
+uniform int blades;
+uniform float bladeRotation;  // radians
 
 // The direction of this fragment's primary ray (stream row y = image row tileRow + y from the
 // top; pixel.glsl imagePixel).
@@ -32,3 +36,14 @@ vec3 sampleDirectionAt(uvec2 pixel) {
 }
 
 vec3 sampleDirection() { return sampleDirectionAt(imagePixel()); }
+
+// The camera ray of this fragment's sample for the pinhole direction d at pixel: from the eye, or
+// with a lens through the sample's lens point (Camera.cpp sampleRay on the CPU).
+void cameraRay(uvec2 pixel, vec3 d, out vec3 origin, out vec3 direction) {
+    origin = eye;
+    direction = d;
+    if (!(lensRadius > 0.0f)) return;
+    vec2 u = sample2D(samplerKind, pixel.x, pixel.y, sampleIndex, sampleCount, seed, GPURT_DIM_LENS);
+    thinLensRay(eye, forward, right, upOrtho, d, lensRadius, focusDistance, aperturePoint(u, blades, bladeRotation),
+                origin, direction);
+}

@@ -42,6 +42,40 @@ float tanHalfFovy(float fovy) {
     return static_cast<float>(std::tan(double(fovy) * std::numbers::pi / 360.0));
 }
 
+std::string number(float v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// The lens of spec in the basis (its forward and field of view set).
+void setLens(CameraBasis& c, const CameraSpec& spec) {
+    if (!(std::isfinite(spec.lensRadius) && spec.lensRadius >= 0.0f))
+        throw InputError("--lens-radius: must be a finite number >= 0, got " + number(spec.lensRadius));
+    if (!(std::isfinite(spec.fstop) && spec.fstop >= 0.0f))
+        throw InputError("--fstop: must be a finite number > 0, got " + number(spec.fstop));
+    if (!(std::isfinite(spec.focusDistance) && spec.focusDistance >= 0.0f))
+        throw InputError("--focus-distance: must be a finite number > 0, got " + number(spec.focusDistance));
+    if (spec.blades < 0 || spec.blades == 1 || spec.blades == 2 || spec.blades > 64)
+        throw InputError("--blades: must be 0 (a disc) or 3 to 64, got " + std::to_string(spec.blades));
+    if (!std::isfinite(spec.bladeRotation))
+        throw InputError("--blade-rotation: must be a finite number of degrees");
+    if (!spec.hasLens()) return;
+    double radius = spec.lensRadius;
+    if (spec.fstop > 0.0f) {
+        // f = 0.018 / tan(fov / 2), fov across the larger side; in double, then rounded.
+        const double tanHalf = std::tan(double(spec.fovy) * std::numbers::pi / 360.0) * std::max(1.0, double(c.aspect));
+        radius = 0.018 / tanHalf / (2.0 * double(spec.fstop)) * double(spec.metre);
+    }
+    c.lensRadius = static_cast<float>(radius);
+    const glm::vec3 view = spec.target - spec.eye;
+    c.focusDistance = spec.focusDistance > 0.0f ? spec.focusDistance : std::sqrt(glm::dot(view, view));
+    if (!(c.focusDistance > 0.0f && std::isfinite(c.focusDistance)))
+        throw InputError("--focus-distance: the distance from --eye to --target is not a usable focus distance");
+    c.blades = spec.blades;
+    c.bladeRotation = static_cast<float>(double(spec.bladeRotation) * std::numbers::pi / 180.0);
+}
+
 }  // namespace
 
 CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
@@ -77,6 +111,7 @@ CameraBasis makeCamera(const CameraSpec& spec, int width, int height) {
     c.aspect = static_cast<float>(width) / static_cast<float>(height);
     c.width = width;
     c.height = height;
+    setLens(c, spec);
     return c;
 }
 
@@ -113,6 +148,15 @@ glm::vec3 sampleDirection(const CameraBasis& c, int i, int j, uint32_t s, uint32
     return raymath::cameraRayThrough(c.forward, c.right, c.upOrtho, c.tanHalf, c.aspect,
                                      float(i) + offset.x, float(j) + offset.y, float(c.width),
                                      float(c.height));
+}
+
+CameraRay sampleRay(const CameraBasis& c, int i, int j, uint32_t s, uint32_t n, uint32_t seed, SamplerKind sampler) {
+    CameraRay ray{c.eye, sampleDirection(c, i, j, s, n, seed, sampler)};
+    if (!(c.lensRadius > 0.0f)) return ray;
+    const glm::vec2 u = raymath::sample2D(uint32_t(sampler), uint32_t(i), uint32_t(j), s, n, seed, GPURT_DIM_LENS);
+    raymath::thinLensRay(c.eye, c.forward, c.right, c.upOrtho, ray.direction, c.lensRadius, c.focusDistance,
+                         raymath::aperturePoint(u, c.blades, c.bladeRotation), ray.origin, ray.direction);
+    return ray;
 }
 
 }  // namespace gpurt

@@ -144,10 +144,10 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         const PixelAovs aovs = samples == 1 && settings.aovs ? PixelAovs{&out, pixel} : PixelAovs{};
         for (uint32_t s = first; s < last; ++s) {
             const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
-            const glm::vec3 d = sampleDirection(camera, i, j, s, samples, settings.seed, settings.sampler);
+            const CameraRay ray = sampleRay(camera, i, j, s, samples, settings.seed, settings.sampler);
             SampleFeatures f;
-            const glm::vec3 c = info.cpuSample(*this, px, camera.eye, d, lights, sampleSettings, aovs, stats,
-                                               features ? &f : nullptr);
+            const glm::vec3 c = info.cpuSample(*this, px, ray.origin, ray.direction, lights, sampleSettings, aovs,
+                                               stats, features ? &f : nullptr);
             if (features) {
                 albedoSums[pixel] += f.albedo;
                 normalSums[pixel] += f.normal;

@@ -92,7 +92,11 @@ void GpuPipeline::setCamera(const CameraBasis& c, const std::vector<GPUKernel*>&
             .setUniform("tanHalf", c.tanHalf)
             .setUniform("aspect", c.aspect)
             .setUniform("imageSize", glm::vec2(float(c.width), float(c.height)))
-            .setUniform("tileRow", c.rowBegin);
+            .setUniform("tileRow", c.rowBegin)
+            .setUniform("lensRadius", c.lensRadius)
+            .setUniform("focusDistance", c.focusDistance)
+            .setUniform("blades", c.blades)
+            .setUniform("bladeRotation", c.bladeRotation);
 }
 
 void GpuPipeline::setSample(uint32_t s, uint32_t n, uint32_t seed) {

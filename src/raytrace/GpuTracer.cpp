@@ -348,6 +348,14 @@ void GpuTracer::denoiseProgressive() {
     denoiser_->denoiseSums();
 }
 
+float GpuTracer::progressiveHitDistance(int x, int y) const {
+    constexpr float kNone = std::numeric_limits<float>::infinity();
+    if (!pipeline_ || x < 0 || y < 0 || x >= pipeline_->width || y >= pipeline_->height) return kNone;
+    const std::vector<float> hits = pipeline_->aovHit.download();  // a key press's, not a frame's
+    const size_t texel = (size_t(y) * size_t(pipeline_->width) + size_t(x)) * 4;
+    return texel + 3 < hits.size() && hits[texel + 3] >= 0.0f ? hits[texel] : kNone;
+}
+
 std::set<std::string> GpuTracer::accelerationPasses() {
     std::set<std::string> names;
     for (GPUKernel* k : accel_->kernels()) names.insert(k->name());

@@ -55,6 +55,8 @@ class GpuTracer {
     // The denoiser over the progressive sums (beginProgressive with settings.features), into the
     // display's `denoised`.
     void denoiseProgressive();
+    // The pixel centre's hit distance (ProgressiveRenderer::hitDistance).
+    float progressiveHitDistance(int x, int y) const;
 
     // The names of the accelerator's passes (the trace phase of --stats; the others shade).
     std::set<std::string> accelerationPasses();

@@ -55,19 +55,20 @@ constexpr char kAlpha[] = "ALPH";
 constexpr char kTangents[] = "TANG";
 constexpr char kSided[] = "SIDE";
 constexpr char kTransmissionMaps[] = "TRNS";
+constexpr char kLens[] = "LENS";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
 // the vertex colours, the alpha coverage, the vertex tangents, the sides and the transmission maps are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps};
+                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps, kLens};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
            tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
-           tag == kSided || tag == kTransmissionMaps || gridSection(tag) || bvhSection(tag);
+           tag == kSided || tag == kTransmissionMaps || tag == kLens || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -82,6 +83,8 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (gridSection(tag)) return accel.grid != nullptr;
     if (bvhSection(tag)) return accel.bvh != nullptr;
     if (tag == kCamera) return bool(loaded.scene.camera);
+    // Only for a camera with a lens: other files stay as they were before the section existed.
+    if (tag == kLens) return loaded.scene.camera && loaded.scene.camera->hasLens();
     if (tag == kNormals) return !loaded.scene.normals.empty();
     if (tag == kAnimation) return bool(loaded.scene.animation);
     if (tag == kTexcoords) return !loaded.scene.texcoords.empty();
@@ -144,6 +147,7 @@ constexpr size_t kTriangleBytes = 9 * 4 + 4;      // three vertices, then (separ
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 constexpr size_t kLightBytes = 7 * 4;
 constexpr size_t kCameraBytes = 10 * 4;
+constexpr size_t kLensBytes = 5 * 4;
 constexpr size_t kAnimationKeyBytes = 11 * 4;  // the time, then a camera
 constexpr uint64_t kMaxAnimationKeys = 1 << 20;
 constexpr size_t kBackgroundBytes = 3 * 4;
@@ -831,6 +835,23 @@ class SectionDecoder {
         scene.camera = c;
     }
 
+    // The camera's lens: radius, f-stop, focus distance, blades, blade rotation (after the camera).
+    void lens(const Section& s, Scene& scene) const {
+        fixedSize(s, kLensBytes);
+        if (!scene.camera) fail("section " + s.tag + ": a lens without a camera");
+        ByteReader in = reader(s);
+        CameraSpec& c = *scene.camera;
+        c.lensRadius = in.f32();
+        c.fstop = in.f32();
+        c.focusDistance = in.f32();
+        c.blades = int(std::min(in.u32(), 1000u));
+        c.bladeRotation = in.f32();
+        if (!(c.lensRadius >= 0.0f && c.fstop >= 0.0f && c.focusDistance >= 0.0f && std::isfinite(c.lensRadius) &&
+              std::isfinite(c.fstop) && std::isfinite(c.focusDistance) && std::isfinite(c.bladeRotation)) ||
+            c.blades == 1 || c.blades == 2 || c.blades > 64)
+            fail("section " + s.tag + ": not a lens (radius, f-stop and focus distance >= 0, blades 0 or 3 to 64)");
+    }
+
     // The keys (count, then each key's time and camera), then the frame rate.
     void animation(const Section& s, Scene& scene) const {
         if (s.size < 12) fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, too short");
@@ -963,6 +984,7 @@ class SectionEncoder {
         else if (tag == kMaterials) materials();
         else if (tag == kLights) lights();
         else if (tag == kCamera) camera(*scene_.camera);
+        else if (tag == kLens) lens(*scene_.camera);
         else if (tag == kAnimation) animation();
         else if (tag == kBackground) out_.vec3(scene_.background);
         else if (tag == kRender) render();
@@ -1035,6 +1057,14 @@ class SectionEncoder {
         out_.vec3(c.target);
         out_.vec3(c.up);
         out_.f32(c.fovy);
+    }
+
+    void lens(const CameraSpec& c) {
+        out_.f32(c.lensRadius);
+        out_.f32(c.fstop);
+        out_.f32(c.focusDistance);
+        out_.u32(uint32_t(c.blades));
+        out_.f32(c.bladeRotation);
     }
 
     void animation() {
@@ -1360,6 +1390,7 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     decoder.materials(*section(kMaterials), loaded.scene);
     decoder.lights(*section(kLights), loaded.scene);
     if (section(kCamera)) decoder.camera(*section(kCamera), loaded.scene);
+    if (section(kLens)) decoder.lens(*section(kLens), loaded.scene);
     decoder.background(*section(kBackground), loaded.scene);
     decoder.render(*section(kRender), loaded);
     if (section(kNormals)) decoder.normals(*section(kNormals), loaded.scene);

@@ -71,6 +71,7 @@ class GlRenderer final : public Renderer, public ProgressiveRenderer {
     void addSample(uint32_t s, uint32_t n) override { tracer_.addSample(s, n); }
     void bindDisplay(GPUKernel& display) override { tracer_.bindDisplay(display); }
     void denoise() override { tracer_.denoiseProgressive(); }
+    float hitDistance(int x, int y) override { return tracer_.progressiveHitDistance(x, y); }
     const RenderStats& stats() const override { return tracer_.progressiveStats(); }
 
   private:

@@ -56,6 +56,9 @@ class ProgressiveRenderer {
     virtual void denoise() = 0;
     // The rays traced since the first begin.
     virtual const RenderStats& stats() const = 0;
+    // The distance along its ray to what the centre of pixel (x, y) (x from the left, y from the
+    // top) sees, from begin's AOVs; +infinity where it sees nothing or lies outside the image.
+    virtual float hitDistance(int x, int y) = 0;
 };
 
 class Renderer {

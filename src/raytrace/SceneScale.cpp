@@ -36,6 +36,14 @@ glm::vec3 rescalePoint(glm::vec3 p, int exponent) {
     return {std::ldexp(p.x, -exponent), std::ldexp(p.y, -exponent), std::ldexp(p.z, -exponent)};
 }
 
+void rescaleCamera(CameraSpec& camera, int exponent) {
+    camera.eye = rescalePoint(camera.eye, exponent);
+    camera.target = rescalePoint(camera.target, exponent);
+    camera.lensRadius = std::ldexp(camera.lensRadius, -exponent);
+    camera.focusDistance = std::ldexp(camera.focusDistance, -exponent);
+    camera.metre = std::ldexp(camera.metre, -exponent);
+}
+
 void rescaleScene(Scene& scene, int exponent) {
     if (exponent == 0) return;
     for (Triangle& t : scene.triangles) {
@@ -48,15 +56,9 @@ void rescaleScene(Scene& scene, int exponent) {
         // A light far brighter than its distance warrants saturates rather than overflows.
         light.intensity = std::min(std::ldexp(light.intensity, -2 * exponent), FLT_MAX);
     }
-    if (scene.camera) {
-        scene.camera->eye = rescalePoint(scene.camera->eye, exponent);
-        scene.camera->target = rescalePoint(scene.camera->target, exponent);
-    }
+    if (scene.camera) rescaleCamera(*scene.camera, exponent);
     if (scene.animation)
-        for (CameraKey& key : scene.animation->keys) {
-            key.camera.eye = rescalePoint(key.camera.eye, exponent);
-            key.camera.target = rescalePoint(key.camera.target, exponent);
-        }
+        for (CameraKey& key : scene.animation->keys) rescaleCamera(key.camera, exponent);
 }
 
 void rescaleGrid(UniformGrid& grid, int exponent) {

@@ -25,6 +25,10 @@ int renderScaleExponent(const Scene& scene);
 // p * 2^-exponent, component by component (exact unless it over- or underflows).
 glm::vec3 rescalePoint(glm::vec3 p, int exponent);
 
+// A camera's positions and lengths times 2^-exponent (eye, target, lens radius, focus distance,
+// and its metre, so that an f-stop gives the same lens).
+void rescaleCamera(CameraSpec& camera, int exponent);
+
 // Multiplies every position of the scene by 2^-exponent (vertices, lights, the camera's eye and
 // target) and light intensities by 2^-2*exponent, so that radiance, intensity / distance^2,
 // stays the same.

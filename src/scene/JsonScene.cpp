@@ -616,12 +616,34 @@ class SceneReader {
         return animation;
     }
 
+    // The thin lens (CONTRACT.md, depth of field): lens_radius >= 0 or fstop > 0 (not both),
+    // focus_distance > 0, blades 0 or 3 to 64, blade_rotation in degrees.
+    void readLens(const json& value, const Pointer& at, CameraSpec& camera) const {
+        auto positive = [&](const char* key, bool zero) {
+            const double v = number(value.at(key), at / key);
+            if (!(zero ? v >= 0.0 : v > 0.0))
+                fail(at / key, std::string("must be ") + (zero ? ">= 0" : "> 0") + ", got " + formatNumber(v));
+            return static_cast<float>(v);
+        };
+        if (find(value, "lens_radius") && find(value, "fstop")) fail(at / "fstop", "give lens_radius or fstop, not both");
+        if (find(value, "lens_radius")) camera.lensRadius = positive("lens_radius", true);
+        if (find(value, "fstop")) camera.fstop = positive("fstop", false);
+        if (find(value, "focus_distance")) camera.focusDistance = positive("focus_distance", false);
+        if (const json* blades = find(value, "blades")) {
+            camera.blades = integer(*blades, at / "blades", 0, 64);
+            if (camera.blades == 1 || camera.blades == 2) fail(at / "blades", "must be 0 (a disc) or 3 to 64");
+        }
+        if (const json* rotation = find(value, "blade_rotation")) {
+            camera.bladeRotation = static_cast<float>(number(*rotation, at / "blade_rotation"));
+        }
+    }
+
     // `keyed`: an animation key, which also has a "time".
     CameraSpec readCamera(const json& value, const Pointer& at, bool keyed = false) const {
         if (keyed)
-            requireObject(value, at, {"time", "eye", "target", "up", "fovy"});
+            requireObject(value, at, {"time", "eye", "target", "up", "fovy"});  // the lens: the scene's camera only
         else
-            requireObject(value, at, {"eye", "target", "up", "fovy"});
+            requireObject(value, at, {"eye", "target", "up", "fovy", "lens_radius", "fstop", "focus_distance", "blades", "blade_rotation"});
         CameraSpec camera;
         camera.eye = glm::vec3(vector3(require(value, at, "eye"), at / "eye"));
         camera.target = glm::vec3(vector3(require(value, at, "target"), at / "target"));
@@ -633,6 +655,7 @@ class SceneReader {
                      "must be between 0 and 180 degrees (exclusive), got " + formatNumber(degrees));
             camera.fovy = static_cast<float>(degrees);
         }
+        if (!keyed) readLens(value, at, camera);
         // The contract's basis (CONTRACT.md, camera convention) must exist. In double: in float
         // the squared lengths would overflow for a camera far away in a huge scene, which the
         // renderer handles (SceneScale.h).

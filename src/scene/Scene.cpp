@@ -89,7 +89,7 @@ CameraSpec CameraAnimation::at(int frame) const {
     const CameraKey& b = keys[k];
     const double s = (t - a.time) / (double(b.time) - a.time);
     auto mix = [s](glm::vec3 p, glm::vec3 q) { return glm::vec3(glm::dvec3(p) + (glm::dvec3(q) - glm::dvec3(p)) * s); };
-    CameraSpec c;
+    CameraSpec c = a.camera;  // the lens of the key before
     c.eye = mix(a.camera.eye, b.camera.eye);
     c.target = mix(a.camera.target, b.camera.target);
     c.up = mix(a.camera.up, b.camera.up);

@@ -135,6 +135,16 @@ struct CameraSpec {
     glm::vec3 target{0.0f, 0.0f, -1.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float fovy = 45.0f;
+    // Depth of field (CONTRACT.md, thin lens); none while lensRadius and fstop are 0, and then the
+    // pixels are the pinhole camera's, exactly.
+    float lensRadius = 0.0f;     // scene units
+    float fstop = 0.0f;          // > 0: the lens radius is f / (2 fstop) metres (makeCamera), not lensRadius
+    float focusDistance = 0.0f;  // along the view direction; 0: |target - eye|
+    int blades = 0;              // 0: a round aperture; else a regular polygon of `blades` >= 3 corners
+    float bladeRotation = 0.0f;  // degrees from right towards up of the first corner
+    float metre = 1.0f;          // one metre in scene units (2^-e in a scene rescaled by 2^-e), for fstop
+
+    bool hasLens() const { return lensRadius > 0.0f || fstop > 0.0f; }
 };
 
 // A camera animated by keyframes (a JSON scene's "animation"): frame f is at time f / fps seconds.

@@ -181,6 +181,13 @@ TEST_F(Cli, BadOptionsAreRefusedWithExit1) {
     expectRefused(render + " --aov colour=" + path("x.pfm"), "colour");
     expectRefused(render + " --backend vulkan", "--backend");
     expectRefused(render + " --eye 1,2", "--eye");
+    expectRefused(render + " --lens-radius -0.1", "--lens-radius");
+    expectRefused(render + " --fstop 0", "--fstop");
+    expectRefused(render + " --fstop -2", "--fstop");
+    expectRefused(render + " --lens-radius 0.1 --blades 2", "--blades");
+    expectRefused(render + " --lens-radius 0.1 --blades 1", "--blades");
+    expectRefused(render + " --lens-radius 0.1 --focus-distance 0", "--focus-distance");
+    expectRefused(render + " --lens-radius 0.1 --fstop 2", "--fstop");
 }
 
 // Sampling options (CONTRACT.md "Sampling, adaptive sampling and denoising"): a threshold must be

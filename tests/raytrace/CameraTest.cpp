@@ -180,5 +180,45 @@ TEST(CameraTest, FarAndNearTargetsGiveTheUnitFrame) {
     }
 }
 
+// --fstop N as Cycles: a 36 mm sensor across the larger side, f the focal length that gives the
+// field of view across it, the lens radius f / (2 N). A 50 mm lens on a 36 mm sensor sees
+// 2 atan(18 / 50) across it: at f/2 its radius is 12.5 mm, whichever side is the larger.
+TEST(CameraTest, AnFStopIsTheRadiusOfA36MillimetreSensorsLens) {
+    const double across = 2.0 * std::atan(18.0 / 50.0) * 180.0 / std::numbers::pi;
+    CameraSpec spec{{0, 0, 0}, {0, 0, -3}, {0, 1, 0}, float(across)};
+    spec.fstop = 2.0f;
+    EXPECT_NEAR(makeCamera(spec, 64, 64).lensRadius, 0.0125, 1e-6) << "square";
+    EXPECT_NEAR(makeCamera(spec, 48, 64).lensRadius, 0.0125, 1e-6) << "portrait: the height is the larger side";
+    // Landscape 2:1: fovy covers the smaller side, the sensor's 36 mm the width, twice as wide.
+    const double tanAcross = 2.0 * std::tan(across * std::numbers::pi / 360.0);
+    EXPECT_NEAR(makeCamera(spec, 128, 64).lensRadius, 0.018 / tanAcross / 4.0, 1e-6) << "landscape";
+    // In a scene whose metre is 2^-3 units (rescaled), the same lens in scene units.
+    spec.metre = 0.125f;
+    EXPECT_NEAR(makeCamera(spec, 64, 64).lensRadius, 0.0125 / 8.0, 1e-7);
+    // The focus distance defaults to the target's; none of it without a lens.
+    EXPECT_FLOAT_EQ(makeCamera(spec, 64, 64).focusDistance, 3.0f);
+    spec.fstop = 0.0f;
+    EXPECT_EQ(makeCamera(spec, 64, 64).lensRadius, 0.0f);
+}
+
+TEST(CameraTest, ALensTheContractDoesNotKnowIsRefusedNamingTheOption) {
+    const CameraSpec base{{0, 0, 0}, {0, 0, -3}, {0, 1, 0}, 45.0f};
+    CameraSpec s = base;
+    s.lensRadius = -0.1f;
+    expectOptionError(s, 64, 64, "--lens-radius");
+    s = base;
+    s.fstop = -2.0f;
+    expectOptionError(s, 64, 64, "--fstop");
+    for (int blades : {1, 2, -3, 65}) {
+        s = base;
+        s.lensRadius = 0.1f;
+        s.blades = blades;
+        expectOptionError(s, 64, 64, "--blades");
+    }
+    s = base;
+    s.focusDistance = -1.0f;
+    expectOptionError(s, 64, 64, "--focus-distance");
+}
+
 }  // namespace
 }  // namespace gpurt

@@ -110,6 +110,10 @@ LoadedScene unusualScene() {
     s.lights.push_back({{-0.0f, 0.0f, 1e30f}, {0.0f, 0.0f, 0.0f}, 0.0f});
     s.camera =
         CameraSpec{{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 39.3077f};
+    s.camera->fstop = 2.8f;  // the lens travels in its own section
+    s.camera->focusDistance = 650.5f;
+    s.camera->blades = 7;
+    s.camera->bladeRotation = -12.5f;
     CameraAnimation animation;
     animation.fps = 23.976f;
     animation.keys.push_back({-0.5f, CameraSpec{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 10.0f}});
@@ -200,6 +204,9 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.camera->target, y.camera->target));
         EXPECT_TRUE(sameBits(x.camera->up, y.camera->up));
         EXPECT_TRUE(sameBits(x.camera->fovy, y.camera->fovy));
+        EXPECT_TRUE(sameBits(x.camera->lensRadius, y.camera->lensRadius) && sameBits(x.camera->fstop, y.camera->fstop) &&
+                    sameBits(x.camera->focusDistance, y.camera->focusDistance) && x.camera->blades == y.camera->blades &&
+                    sameBits(x.camera->bladeRotation, y.camera->bladeRotation));
     }
     ASSERT_EQ(x.animation.has_value(), y.animation.has_value());
     if (x.animation) {
@@ -505,10 +512,11 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
                    "does not fit");
     // The section table.
     EXPECT_REFUSED(patched([&](Bytes& b) { put32(b, 24, 0xffffffffu); }), "section table");
-    {  // the last section, when it is a required one (ANIM, TXCO and TEXS, optional, come last
-       // when there are some)
+    {  // the last section, when it is a required one (ANIM, TXCO, TEXS and LENS, optional, come
+       // last when there are some)
         LoadedScene still = source_;
         still.scene.animation.reset();
+        still.scene.camera->fstop = 0.0f;
         still.scene.texcoords.clear();
         still.scene.textures.clear();
         for (Material& m : still.scene.materials) m.diffuseTexture = -1;

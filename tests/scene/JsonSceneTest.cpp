@@ -222,6 +222,26 @@ TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
     EXPECT_EQ(scene.maxBounces, 0);
 }
 
+// The thin lens's fields (CONTRACT.md, depth of field), and the lenses the contract does not know.
+TEST_F(JsonSceneTest, TheCameraTakesALens) {
+    write("tri.obj", kTriangleObj);
+    const std::string head = R"({"meshes": [{"file": "tri.obj"}], "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], )";
+    const Scene scene = loadJsonSceneFile(write("scene.json", head + R"("fstop": 2.8, "focus_distance": 4.5,
+        "blades": 6, "blade_rotation": 15}})")).scene;
+    ASSERT_TRUE(scene.camera.has_value());
+    EXPECT_EQ(scene.camera->fstop, 2.8f);
+    EXPECT_EQ(scene.camera->lensRadius, 0.0f);
+    EXPECT_EQ(scene.camera->focusDistance, 4.5f);
+    EXPECT_EQ(scene.camera->blades, 6);
+    EXPECT_EQ(scene.camera->bladeRotation, 15.0f);
+    EXPECT_EQ(loadJsonSceneFile(write("scene.json", head + R"("lens_radius": 0.05}})")).scene.camera->lensRadius, 0.05f);
+    expectError(head + R"("lens_radius": -0.05}})", {"/camera/lens_radius", ">= 0"});
+    expectError(head + R"("fstop": 0}})", {"/camera/fstop", "> 0"});
+    expectError(head + R"("fstop": 2, "lens_radius": 0.1}})", {"/camera/fstop", "not both"});
+    expectError(head + R"("blades": 2}})", {"/camera/blades"});
+    expectError(head + R"("focus_distance": 0}})", {"/camera/focus_distance"});
+}
+
 // A camera animation: the keys as given (defaults as for the camera), frame f at time f / fps,
 // each value interpolated linearly between the keys around it (computed here in double), and the
 // first and last key's camera before and after them.

@@ -12,6 +12,9 @@ layout(location = 0) out vec4 colorOut;  // (the sample's value, 0)
 #include "common/integrators/ao.h"
 
 void main() {
-    colorOut = vec4(aoTrace(eye, beginCameraSample()), 0.0f);
+    vec3 o;
+    vec3 d;
+    beginCameraSample(o, d);
+    colorOut = vec4(aoTrace(o, d), 0.0f);
     countRays(0);
 }

@@ -80,7 +80,9 @@ void main() {
 #else
     vec3 d = sampleDirection();
 #endif
-    PathState st = pathStart(eye, d, true);  // without FEATURES recordFeatures records nothing
+    vec3 o;
+    cameraRay(pixel, d, o, d);
+    PathState st = pathStart(o, d, true);  // without FEATURES recordFeatures records nothing
 #else
     uvec2 element = uvec2(gl_FragCoord.xy);
     if (element.y * uint(packWidth) + element.x >= paths) discard;  // no path in this element

@@ -17,7 +17,10 @@ layout(location = 0) out vec4 colorOut;  // (the sample's colour, 0)
 
 void main() {
     int rounds;
-    vec3 color = whittedTrace(eye, beginCameraSample(), rounds);
+    vec3 o;
+    vec3 d;
+    beginCameraSample(o, d);
+    vec3 color = whittedTrace(o, d, rounds);
     countRays(rounds);
     colorOut = vec4(color, 0.0f);
 }
