@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <thread>
 
 namespace gpurt::test {
@@ -213,6 +214,32 @@ TEST_F(Viewer, AdaptiveFramesAreTheAdaptiveRender) {
     ASSERT_EQ(v->wait(120s), 0) << readFile(dir / "view.err");
     expectRenderMatches("scenes/cornell_blocks.json", printedCamera(),
                         "--integrator path --spp 48 --noise-threshold 0.05 --min-spp 16 --denoise", "shot.png");
+}
+
+// F focuses on the surface under the mouse: a wall facing the camera 5 units along its view is
+// sharp after F, and the camera printed on closing says so (--focus-distance 5, the lens kept);
+// `gpurt render` with it is the picture the window showed.
+TEST_F(Viewer, KeyFFocusesOnTheSurfaceUnderTheMouse) {
+    const std::string floor = std::filesystem::absolute("scenes/floor.obj").string();
+    const std::string scene = path("wall.json");
+    std::ofstream(scene) << (R"({"meshes": [{"file": ")" + floor + R"(", "transform": {"translate": [0, 0, -3],
+        "rotate": [90, 0, 0], "scale": 5}}], "camera": {"eye": [0, 0, 2], "target": [0, 0, 0], "lens_radius": 0.2}})");
+    auto v = view(scene, {"--size", "120x90", "--spp", "2", "--screenshot", path("shot.png")});
+    const std::string id = window();
+    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    xdotool("mousemove --window " + id + " 70 40");
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
+    xdotool("windowfocus --sync " + id);
+    xdotool("key f");
+    ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
+    xdotool("key Escape");
+    ASSERT_EQ(v->wait(60s), 0) << readFile(dir / "view.err");
+    const std::string camera = printedCamera();
+    const size_t at = camera.find("--focus-distance ");
+    ASSERT_NE(at, std::string::npos) << camera;
+    EXPECT_NEAR(std::stod(camera.substr(at + 17)), 5.0, 1e-4) << camera;
+    EXPECT_NE(camera.find("--lens-radius 0.2"), std::string::npos) << camera;
+    expectRenderMatches(scene, camera, "--spp 2", "shot.png");
 }
 
 // A drag and a key move the camera; `gpurt render` with the camera printed on closing is the
