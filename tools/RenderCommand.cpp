@@ -81,7 +81,7 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
                            m.emission.y, m.emission.z, m.ior, m.transmission.x, m.transmission.y, m.transmission.z};
         add(v, sizeof(v));
     }
-    add(scene.lights.data(), scene.lights.size() * sizeof(PointLight));
+    add(scene.lights.data(), scene.lights.size() * sizeof(Light));
     add(&scene.background, sizeof(scene.background));
     if (scene.environment) {  // the map's texels, strength, rotation and sampling
         const Environment& env = *scene.environment;

@@ -139,6 +139,57 @@ GPURT_FN bool lightInFront(vec3 p, vec3 n, vec3 lightPos) {
     return dot(n, contractNormalize(lightPos - p)) > 0.0f;
 }
 
+// Punctual lights (CONTRACT.md, "Lights"; Scene.h Light): point, spot and directional, in the
+// units above (a directional light of intensity I gives a white diffuse surface facing it the
+// radiance I). Each lights a hit p as the point light punctualAsPoint makes for p, so that every
+// material answers all kinds with its one point-light function.
+#define GPURT_LIGHT_POINT 0
+#define GPURT_LIGHT_SPOT 1
+#define GPURT_LIGHT_DIRECTIONAL 2
+
+struct PunctualLight {
+    int kind;
+    vec3 position;   // point, spot
+    vec3 direction;  // spot, directional: the way the light travels (unit)
+    vec3 color;
+    float intensity;
+    vec2 cone;    // spot: (scale, offset) of the cone's falloff (spotCone)
+    float range;  // point, spot: 0 unlimited
+};
+
+// A spot's falloff between the cone's inner and outer angles as the KHR_lights_punctual
+// specification's reference implementation: saturate(cos * scale + offset)^2 with scale =
+// 1 / max(0.001, cos inner - cos outer) and offset = -cos outer * scale.
+GPURT_FN vec2 spotCone(float innerAngle, float outerAngle) {
+    float scale = 1.0f / max(0.001f, cos(innerAngle) - cos(outerAngle));
+    return vec2(scale, -cos(outerAngle) * scale);
+}
+
+// The point light that lights p as light L does: its position (for a directional light one unit
+// from p against its direction, so that intensity / distance^2 is its own intensity) and its
+// intensity at p (a spot's dimmed by its cone; KHR_lights_punctual's range window
+// clamp(1 - (d / range)^4, 0, 1) for a point or spot light with a range). False where L does not
+// light p at all.
+GPURT_FN bool punctualAsPoint(PunctualLight L, vec3 p, GPURT_OUT(vec3) position, GPURT_OUT(float) intensity) {
+    if (L.kind == GPURT_LIGHT_DIRECTIONAL) {
+        position = p - L.direction;
+        intensity = L.intensity;
+        return intensity > 0.0f;
+    }
+    position = L.position;
+    intensity = L.intensity;
+    vec3 toP = p - L.position;
+    if (L.kind == GPURT_LIGHT_SPOT) {
+        float a = clamp(dot(L.direction, contractNormalize(toP)) * L.cone.x + L.cone.y, 0.0f, 1.0f);
+        intensity = intensity * (a * a);
+    }
+    if (L.range > 0.0f) {
+        float r = dot(toP, toP) / (L.range * L.range);
+        intensity = intensity * clamp(1.0f - r * r, 0.0f, 1.0f);
+    }
+    return intensity > 0.0f;
+}
+
 // The shadow ray from a hit towards a light: it is occluded if the traversal finds a hit with
 // 0 < t < tLimit.
 GPURT_FN void shadowRay(vec3 p, vec3 n, float eps, vec3 lightPos, GPURT_OUT(vec3) origin,
@@ -147,6 +198,17 @@ GPURT_FN void shadowRay(vec3 p, vec3 n, float eps, vec3 lightPos, GPURT_OUT(vec3
     vec3 toLight = lightPos - origin;
     dir = contractNormalize(toLight);
     tLimit = sqrt(dot(toLight, toLight));
+}
+
+// The shadow ray from a hit towards light L, whose point light for p is at `position`
+// (punctualAsPoint): shadowRay's, or for a directional light the light's way back, unlimited.
+GPURT_FN void punctualShadowRay(PunctualLight L, vec3 p, vec3 n, float eps, vec3 position, GPURT_OUT(vec3) origin,
+                                GPURT_OUT(vec3) dir, GPURT_OUT(float) tLimit) {
+    shadowRay(p, n, eps, position, origin, dir, tLimit);
+    if (L.kind == GPURT_LIGHT_DIRECTIONAL) {
+        dir = -L.direction;
+        tLimit = GPURT_FAR;
+    }
 }
 
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).

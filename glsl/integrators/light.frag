@@ -1,4 +1,4 @@
-// Adds one point light's diffuse and specular term to the local colour of each surface point
+// Adds one punctual light's diffuse and specular term to the local colour of each surface point
 // whose shadow ray found no occluder. EMITTER: the same for the emitter point each surface point
 // took (shadowgen.frag EMITTER), as a point light of the intensity emitterIntensity gives it.
 // ENVIRONMENT (with PATH): the environment direction each surface point drew (shadowgen.frag
@@ -21,9 +21,7 @@ uniform sampler2D lightSample;  // (q, emitting triangle | -1)
 #elif defined(ENVIRONMENT)
 uniform sampler2D lightSample;  // (direction, pdf | 0)
 #else
-uniform vec3 lightPosition;
-uniform vec3 lightColor;
-uniform float lightIntensity;
+#include "integrators/light_uniforms.glsl"
 #endif
 
 layout(location = 0) out vec4 localColor;
@@ -45,8 +43,13 @@ void main() {
     vec3 lightColor = fetchEmission(emitterMaterial);
     float lightIntensity = emitterIntensity(s.xyz, lightPosition, e1, e2, emitterArea);
 #else
-    if (s.w < 0.0f || !lightInFront(s.xyz, nm.xyz, lightPosition) || readStream(hitState).w >= 0.0f)
-        discard;  // no surface, light behind it, or in shadow: the local colour stays
+    PunctualLight light = uniformLight();
+    vec3 lightPosition;
+    float lightIntensity;
+    vec3 lightColor = light.color;
+    if (s.w < 0.0f || !punctualAsPoint(light, s.xyz, lightPosition, lightIntensity) ||
+        !lightInFront(s.xyz, nm.xyz, lightPosition) || readStream(hitState).w >= 0.0f)
+        discard;  // no surface, light not reaching it or behind it, or in shadow: the local colour stays
 #endif
     vec4 shading = readStream(surfaceShading);
     vec4 view = readStream(surfaceView);

@@ -11,8 +11,8 @@
 
 // The point lights (GpuTracer's list): texels 2k and 2k + 1 hold light k's (position, intensity)
 // and (colour, 0).
-uniform sampler2D pointLights;
-uniform int pointLightCount;
+uniform sampler2D punctualLights;
+uniform int punctualLightCount;
 uniform vec3 background;  // what a ray that misses sees without an environment
 
 // The pass's counters (RenderStats), added once a fragment: texel k of `counters`
@@ -106,12 +106,13 @@ SurfaceHit surfaceAt(vec4 h, vec3 o, vec3 d) {
     return s;
 }
 
-// Point light k: position, colour, intensity.
-void pointLight(int k, out vec3 position, out vec3 color, out float intensity) {
-    vec4 a = texelFetch(pointLights, ivec2(2 * k, 0), 0);
-    position = a.xyz;
-    intensity = a.w;
-    color = texelFetch(pointLights, ivec2(2 * k + 1, 0), 0).xyz;
+// Light k (PunctualLights.h lightTexels: four texels a light).
+PunctualLight punctualLight(int k) {
+    vec4 a = texelFetch(punctualLights, ivec2(4 * k, 0), 0);
+    vec4 b = texelFetch(punctualLights, ivec2(4 * k + 1, 0), 0);
+    vec4 c = texelFetch(punctualLights, ivec2(4 * k + 2, 0), 0);
+    vec4 e = texelFetch(punctualLights, ivec2(4 * k + 3, 0), 0);
+    return PunctualLight(int(b.w), a.xyz, c.xyz, b.xyz, a.w, e.xy, c.w);
 }
 
 // The emitter point for the sample numbers u, on a triangle of edges e1, e2 and its emission

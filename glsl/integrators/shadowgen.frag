@@ -1,5 +1,5 @@
-// Shadow ray generation for one point light: from each surface point that the light is in front
-// of, towards the light, limited to the distance to the light. Other elements carry no ray.
+// Shadow ray generation for one punctual light: from each surface point that the light reaches
+// and is in front of, towards the light, limited to the distance to the light. Other elements carry no ray.
 // EMITTER: for the emitters (area lights) instead: each surface point takes its sample's point q
 // of the emitters, uniform by area (common/sampling.h, dimension GPURT_DIM_EMITTER + bounce; the
 // emitter by a binary search of the area table), stores it for the light pass, and aims the ray
@@ -29,7 +29,7 @@ uniform uint seed;
 uniform uint samplerKind;
 uniform uint bounce;
 #else
-uniform vec3 lightPosition;
+#include "integrators/light_uniforms.glsl"
 #endif
 
 layout(location = 0) out vec4 rayOrigin;  // (o, tLimit)
@@ -79,10 +79,13 @@ void main() {
     float tLimit;
     emitterShadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);
 #else
-    if (s.w < 0.0f || !lightInFront(s.xyz, n, lightPosition)) return;
+    PunctualLight light = uniformLight();
+    vec3 position;
+    float intensity;
+    if (s.w < 0.0f || !punctualAsPoint(light, s.xyz, position, intensity) || !lightInFront(s.xyz, n, position)) return;
     vec3 o, d;
     float tLimit;
-    shadowRay(s.xyz, n, rayOffset, lightPosition, o, d, tLimit);
+    punctualShadowRay(light, s.xyz, n, rayOffset, position, o, d, tLimit);
 #endif
     rayOrigin = vec4(o, tLimit);
     rayDir = vec4(d, GPURT_A_RAY);

@@ -19,7 +19,7 @@ RayStream primaryRays(const CameraBasis& camera) {
 }
 
 glm::vec3 shadowRayTarget(const Scene& scene, glm::vec3 eye) {
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene, eye);
+    const std::vector<Light> lights = lightsOrHeadlight(scene, eye);
     return lights.empty() ? eye : lights.front().position;
 }
 

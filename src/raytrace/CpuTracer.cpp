@@ -121,7 +121,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     RenderSettings sampleSettings = settings;
     for (const IntegratorOption& option : info.options)
         sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    const std::vector<Light> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);

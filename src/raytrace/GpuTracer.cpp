@@ -126,7 +126,7 @@ GpuPipeline& GpuTracer::pipeline(int width, int height, int stackSlots, const In
 
 // The AOVs of the pixel centres' rays (several samples a pixel, the viewer): Whitted's first round
 // (its trace and surface passes), or with megakernels a pass of its own.
-void GpuTracer::pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats) {
+void GpuTracer::pixelCentreAovs(const std::vector<Light>& lights, RenderOutput* out, RenderStats& stats) {
     if (!pipeline_->needs.stages) megakernelAovs_->trace(out, stats);
     else centres_->sample(lights, -1, out, stats);
 }
@@ -207,7 +207,7 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     out.width = camera.width;
     out.height = camera.rows();
 
-    const std::vector<PointLight> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    const std::vector<Light> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
     setRenderUniforms(settings);
     setCamera(camera);
     setCoverageSample(0, settings.seed);  // the pixel-centre rays are sample 0's (CpuTracer::render)

@@ -84,7 +84,7 @@ class GpuTracer {
                           bool progressive = false, bool sums = false, bool aovs = true, bool adaptive = false,
                           bool variance = false, bool features = false);
     // The pixel centres' AOVs into `out` (when given) and the rays into stats.
-    void pixelCentreAovs(const std::vector<PointLight>& lights, RenderOutput* out, RenderStats& stats);
+    void pixelCentreAovs(const std::vector<Light>& lights, RenderOutput* out, RenderStats& stats);
     // The integrator the pipeline was made for.
     GlIntegrator& integrator();
     void setRenderUniforms(const RenderSettings& settings);
@@ -123,7 +123,7 @@ class GpuTracer {
     uint64_t pipelineGeneration_ = 0, denoiserGeneration_ = 0;
     struct Progressive {
         RenderSettings settings;
-        std::vector<PointLight> lights;
+        std::vector<Light> lights;
         RenderOutput output;  // only its stats are used
     } progressive_;
 };

@@ -56,19 +56,22 @@ constexpr char kTangents[] = "TANG";
 constexpr char kSided[] = "SIDE";
 constexpr char kTransmissionMaps[] = "TRNS";
 constexpr char kLens[] = "LENS";
+constexpr char kGlow[] = "GLOW";
+constexpr char kLightKinds[] = "LGTX";
 // In the order the writer stores them; all but the camera, its animation, the normals, the
 // texture coordinates, the textures, the material models, the environment, the acceleration structure's
 // the vertex colours, the alpha coverage, the vertex tangents, the sides and the transmission maps are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
                                          kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
                                          kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps, kLens};
+                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps, kLens,
+                                         kGlow, kLightKinds};
 constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
 constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
            tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
-           tag == kSided || tag == kTransmissionMaps || tag == kLens || gridSection(tag) || bvhSection(tag);
+           tag == kSided || tag == kTransmissionMaps || tag == kLens || tag == kGlow || tag == kLightKinds || gridSection(tag) || bvhSection(tag);
 }
 // Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
 constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
@@ -116,6 +119,14 @@ bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string
     if (tag == kSided)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
                            [](const Material& m) { return !m.doubleSided; });
+    // Only when some material's emission only glows (glTF's): likewise.
+    if (tag == kGlow)
+        return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
+                           [](const Material& m) { return !m.emissionIsLight; });
+    // Only when some light is not a plain point light: likewise.
+    if (tag == kLightKinds)
+        return std::any_of(loaded.scene.lights.begin(), loaded.scene.lights.end(),
+                           [](const Light& l) { return !l.plainPoint(); });
     // Only when some material has a transmission map (glTF transmissionTexture): likewise.
     if (tag == kTransmissionMaps)
         return std::any_of(loaded.scene.materials.begin(), loaded.scene.materials.end(),
@@ -137,6 +148,8 @@ constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 constexpr size_t kAlphaBytes = 5 * 4;
 // SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
 constexpr size_t kSidedBytes = 4;
+constexpr size_t kGlowBytes = 4;
+constexpr size_t kLightKindBytes = 7 * 4;
 // TRNS per material: the transmission map's channel (texture, channel; -1: none).
 constexpr size_t kTransmissionMapBytes = 2 * 4;
 constexpr size_t kEnvironmentMinBytes = 6 * 4;  // flags, strength, rotation, width, height, the name's length
@@ -381,7 +394,7 @@ void checkTangents(const FileLoc& file, const Scene& scene) {
 
 void checkLights(const FileLoc& file, const Scene& scene) {
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-        const PointLight& light = scene.lights[l];
+        const Light& light = scene.lights[l];
         if (!isFinite(light.position) || !isFinite(light.color) || !std::isfinite(light.intensity))
             failAt(file, "light " + std::to_string(l) + ": values are not finite");
         if (!nonNegative(light.color) || !(light.intensity >= 0.0f))
@@ -596,7 +609,7 @@ class SectionDecoder {
         ByteReader in = reader(s);
         const uint64_t n = count(in, s, kLightBytes, true, UINT64_MAX, "lights");
         scene.lights.resize(size_t(n));
-        for (PointLight& light : scene.lights) {
+        for (Light& light : scene.lights) {
             light.position = in.vec3();
             light.color = in.vec3();
             light.intensity = in.f32();
@@ -763,6 +776,44 @@ class SectionDecoder {
                 fail("section " + s.tag + ": material " + std::to_string(k) + ": double-sided " +
                      std::to_string(doubleSided) + " (0 or 1)");
             scene.materials[size_t(k)].doubleSided = doubleSided == 1;
+        }
+    }
+
+    // Whether each material's emission is a light of the scene (count = the materials', then
+    // kGlowBytes each: 1 a light, 0 it only glows).
+    void glow(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kGlowBytes, "materials' emission", kMaxTextureMaterials, scene.materials.size(),
+                                   "materials");
+        for (uint64_t k = 0; k < n; ++k) {
+            const uint32_t light = in.u32();
+            if (light > 1)
+                fail("section " + s.tag + ": material " + std::to_string(k) + ": emission light " + std::to_string(light) +
+                     " (0 or 1)");
+            scene.materials[size_t(k)].emissionIsLight = light == 1;
+        }
+    }
+
+    // Each light's kind and what the kind needs (count = the lights', then kLightKindBytes each:
+    // kind, direction, inner and outer cone angles, range). Read after the lights.
+    void lightKinds(const Section& s, Scene& scene) const {
+        ByteReader in = reader(s);
+        const uint64_t n = oneEach(in, s, kLightKindBytes, "lights' kinds", UINT64_MAX, scene.lights.size(), "lights");
+        for (uint64_t k = 0; k < n; ++k) {
+            Light& l = scene.lights[size_t(k)];
+            const uint32_t kind = in.u32();
+            l.direction = in.vec3();
+            l.innerCone = in.f32();
+            l.outerCone = in.f32();
+            l.range = in.f32();
+            const std::string which = "section " + s.tag + ": light " + std::to_string(k);
+            if (kind > 2) fail(which + ": kind " + std::to_string(kind) + " (0 point, 1 spot, 2 directional)");
+            l.kind = LightKind(kind);
+            const float length2 = glm::dot(l.direction, l.direction);
+            if (!(std::abs(length2 - 1.0f) < 1e-3f)) fail(which + ": the direction is not a unit vector");
+            if (!(l.innerCone >= 0.0f && l.innerCone < l.outerCone && l.outerCone <= 1.5707964f))
+                fail(which + ": cone angles not 0 <= inner < outer <= pi / 2");
+            if (!(l.range >= 0.0f && std::isfinite(l.range))) fail(which + ": range not finite and >= 0");
         }
     }
 
@@ -1002,6 +1053,8 @@ class SectionEncoder {
         else if (tag == kAlpha) alpha();
         else if (tag == kTangents) tangents();
         else if (tag == kSided) sided();
+        else if (tag == kGlow) glow();
+        else if (tag == kLightKinds) lightKinds();
         else if (tag == kTransmissionMaps) transmissionMaps();
         else if (tag == kEnvironment) environment();
     }
@@ -1045,7 +1098,7 @@ class SectionEncoder {
 
     void lights() {
         out_.u64(scene_.lights.size());
-        for (const PointLight& l : scene_.lights) {
+        for (const Light& l : scene_.lights) {
             out_.vec3(l.position);
             out_.vec3(l.color);
             out_.f32(l.intensity);
@@ -1177,6 +1230,22 @@ class SectionEncoder {
     void sided() {
         out_.u64(scene_.materials.size());
         for (const Material& m : scene_.materials) out_.u32(m.doubleSided ? 1u : 0u);
+    }
+
+    void glow() {
+        out_.u64(scene_.materials.size());
+        for (const Material& m : scene_.materials) out_.u32(m.emissionIsLight ? 1u : 0u);
+    }
+
+    void lightKinds() {
+        out_.u64(scene_.lights.size());
+        for (const Light& l : scene_.lights) {
+            out_.u32(uint32_t(l.kind));
+            out_.vec3(l.direction);
+            out_.f32(l.innerCone);
+            out_.f32(l.outerCone);
+            out_.f32(l.range);
+        }
     }
 
     void transmissionMaps() {
@@ -1403,6 +1472,8 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kAlpha)) decoder.alpha(*section(kAlpha), loaded.scene);
     if (section(kTangents)) decoder.tangents(*section(kTangents), loaded.scene);
     if (section(kSided)) decoder.sided(*section(kSided), loaded.scene);
+    if (section(kGlow)) decoder.glow(*section(kGlow), loaded.scene);
+    if (section(kLightKinds)) decoder.lightKinds(*section(kLightKinds), loaded.scene);
     if (section(kTransmissionMaps)) decoder.transmissionMaps(*section(kTransmissionMaps), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
 

@@ -51,10 +51,13 @@ void rescaleScene(Scene& scene, int exponent) {
         t.v1 = rescalePoint(t.v1, exponent);
         t.v2 = rescalePoint(t.v2, exponent);
     }
-    for (PointLight& light : scene.lights) {
+    for (Light& light : scene.lights) {
         light.position = rescalePoint(light.position, exponent);
-        // A light far brighter than its distance warrants saturates rather than overflows.
-        light.intensity = std::min(std::ldexp(light.intensity, -2 * exponent), FLT_MAX);
+        light.range = std::ldexp(light.range, -exponent);
+        // A light far brighter than its distance warrants saturates rather than overflows. (A
+        // directional light's intensity is the same at every distance.)
+        if (light.kind != LightKind::Directional)
+            light.intensity = std::min(std::ldexp(light.intensity, -2 * exponent), FLT_MAX);
     }
     if (scene.camera) rescaleCamera(*scene.camera, exponent);
     if (scene.animation)

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <numbers>
+#include <cctype>
 #include <cstring>
+#include <string_view>
 #include <fstream>
 #include <map>
 #include <set>
@@ -173,7 +176,7 @@ class GltfReader {
         }
         if (node.camera >= 0) camera(node.camera, world, at, scene);
         const auto light = node.extensions.find("KHR_lights_punctual");
-        if (light != node.extensions.end() && light->second.Has("light")) pointLight(light->second.Get("light"), world, at, scene);
+        if (light != node.extensions.end() && light->second.Has("light")) punctualLight(light->second.Get("light"), world, at, scene);
         for (int child : node.children) visit(child, world, scene);
         onPath_.erase(index);
     }
@@ -885,6 +888,7 @@ class GltfReader {
         Material m;
         m.name = g.name.empty() ? at : g.name;
         m.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF: Appendix B's BRDF
+        m.emissionIsLight = false;  // it glows; the default light stays (CONTRACT.md, "Lights")
         m.diffuse = colour;
         m.metallic = float(metallic);
         m.roughness = float(roughness);
@@ -1151,22 +1155,44 @@ class GltfReader {
         scene.camera = spec;
     }
 
-    void pointLight(const tinygltf::Value& which, const glm::dmat4& world, const std::string& at, Scene& scene) {
+    // A KHR_lights_punctual light at the node (it shines down the node's -z), in gpurt's units: the
+    // glTF Sample Viewer's, pi times gpurt's own (Scene.h Light), so the intensity is divided by pi.
+    void punctualLight(const tinygltf::Value& which, const glm::dmat4& world, const std::string& at, Scene& scene) {
         const int index = which.IsInt() || which.IsNumber() ? which.GetNumberAsInt() : -1;
         if (index < 0 || index >= int(m_.lights.size())) fail(at + ": light " + std::to_string(index) + " does not exist");
         const tinygltf::Light& l = m_.lights[size_t(index)];
-        if (l.type == "directional") {
-            warn("light " + std::to_string(index) + ": directional lights are not used");
+        const std::string name = "light " + std::to_string(index);
+        Light light;
+        if (l.type == "point") light.kind = LightKind::Point;
+        else if (l.type == "spot") light.kind = LightKind::Spot;
+        else if (l.type == "directional") light.kind = LightKind::Directional;
+        else {
+            warn(name + ": a light of type '" + l.type + "' is not used");
             return;
         }
-        if (l.type == "spot") warn("light " + std::to_string(index) + ": a spot light, used as a point light");
-        PointLight light;
         light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+        const glm::dvec3 down = glm::dvec3(world * glm::dvec4(0, 0, -1, 0));
+        light.direction = glm::vec3(down / glm::length(down));
         if (l.color.size() == 3) light.color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
-        light.intensity = float(l.intensity);
+        light.intensity = float(l.intensity / std::numbers::pi);
         if (!finite(light.position) || !finite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.0f ||
             glm::any(glm::lessThan(light.color, glm::vec3(0.0f))))
-            fail("light " + std::to_string(index) + ": colour and intensity must be finite and >= 0");
+            fail(name + ": colour and intensity must be finite and >= 0");
+        if (light.kind != LightKind::Point && !finite(light.direction))
+            fail(at + ": the node's transform gives " + name + " no direction");
+        if (light.kind == LightKind::Spot) {
+            const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2.0))
+                fail(name + ": the spot's cone angles must be 0 <= innerConeAngle < outerConeAngle <= pi / 2");
+            light.innerCone = float(inner);
+            light.outerCone = float(outer);
+        }
+        if (l.range != 0.0) {
+            if (light.kind == LightKind::Directional) warn(name + ": a directional light's range is not used (the specification ignores it)");
+            else if (!(l.range > 0.0 && std::isfinite(l.range))) fail(name + ": range must be > 0");
+            // The range is in the light's node units: scaled as its transform scales lengths.
+            else light.range = float(l.range * std::cbrt(std::abs(glm::determinant(glm::dmat3(world)))));
+        }
         scene.lights.push_back(light);
     }
 
@@ -1205,8 +1231,15 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     const bool glb = looksLikeGlb(bytes);
     const std::string readable = withoutDracoIndices(bytes);
     if (readable.size() > UINT32_MAX) failAt(file, "larger than a glTF file can be (4 GiB)");
-    if (!glb && name.size() >= 4 && name.compare(name.size() - 4, 4, ".glb") == 0)
-        failAt(file, "not a binary glTF file (it does not start with 'glTF')");
+    // Known by its content, whatever its name says (CONTRACT.md; Blender's importer does the same).
+    auto named = [&](std::string_view extension) {
+        if (name.size() < extension.size()) return false;
+        for (size_t i = 0; i < extension.size(); ++i)
+            if (std::tolower(static_cast<unsigned char>(name[name.size() - extension.size() + i])) != extension[i]) return false;
+        return true;
+    };
+    if (!glb && named(".glb")) warnAt(file, "named .glb but a JSON glTF file (not binary): read as JSON glTF");
+    if (glb && named(".gltf")) warnAt(file, "named .gltf but a binary glTF file (.glb): read as binary glTF");
     bool ok = false;
     try {
         ok = glb ? loader.LoadBinaryFromMemory(

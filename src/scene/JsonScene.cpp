@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cfloat>
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "image/InputError.h"
+#include "scene/GltfLoader.h"
 #include "scene/ObjLoader.h"
 #include "scene/SceneFile.h"
 
@@ -579,10 +581,50 @@ class SceneReader {
         return material;
     }
 
-    PointLight readLight(const json& value, const Pointer& at) const {
-        requireObject(value, at, {"position", "color", "intensity"});
-        PointLight light;
-        light.position = glm::vec3(vector3(require(value, at, "position"), at / "position"));
+    // {"type": "point" (default) | "spot" | "directional", "position", "direction", "color",
+    // "intensity", "inner_cone", "outer_cone" (spot, degrees), "range" (point, spot)}: gpurt's own
+    // units (Scene.h Light; docs/SCENE_FORMAT.md).
+    Light readLight(const json& value, const Pointer& at) const {
+        requireObject(value, at, {"type", "position", "direction", "color", "intensity", "inner_cone", "outer_cone", "range"});
+        Light light;
+        if (const json* type = find(value, "type")) {
+            const std::string t = type->is_string() ? type->get<std::string>() : std::string();
+            if (t == "point") light.kind = LightKind::Point;
+            else if (t == "spot") light.kind = LightKind::Spot;
+            else if (t == "directional") light.kind = LightKind::Directional;
+            else fail(at / "type", "expected \"point\", \"spot\" or \"directional\"");
+        }
+        auto refuse = [&](const char* key, const char* why) {
+            if (find(value, key)) fail(at / key, why);
+        };
+        if (light.kind == LightKind::Directional) {
+            refuse("position", "a directional light has no position");
+            refuse("range", "a directional light has no range");
+        } else {
+            light.position = glm::vec3(vector3(require(value, at, "position"), at / "position"));
+        }
+        if (light.kind == LightKind::Point) refuse("direction", "a point light has no direction");
+        else {
+            const glm::dvec3 d = vector3(require(value, at, "direction"), at / "direction");
+            if (!(glm::dot(d, d) > 0.0)) fail(at / "direction", "must be a non-zero vector");
+            light.direction = glm::vec3(d / glm::length(d));
+        }
+        if (light.kind != LightKind::Spot) {
+            refuse("inner_cone", "only a spot light has a cone");
+            refuse("outer_cone", "only a spot light has a cone");
+        } else {
+            double inner = 0.0, outer = 45.0;
+            if (const json* v = find(value, "inner_cone")) inner = number(*v, at / "inner_cone");
+            if (const json* v = find(value, "outer_cone")) outer = number(*v, at / "outer_cone");
+            if (!(inner >= 0.0 && inner < outer && outer <= 90.0))
+                fail(at / "outer_cone", "the cone's angles must be 0 <= inner_cone < outer_cone <= 90 degrees");
+            light.innerCone = float(inner * std::numbers::pi / 180.0);
+            light.outerCone = float(outer * std::numbers::pi / 180.0);
+        }
+        if (const json* range = find(value, "range")) {
+            light.range = static_cast<float>(number(*range, at / "range"));
+            if (!(light.range > 0.0f)) fail(at / "range", "must be > 0");
+        }
         if (const json* c = find(value, "color")) light.color = color(*c, at / "color");
         if (const json* intensity = find(value, "intensity"))
             light.intensity = static_cast<float>(numberAtLeast(*intensity, at / "intensity", 0.0));
@@ -697,6 +739,13 @@ JsonSceneFile parseJsonScene(const std::string& text, const std::filesystem::pat
             open < close ? text.find(what.substr(open + 1, close - open - 1)) : std::string::npos;
         failAt(at == std::string::npos ? FileLoc{name} : locationOf(name, text, at + 1),
                parseErrorText(what));
+    }
+    // glTF is known by its content, whatever its name (CONTRACT.md): a gpurt scene has no "asset".
+    if (root.is_object() && root.contains("asset")) {
+        warnAt(FileLoc{name}, "a glTF file (it has an \"asset\"), not a gpurt JSON scene: read as glTF");
+        JsonSceneFile file;
+        file.scene = parseGltf(text, name, path.parent_path());
+        return file;
     }
     return SceneReader(path).read(root);
 }

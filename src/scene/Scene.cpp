@@ -68,7 +68,10 @@ void rotateUpToY(Scene& scene, UpAxis axis) {
     // A proper rotation keeps the tangents' handedness.
     for (TriangleTangents& t : scene.tangents)
         for (glm::vec4* c : {&t.t0, &t.t1, &t.t2}) *c = glm::vec4(upAxisToY(glm::vec3(*c), axis), c->w);
-    for (PointLight& l : scene.lights) turn(l.position);
+    for (Light& l : scene.lights) {
+        turn(l.position);
+        turn(l.direction);
+    }
     auto turnCamera = [&](CameraSpec& c) {
         turn(c.eye);
         turn(c.target);
@@ -107,13 +110,13 @@ Bounds Scene::bounds() const {
     return b;
 }
 
-std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights) {
+std::vector<Light> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights) {
     if (!scene.lights.empty()) return scene.lights;
     if (scene.environment) return {};  // lit by its environment
     if (backgroundLights && scene.background != glm::vec3(0.0f)) return {};  // lit by its background
     for (uint32_t m : scene.materialIds)
         if (scene.materials[m].emits()) return {};  // lit by its emitters
-    PointLight headlight;
+    Light headlight;
     headlight.position = eye;
     headlight.color = glm::vec3(1.0f);
     const Bounds b = scene.bounds();
@@ -138,7 +141,7 @@ namespace gpurt {
 bool hasOwnLight(const Scene& scene) {
     if (!scene.lights.empty() || scene.environment || scene.backgroundGiven) return true;
     for (uint32_t m : scene.materialIds)
-        if (scene.materials[m].emits()) return true;
+        if (scene.materials[m].emits() && scene.materials[m].emissionIsLight) return true;
     return false;
 }
 

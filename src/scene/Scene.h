@@ -81,6 +81,9 @@ struct Material {
     // winding clockwise: dot(d, cross(v1 - v0, v2 - v0)) > 0) are culled by every traversal, for
     // every ray, as alpha coverage is (glsl/common/alpha.h).
     bool doubleSided = true;
+    // Whether its emission is a light the scene declares (OBJ Ke, JSON), which switches the default
+    // light off (CONTRACT.md, "Lights"); glTF's emissive materials only glow (false).
+    bool emissionIsLight = true;
 
     bool hasAlpha() const { return alphaMode != 0; }
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
@@ -108,10 +111,24 @@ struct TriangleTexcoords {
     glm::vec2 t0{0.0f}, t1{0.0f}, t2{0.0f};
 };
 
-struct PointLight {
-    glm::vec3 position{0.0f};
+// A punctual light (CONTRACT.md, "Lights"; the kinds are glsl/common/shading.h GPURT_LIGHT_*).
+// Units: a white Lambert surface facing a point or spot light of intensity I at distance d has
+// radiance I / d^2 (its radiant intensity is pi I); facing a directional light of intensity I,
+// radiance I (its irradiance is pi I). glTF's lights are pi times darker (GltfLoader divides).
+enum class LightKind : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+
+struct Light {
+    glm::vec3 position{0.0f};  // point, spot
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
+    LightKind kind = LightKind::Point;
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot, directional: the way the light travels (unit)
+    float innerCone = 0.0f;                  // spot: the cone angles in radians (glTF's defaults)
+    float outerCone = 0.78539816f;
+    float range = 0.0f;  // point, spot: where the light ends (glTF's window); 0: nowhere
+
+    // A point light as gpurt had it before the other kinds: packed scenes keep no more of it.
+    bool plainPoint() const { return kind == LightKind::Point && range == 0.0f; }
 };
 
 // The environment light (CONTRACT.md): a latitude-longitude map around the scene that rays
@@ -232,7 +249,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' diffuseTexture indices refer to these
     // May be empty: renderers then add a headlight (lightsOrHeadlight).
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
     std::optional<CameraSpec> camera;  // OBJ: none
     std::optional<CameraAnimation> animation;  // JSON "animation"; none elsewhere
     glm::vec3 background{0.05f, 0.05f, 0.08f};
@@ -259,7 +276,7 @@ struct Scene {
 void rotateUpToY(Scene& scene, UpAxis axis);
 
 // A scene with an environment gets no headlight: the environment lights it.
-std::vector<PointLight> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights = false);
+std::vector<Light> lightsOrHeadlight(const Scene& scene, glm::vec3 eye, bool backgroundLights = false);
 
 // Whether the scene has a light of its own (CONTRACT.md): a point light, an emitting triangle, an
 // environment, or a background the file set.

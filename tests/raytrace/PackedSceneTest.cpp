@@ -108,6 +108,19 @@ LoadedScene unusualScene() {
         s.materialIds[t] = uint32_t(t % s.materials.size());
     s.lights.push_back({{1.5f, -2.0f, 3.0f}, {0.9f, 0.8f, 0.7f}, 123.0f});
     s.lights.push_back({{-0.0f, 0.0f, 1e30f}, {0.0f, 0.0f, 0.0f}, 0.0f});
+    Light spot;  // the kinds travel in their own section
+    spot.kind = LightKind::Spot;
+    spot.position = {1, 2, 3};
+    spot.direction = {0.6f, -0.8f, 0.0f};
+    spot.innerCone = 0.125f;
+    spot.outerCone = 0.5f;
+    spot.range = 12.5f;
+    s.lights.push_back(spot);
+    Light sun;
+    sun.kind = LightKind::Directional;
+    sun.direction = {0, -1, 0};
+    sun.intensity = 2.5f;
+    s.lights.push_back(sun);
     s.camera =
         CameraSpec{{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 39.3077f};
     s.camera->fstop = 2.8f;  // the lens travels in its own section
@@ -197,6 +210,11 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(x.lights[l].position, y.lights[l].position)) << l;
         EXPECT_TRUE(sameBits(x.lights[l].color, y.lights[l].color)) << l;
         EXPECT_TRUE(sameBits(x.lights[l].intensity, y.lights[l].intensity)) << l;
+        EXPECT_EQ(x.lights[l].kind, y.lights[l].kind) << l;
+        EXPECT_TRUE(sameBits(x.lights[l].direction, y.lights[l].direction)) << l;
+        EXPECT_TRUE(sameBits(x.lights[l].innerCone, y.lights[l].innerCone) &&
+                    sameBits(x.lights[l].outerCone, y.lights[l].outerCone) && sameBits(x.lights[l].range, y.lights[l].range))
+            << l;
     }
     ASSERT_EQ(x.camera.has_value(), y.camera.has_value());
     if (x.camera) {
@@ -430,7 +448,7 @@ TEST_F(PackedSceneTest, RefusesMaterialAndLightValuesOutOfRange) {
     s.scene.materials[0].diffuse.y = -0.25f;
     refused(s, "negative diffuse");
     s = source_;
-    s.scene.lights.push_back(PointLight{glm::vec3(0.0f), glm::vec3(1.0f), -2.0f});
+    s.scene.lights.push_back(Light{glm::vec3(0.0f), glm::vec3(1.0f), -2.0f});
     refused(s, "negative intensity");
     s = source_;
     s.scene.background = glm::vec3(-1.0f, 0.0f, 0.0f);
@@ -517,6 +535,7 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
         LoadedScene still = source_;
         still.scene.animation.reset();
         still.scene.camera->fstop = 0.0f;
+        still.scene.lights.resize(2);  // the point lights alone: no LGTX
         still.scene.texcoords.clear();
         still.scene.textures.clear();
         for (Material& m : still.scene.materials) m.diffuseTexture = -1;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -201,7 +202,49 @@ TEST(GltfLoader, MaterialsCameraAndPointLights) {
     ASSERT_EQ(scene.lights.size(), 1u);
     EXPECT_EQ(scene.lights[0].position, glm::vec3(3, 4, 5));
     EXPECT_EQ(scene.lights[0].color, glm::vec3(1, 0.5f, 0.25f));
-    EXPECT_EQ(scene.lights[0].intensity, 40.0f);
+    EXPECT_FLOAT_EQ(scene.lights[0].intensity, float(40.0 / std::numbers::pi));  // the Sample Viewer's units
+    EXPECT_EQ(scene.lights[0].kind, LightKind::Point);
+    // The emissive material glows but is no light of the scene's (without its point light, the
+    // default light would stay on).
+    EXPECT_FALSE(scene.materials[3].emissionIsLight);
+    Scene unlit = scene;
+    unlit.lights.clear();
+    EXPECT_FALSE(hasOwnLight(unlit));
+}
+
+// KHR_lights_punctual's spot and directional lights shine down their node's -z (a node turned -90
+// degrees about x points them down -y), in the glTF Sample Viewer's units (gpurt's over pi); a
+// spot's cone as given, its range scaled with its node.
+TEST(GltfLoader, SpotAndDirectionalLights) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const std::string rest =
+        "\"extensionsUsed\": [\"KHR_lights_punctual\"], "
+        "\"extensions\": {\"KHR_lights_punctual\": {\"lights\": ["
+        "{\"type\": \"spot\", \"intensity\": 10, \"range\": 4, \"spot\": {\"innerConeAngle\": 0.2, \"outerConeAngle\": 0.5}},"
+        "{\"type\": \"directional\", \"color\": [1, 0.9, 0.8], \"intensity\": 3}]}}, "
+        "\"scenes\": [{\"nodes\": [0, 1, 2]}], \"nodes\": [{\"mesh\": 0}, "
+        "{\"translation\": [1, 5, 2], \"rotation\": [-0.70710678, 0, 0, 0.70710678], \"scale\": [2, 2, 2], "
+        "\"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}}, "
+        "{\"extensions\": {\"KHR_lights_punctual\": {\"light\": 1}}}], "
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) + "}}]}]";
+    const Scene scene = parse(g.json(rest));
+    ASSERT_EQ(scene.lights.size(), 2u);
+    const Light& spot = scene.lights[0];
+    EXPECT_EQ(spot.kind, LightKind::Spot);
+    EXPECT_EQ(spot.position, glm::vec3(1, 5, 2));
+    EXPECT_NEAR(spot.direction.x, 0.0f, 1e-6f);  // -90 degrees about x takes -z to -y
+    EXPECT_NEAR(spot.direction.y, -1.0f, 1e-6f);
+    EXPECT_NEAR(spot.direction.z, 0.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(spot.innerCone, 0.2f);
+    EXPECT_FLOAT_EQ(spot.outerCone, 0.5f);
+    EXPECT_FLOAT_EQ(spot.range, 8.0f);  // the node's scale of 2
+    EXPECT_FLOAT_EQ(spot.intensity, float(10.0 / std::numbers::pi));
+    const Light& sun = scene.lights[1];
+    EXPECT_EQ(sun.kind, LightKind::Directional);
+    EXPECT_EQ(sun.direction, glm::vec3(0, 0, -1));
+    EXPECT_EQ(sun.color, glm::vec3(1, 0.9f, 0.8f));
+    EXPECT_FLOAT_EQ(sun.intensity, float(3.0 / std::numbers::pi));
 }
 
 // alphaMode: MASK with its alphaCutoff (default 0.5), BLEND; alpha is baseColorFactor[3] (no

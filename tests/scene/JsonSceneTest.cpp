@@ -222,6 +222,39 @@ TEST_F(JsonSceneTest, LightsCameraBackgroundRender) {
     EXPECT_EQ(scene.maxBounces, 0);
 }
 
+// Spot and directional lights (docs/SCENE_FORMAT.md, "Light"), and the lights it refuses.
+TEST_F(JsonSceneTest, SpotAndDirectionalLights) {
+    write("tri.obj", kTriangleObj);
+    const std::string head = R"({"meshes": [{"file": "tri.obj"}], "lights": [)";
+    const Scene scene = loadJsonSceneFile(write("scene.json", head + R"(
+        {"type": "spot", "position": [0, 4, 0], "direction": [0, -2, 0], "inner_cone": 10, "outer_cone": 30,
+         "range": 6, "intensity": 20},
+        {"type": "directional", "direction": [1, -1, 0], "color": [1, 0.9, 0.8], "intensity": 2},
+        {"position": [1, 1, 1]}]})")).scene;
+    ASSERT_EQ(scene.lights.size(), 3u);
+    const Light& spot = scene.lights[0];
+    EXPECT_EQ(spot.kind, LightKind::Spot);
+    EXPECT_EQ(spot.direction, glm::vec3(0, -1, 0));  // normalised
+    EXPECT_FLOAT_EQ(spot.innerCone, float(10.0 * std::numbers::pi / 180.0));
+    EXPECT_FLOAT_EQ(spot.outerCone, float(30.0 * std::numbers::pi / 180.0));
+    EXPECT_EQ(spot.range, 6.0f);
+    EXPECT_EQ(spot.intensity, 20.0f);  // gpurt's own units, as given
+    const Light& sun = scene.lights[1];
+    EXPECT_EQ(sun.kind, LightKind::Directional);
+    EXPECT_NEAR(sun.direction.x, 0.70710678f, 1e-6f);
+    EXPECT_NEAR(sun.direction.y, -0.70710678f, 1e-6f);
+    EXPECT_EQ(scene.lights[2].kind, LightKind::Point);
+    expectError(head + R"({"type": "area", "position": [0, 1, 0]}]})", {"/lights/0/type"});
+    expectError(head + R"({"type": "spot", "position": [0, 1, 0]}]})", {"/lights/0", "direction"});
+    expectError(head + R"({"type": "directional", "direction": [0, -1, 0], "position": [0, 1, 0]}]})",
+                {"/lights/0/position", "no position"});
+    expectError(head + R"({"type": "directional", "direction": [0, 0, 0]}]})", {"/lights/0/direction"});
+    expectError(head + R"({"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "inner_cone": 40,
+                           "outer_cone": 30}]})", {"/lights/0/outer_cone"});
+    expectError(head + R"({"position": [0, 1, 0], "direction": [0, -1, 0]}]})", {"/lights/0/direction"});
+    expectError(head + R"({"position": [0, 1, 0], "range": 0}]})", {"/lights/0/range"});
+}
+
 // The thin lens's fields (CONTRACT.md, depth of field), and the lenses the contract does not know.
 TEST_F(JsonSceneTest, TheCameraTakesALens) {
     write("tri.obj", kTriangleObj);
@@ -576,7 +609,7 @@ TEST(ShippedScenesTest, LoadWithTheSeedsTriangleCounts) {
         return glm::all(glm::lessThan(box.min, p)) && glm::all(glm::lessThan(p, box.max));
     };
     EXPECT_TRUE(inside(room.camera->eye));
-    for (const PointLight& light : room.lights) EXPECT_TRUE(inside(light.position));
+    for (const Light& light : room.lights) EXPECT_TRUE(inside(light.position));
 }
 
 // "up_axis" is read, and rotateUpToY turns everything placed in the scene (triangles, normals,

@@ -6,14 +6,15 @@
 #ifndef GPURT_INTEGRATOR_LIGHTS_H
 #define GPURT_INTEGRATOR_LIGHTS_H
 
-// Whether the point light at `position` lights the hit p (facing normal n): in front of it, and
-// its shadow ray unblocked.
-GPURT_FN bool lightVisible(vec3 p, vec3 n, vec3 position) {
-    if (!lightInFront(p, n, position)) return false;
+// Whether light L lights the hit p (facing normal n): within its cone and range, in front of p,
+// and its shadow ray unblocked; with the point light that stands for it at p (shading.h
+// punctualAsPoint: its position and intensity).
+GPURT_FN bool lightVisible(PunctualLight L, vec3 p, vec3 n, GPURT_OUT(vec3) position, GPURT_OUT(float) intensity) {
+    if (!punctualAsPoint(L, p, position, intensity) || !lightInFront(p, n, position)) return false;
     vec3 o;
     vec3 d;
     float limit;
-    shadowRay(p, n, rayOffset, position, o, d, limit);
+    punctualShadowRay(L, p, n, rayOffset, position, o, d, limit);
     return unblockedRay(o, d, limit);
 }
 

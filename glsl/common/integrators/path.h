@@ -6,11 +6,11 @@
 // contributions, Russian roulette) is common/path.h's.
 //
 // The includer defines the hooks first (common/integrators/README.md): the scene's
-// (the "uniforms" rayOffset, emitterArea, background, sceneHasEnvironment, pointLightCount,
+// (the "uniforms" rayOffset, emitterArea, background, sceneHasEnvironment, punctualLightCount,
 // clampDirect, clampIndirect, maxDepth; environmentRadiance, environmentLightPdf), the
 // pixel's sample numbers (pixelSample2D, pixelSampleChoice), recordFeatures, and where the
 // includer traces rays itself (GPURT_TRACE_HOOKS defined: pathDirectLight, pathBounce and
-// pathTrace), tracing (integratorTrace, surfaceAt, recordPrimary, pointLight, lightVisible,
+// pathTrace), tracing (integratorTrace, surfaceAt, recordPrimary, punctualLight, lightVisible,
 // environmentVisible, emitterVisible). GLSL: globals and functions before the #include; C++: the
 // members of the struct the file is included into.
 #ifndef GPURT_INTEGRATOR_PATH_H
@@ -92,18 +92,17 @@ GPURT_FN bool pathScatter(GPURT_INOUT(PathState) st, SurfaceHit s, int b) {
 
 #ifdef GPURT_TRACE_HOOKS  // the includer traces rays itself (the cpu backend, the megakernels)
 
-// Next-event estimation at surface s hit along d at depth b: each visible point light through the
+// Next-event estimation at surface s hit along d at depth b: each visible punctual light through the
 // BSDF, the depth's environment direction and emitter point, each weighed against the BSDF's
 // sampling of it (the wavefront chain spreads this over its shadowgen, light and bounce passes).
 GPURT_FN vec3 pathDirectLight(SurfaceHit s, vec3 d, int b) {
     vec3 local = vec3(0.0f);
-    for (int k = 0; k < pointLightCount; ++k) {
+    for (int k = 0; k < punctualLightCount; ++k) {
+        PunctualLight light = punctualLight(k);
         vec3 position;
-        vec3 color;
         float intensity;
-        pointLight(k, position, color, intensity);
-        if (lightVisible(s.p, s.n, position))
-            local = local + pathLightContribution(s.m, s.p, s.ns, d, position, color, intensity);
+        if (lightVisible(light, s.p, s.n, position, intensity))
+            local = local + pathLightContribution(s.m, s.p, s.ns, d, position, light.color, intensity);
     }
     vec3 l;
     float pdf;

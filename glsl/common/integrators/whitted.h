@@ -7,8 +7,8 @@
 // rays on a stack (common/raytree.h).
 //
 // The includer defines the hooks first (common/integrators/README.md): rayOffset, emitterArea,
-// background, sceneHasEnvironment, pointLightCount, maxBounces, stackSlots; environmentRadiance,
-// environmentAmbient; integratorTrace, surfaceAt, recordPrimary, pointLight, lightVisible,
+// background, sceneHasEnvironment, punctualLightCount, maxBounces, stackSlots; environmentRadiance,
+// environmentAmbient; integratorTrace, surfaceAt, recordPrimary, punctualLight, lightVisible,
 // emitterVisible.
 #ifndef GPURT_INTEGRATOR_WHITTED_H
 #define GPURT_INTEGRATOR_WHITTED_H
@@ -19,15 +19,15 @@
 
 // The local colour at surface s hit along d in round `round`: the material's ambient term (under
 // an environment: the diffuse reflection of its irradiance at the shading normal), each visible
-// point light's term, and the round's emitter point's.
+// punctual light's term, and the round's emitter point's.
 GPURT_FN vec3 whittedLocal(SurfaceHit s, vec3 d, int round) {
     vec3 local = sceneHasEnvironment ? materialEnvironmentAmbient(s.m, environmentAmbient(s.ns)) : materialAmbient(s.m);
-    for (int k = 0; k < pointLightCount; ++k) {
+    for (int k = 0; k < punctualLightCount; ++k) {
+        PunctualLight light = punctualLight(k);
         vec3 position;
-        vec3 color;
         float intensity;
-        pointLight(k, position, color, intensity);
-        if (lightVisible(s.p, s.n, position)) local = local + materialLight(s.m, s.p, s.ns, d, position, color, intensity);
+        if (lightVisible(light, s.p, s.n, position, intensity))
+            local = local + materialLight(s.m, s.p, s.ns, d, position, light.color, intensity);
     }
     vec3 q;
     vec3 e1;

@@ -6,22 +6,23 @@
 #pragma once
 
 #include "raytrace/integrators/CpuIntegrator.h"
+#include "raytrace/integrators/PunctualLights.h"
 
 #include <vector>
 
 namespace gpurt::raymath {
 
 struct CpuHooks {
-    CpuHooks(const CpuTracer& tracer, const PixelSample& px, const std::vector<PointLight>& lights, PixelAovs aovs,
+    CpuHooks(const CpuTracer& tracer, const PixelSample& px, const std::vector<Light>& lights, PixelAovs aovs,
              RenderStats& stats)
         : tracer(tracer), px(px), lights(lights), aovs(aovs), stats(stats), rayOffset(tracer.rayOffset()),
           emitterArea(tracer.emitters().totalArea), background(tracer.scene().background),
           sceneHasEnvironment(!tracer.environment().empty()), environmentSampled(tracer.environment().sampled),
-          sceneHasEmitters(!tracer.emitters().empty()), pointLightCount(int(lights.size())) {}
+          sceneHasEmitters(!tracer.emitters().empty()), punctualLightCount(int(lights.size())) {}
 
     const CpuTracer& tracer;
     const PixelSample& px;
-    const std::vector<PointLight>& lights;
+    const std::vector<Light>& lights;
     PixelAovs aovs;       // where the camera ray's AOVs go
     RenderStats& stats;   // the rays traced
     TraceHit hit{};       // the last closest hit traced (surfaceAt reads it)
@@ -33,17 +34,12 @@ struct CpuHooks {
     bool sceneHasEnvironment;
     bool environmentSampled;
     bool sceneHasEmitters;
-    int pointLightCount;
+    int punctualLightCount;
 
     vec2 pixelSample2D(uint dim) const { return px.sample2D(dim); }
     vec2 pixelSampleChoice(uint dim) const { return px.sampleChoice(dim); }
 
-    void pointLight(int k, vec3& position, vec3& color, float& intensity) const {
-        const PointLight& light = lights[size_t(k)];
-        position = light.position;
-        color = light.color;
-        intensity = light.intensity;
-    }
+    PunctualLight punctualLight(int k) const { return punctualOf(lights[size_t(k)]); }
     vec3 environmentRadiance(vec3 d) const { return tracer.environment().radiance(d); }
     float environmentLightPdf(vec3 d) const { return tracer.environment().pdf(d); }
     vec3 environmentAmbient(vec3 n) const { return tracer.environment().irradiance(n); }

@@ -22,7 +22,7 @@ class GlIntegrator {
     // One sample of every pixel from the primary rays of the pipeline's current sample, with up
     // to maxBounces bounces; with `aovs`, the primary AOVs are read into it on the way. The rays
     // traced count in `stats`.
-    virtual void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs,
+    virtual void sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs,
                         RenderStats& stats) = 0;
     // The sample's colour of each pixel (RGBA32F, w unused).
     virtual const GPUFloatArray& colour() const = 0;

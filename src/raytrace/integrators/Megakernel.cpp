@@ -1,4 +1,5 @@
 #include "raytrace/integrators/Megakernel.h"
+#include "raytrace/integrators/PunctualLights.h"
 
 #include "raytrace/integrators/SharedPasses.h"
 #include "stream/StreamErrors.h"
@@ -22,33 +23,25 @@ constexpr int kCountedDepths = 256;
 MegakernelInputs::MegakernelInputs(size_t maxLights)
     : maxLights_(std::max<size_t>(1, maxLights)),
       counters_(kCountDepth + kCountedDepths, 1, GPUFormat::R32UI, "megakernelCounters"),
-      pointLights_(int(2 * maxLights_), 1, 4, "pointLights") {}
+      punctualLights_(int(kTexelsPerLight * maxLights_), 1, 4, "punctualLights") {}
 
 void MegakernelInputs::declare(GPUKernel& k, const SceneTextures& textures, const GlAccelerator& accel) {
     textures.bind(k);
     textures.bindCoverageDefines(k);
     if (textures.environmentTable().sampled) k.addDefine("ENVIRONMENT_LIGHT");
     accel.bindTrace(k);
-    k.addInput(pointLights_, "pointLights").addImage(counters_, "counters");
+    k.addInput(punctualLights_, "punctualLights").addImage(counters_, "counters");
 }
 
-void MegakernelInputs::setLights(const std::vector<PointLight>& lights, const std::vector<GPUKernel*>& kernels) {
+void MegakernelInputs::setLights(const std::vector<Light>& lights, const std::vector<GPUKernel*>& kernels) {
     if (lights.size() > maxLights_)
         throw UsageError("megakernel: " + std::to_string(lights.size()) + " point lights, made for " +
                          std::to_string(maxLights_));
-    for (GPUKernel* k : kernels) k->setUniform("pointLightCount", int(lights.size()));
-    auto same = [](const PointLight& a, const PointLight& b) {
-        return a.position == b.position && a.color == b.color && a.intensity == b.intensity;
-    };
-    if (std::equal(lights.begin(), lights.end(), uploaded_.begin(), uploaded_.end(), same)) return;
-    std::vector<float> texels(8 * maxLights_, 0.0f);
-    for (size_t k = 0; k < lights.size(); ++k) {
-        const PointLight& l = lights[k];
-        const float light[8] = {l.position.x, l.position.y, l.position.z, l.intensity, l.color.r, l.color.g, l.color.b, 0.0f};
-        std::copy(light, light + 8, texels.begin() + std::ptrdiff_t(8 * k));
-    }
-    pointLights_.upload(texels);
-    uploaded_ = lights;
+    for (GPUKernel* k : kernels) k->setUniform("punctualLightCount", int(lights.size()));
+    const std::vector<float> texels = lightTexels(lights, maxLights_);
+    if (texels == uploaded_) return;
+    punctualLights_.upload(texels);
+    uploaded_ = texels;
 }
 
 uint64_t MegakernelInputs::run(GPUKernel& k, int firstDepth, bool livePaths, RenderStats& stats) {
@@ -114,7 +107,7 @@ void OnePassMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 
 // One pass: every pixel's sample (maxBounces >= 0; the AOVs' pixel-centre pass of a render with
 // several samples is MegakernelAovs').
-void OnePassMegakernelGl::sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs,
+void OnePassMegakernelGl::sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs,
                                  RenderStats& stats) {
     const std::vector<GPUKernel*> passes = {&samples_, &centres_, &centresAovs_};
     inputs_.setLights(lights, passes);

@@ -26,7 +26,7 @@ class MegakernelInputs {
     void declare(GPUKernel& k, const SceneTextures& textures, const GlAccelerator& accel);
     // The lights of the sample into the texture (when they changed) and their count into `kernels`.
     // Throws UsageError for more than maxLights.
-    void setLights(const std::vector<PointLight>& lights, const std::vector<GPUKernel*>& kernels);
+    void setLights(const std::vector<Light>& lights, const std::vector<GPUKernel*>& kernels);
     // Runs pass `k` with the counters zeroed and reads them: the rays of each depth from
     // `firstDepth` on (primary at depth 0, secondary deeper; with livePaths, also per depth as the
     // path integrator's live paths) and the shadow rays into stats. Returns the paths it packed.
@@ -34,8 +34,8 @@ class MegakernelInputs {
 
   private:
     size_t maxLights_;
-    GPUFloatArray counters_, pointLights_;
-    std::vector<PointLight> uploaded_;
+    GPUFloatArray counters_, punctualLights_;
+    std::vector<float> uploaded_;  // the light texels last uploaded
 };
 
 // The pixel centres' primary AOVs in one pass (glsl/integrators/aovs.frag) for the renders whose
@@ -72,7 +72,7 @@ class OnePassMegakernelGl final : public GlIntegrator {
                         const std::string& kernel, size_t maxLights, MegakernelAovs* aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
-    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    void sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
     const GPUFloatArray& colour() const override { return colour_; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;

@@ -1,4 +1,5 @@
 #include "raytrace/integrators/SharedPasses.h"
+#include "raytrace/integrators/PunctualLights.h"
 
 namespace gpurt {
 
@@ -57,6 +58,17 @@ void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& co
         k.addDefine("FEATURE_SUM").addInput(p.pixelAlbedo, "albedoSample").addInput(p.pixelNormal, "normalSample");
         k.addInOut(p.albedoSum, "albedoState").addInOut(p.normalSum, "normalState");
     }
+}
+
+void setLightUniforms(GPUKernel& k, const Light& light) {
+    const raymath::PunctualLight l = punctualOf(light);
+    k.setUniform("lightKind", l.kind)
+        .setUniform("lightPosition", l.position)
+        .setUniform("lightDirection", l.direction)
+        .setUniform("lightColor", l.color)
+        .setUniform("lightIntensity", l.intensity)
+        .setUniform("lightCone", l.cone)
+        .setUniform("lightRange", l.range);
 }
 
 }  // namespace gpurt

@@ -45,6 +45,9 @@ void declareEnvironmentShadowgenPass(GPUKernel& k, GpuPipeline& p);
 //   in place localColor.
 void declareLightPass(GPUKernel& k, GpuPipeline& p, bool emitter);  // emitter: or the environment
 
+// Light `light` as the uniforms of shadowgen.frag and light.frag (integrators/light_uniforms.glsl).
+void setLightUniforms(GPUKernel& k, const Light& light);
+
 // accumulate.frag: the sample's colour into the pixels' sums.
 //   reads `colour`; in place sampleSum.
 void declareAccumulatePass(GPUKernel& k, GpuPipeline& p, const GPUFloatArray& colour);

@@ -100,7 +100,7 @@ void PathGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 // pass. The next round's passes cover only the rows the packed paths fill, so ended paths cost
 // nothing. A path leaves its colour in its pixel's element of pixelColor when it ends (the deposit
 // pass for those alive after the last round).
-void PathGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderOutput* aovs, RenderStats& stats) {
+void PathGl::sample(const std::vector<Light>& lights, int maxDepth, RenderOutput* aovs, RenderStats& stats) {
     startPaths();
     for (int b = 0; b <= maxDepth; ++b) {
         if (masked_) aliveMask_.update();
@@ -160,14 +160,13 @@ void PathGl::shadeSurfaces(bool masked) {
     surface_.dispatch();
 }
 
-void PathGl::lightPointLights(const std::vector<PointLight>& lights, RenderStats& stats) {
-    for (const PointLight& l : lights) {
-        shadowgen_.setUniform("lightPosition", l.position).dispatch();
+void PathGl::lightPointLights(const std::vector<Light>& lights, RenderStats& stats) {
+    for (const Light& l : lights) {
+        setLightUniforms(shadowgen_, l);
+        shadowgen_.dispatch();
         stats.shadowRays += traceRays(true);
-        light_.setUniform("lightPosition", l.position)
-            .setUniform("lightColor", l.color)
-            .setUniform("lightIntensity", l.intensity)
-            .dispatch();
+        setLightUniforms(light_, l);
+        light_.dispatch();
     }
 }
 

@@ -20,7 +20,7 @@ class PathGl final : public GlIntegrator {
     PathGl(GpuPipeline& pipeline, const SceneTextures& textures, MaskMode mask, bool paths, bool maskPaths);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
-    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    void sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
     const GPUFloatArray& colour() const override { return pixelColor_; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;
@@ -29,7 +29,7 @@ class PathGl final : public GlIntegrator {
     void startPaths();
     uint64_t traceRays(bool anyHit);
     void shadeSurfaces(bool masked);
-    void lightPointLights(const std::vector<PointLight>& lights, RenderStats& stats);
+    void lightPointLights(const std::vector<Light>& lights, RenderStats& stats);
     void sampleEmitters(int depth, RenderStats& stats);
     void lightEnvironment(int depth, RenderStats& stats);
     void continuePaths(int depth);

@@ -77,7 +77,7 @@ void PathMegakernelGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 // The first pass starts every pixel's path at its camera ray; each pass takes the live paths
 // through bouncesPerPass depths (all of them when 0) and packs those still alive for the next,
 // whose count ends the loop. Each path leaves its colour in its pixel's element when it ends.
-void PathMegakernelGl::sample(const std::vector<PointLight>& lights, int maxDepth, RenderOutput* aovs,
+void PathMegakernelGl::sample(const std::vector<Light>& lights, int maxDepth, RenderOutput* aovs,
                               RenderStats& stats) {
     const std::vector<GPUKernel*> passes = {&camera_, &cameraCentre_, &cameraAovs_, &fromPipeline_, &fromOwn_,
                                             &cameraList_};

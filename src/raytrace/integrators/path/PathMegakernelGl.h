@@ -18,7 +18,7 @@ class PathMegakernelGl final : public GlIntegrator {
     PathMegakernelGl(GpuPipeline& pipeline, const SceneTextures& textures, size_t maxLights, MegakernelAovs* aovs);
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
-    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    void sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
     const GPUFloatArray& colour() const override { return pixelColor_; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;

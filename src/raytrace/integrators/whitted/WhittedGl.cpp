@@ -78,7 +78,7 @@ void WhittedGl::setSample(uint32_t s, uint32_t n, uint32_t seed) {
 // One sample of every pixel into p.color, from the rays of the pipeline's current sample, with up
 // to maxBounces mirror and glass levels. Each round traces one ray of each pixel's tree (a tree
 // has at most GPURT_TREE_RAYS rays); the trace's count ends the loop when every tree is done.
-void WhittedGl::sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) {
+void WhittedGl::sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) {
     startTrees(maxBounces);
     // The rounds after the first cover the box of the elements with rays (bounce.frag); only for
     // a one-pass trace, whose passes need no mask over the whole image.
@@ -121,14 +121,13 @@ void WhittedGl::shadeSurfaces() { surface_.dispatch(); }
 
 // Per point light: a shadow ray from each surface point it is in front of, traced for any hit,
 // then its term where unblocked.
-void WhittedGl::lightPointLights(const std::vector<PointLight>& lights, RenderStats& stats) {
-    for (const PointLight& l : lights) {
-        shadowgen_.setUniform("lightPosition", l.position).dispatch();
+void WhittedGl::lightPointLights(const std::vector<Light>& lights, RenderStats& stats) {
+    for (const Light& l : lights) {
+        setLightUniforms(shadowgen_, l);
+        shadowgen_.dispatch();
         stats.shadowRays += p_.accel.trace(true);
-        light_.setUniform("lightPosition", l.position)
-            .setUniform("lightColor", l.color)
-            .setUniform("lightIntensity", l.intensity)
-            .dispatch();
+        setLightUniforms(light_, l);
+        light_.dispatch();
     }
 }
 

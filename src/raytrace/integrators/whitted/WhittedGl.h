@@ -19,7 +19,7 @@ class WhittedGl final : public GlIntegrator {
 
     void setSample(uint32_t s, uint32_t n, uint32_t seed) override;
     // maxBounces < 0: the primary trace and surface pass only (the pixel centres' AOVs).
-    void sample(const std::vector<PointLight>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
+    void sample(const std::vector<Light>& lights, int maxBounces, RenderOutput* aovs, RenderStats& stats) override;
     const GPUFloatArray& colour() const override { return p_.color; }
     void accumulate() override { accumulate_.dispatch(); }
     std::vector<GPUKernel*> kernels() override;
@@ -28,7 +28,7 @@ class WhittedGl final : public GlIntegrator {
     void startTrees(int maxBounces);
     uint64_t traceRays();
     void shadeSurfaces();
-    void lightPointLights(const std::vector<PointLight>& lights, RenderStats& stats);
+    void lightPointLights(const std::vector<Light>& lights, RenderStats& stats);
     void lightEmitters(int round, RenderStats& stats);
     void finishTrees();
     bool spawnRays(bool boxed);
