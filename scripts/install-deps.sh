@@ -3,7 +3,7 @@
 # glad (GL loader generator), EGL + Mesa llvmpipe + OSMesa, GLFW, GLM, glslang, GoogleTest,
 # Xvfb and xdotool (the viewer's window tests: a real X server, real input), GNU parallel and
 # Slurm with munge (the farm drivers' tests run both for real, tests/farm/slurm-localhost.sh),
-# tinyobjloader, tinygltf, Draco (glTF KHR_draco_mesh_compression), nlohmann-json, libpng and libjpeg-turbo (textures), zlib (CRC-32 of packed scenes), stb (stb_image: Radiance .hdr environment maps), OpenEXR (EXR output and .exr environment maps; its
+# tinyobjloader, tinygltf, Draco (glTF KHR_draco_mesh_compression), meshoptimizer (glTF EXT_meshopt_compression, decode), nlohmann-json, libpng and libjpeg-turbo (textures), zlib (CRC-32 of packed scenes), stb (stb_image: Radiance .hdr environment maps), OpenEXR (EXR output and .exr environment maps; its
 # exrheader tool checks our files in the tests) and Embree (benchmark
 # baseline, test cross-checks); clang with its libFuzzer and sanitizer runtimes and llvm-symbolizer
 # for the fuzz targets.
@@ -15,7 +15,7 @@ packages=(
   libglfw3-dev libglm-dev glslang-tools libglx-mesa0 xvfb xdotool parallel
   slurmctld slurmd slurm-client munge iproute2
   libgtest-dev libgmock-dev
-  libtinyobjloader-dev nlohmann-json3-dev libpng-dev libjpeg62-turbo-dev zlib1g-dev libcli11-dev libopenexr-dev openexr libtinygltf-dev libdraco-dev libstb-dev
+  libtinyobjloader-dev nlohmann-json3-dev libpng-dev libjpeg62-turbo-dev zlib1g-dev libcli11-dev libopenexr-dev openexr libtinygltf-dev libdraco-dev libmeshoptimizer-dev libstb-dev
   libembree-dev
   clang libclang-rt-14-dev llvm
 )

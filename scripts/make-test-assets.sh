@@ -10,6 +10,8 @@
 #                             scripts/ply-byteswap.py swaps its data (header and values are Assimp's)
 #   gltf/teapot.gltf + .bin  obj2gltf --separate (JSON with an external buffer)
 #   gltf/cornell_box.glb      obj2gltf (binary glTF)
+#   gltf/teapot_meshopt.glb, teapot_meshopt_q.gltf (+ .bin)  gltfpack -c -noq / -cc of teapot.gltf
+#                             (EXT_meshopt_compression; the second also KHR_mesh_quantization)
 #   textures/quadrants.png    ImageMagick: 4 x 4 texels, quadrants red (top left), green, blue, white
 #   textures/checker.png, .jpg  ImageMagick: a 256 x 128 checkerboard of 32-texel squares, cream
 #                             and a colour that runs from blue (left) to red (right), the top-left
@@ -47,6 +49,13 @@ cp "$work/teapot_ascii.ply" "$work/teapot_binary.ply" "$work/cornell_box_be.ply"
 "$work/node_modules/.bin/obj2gltf" -i "$models/cornell_box.obj" -o "$work/cornell_box.glb" >/dev/null
 NODE_PATH="$work/node_modules" node scripts/gltf/validate.js "$work/teapot.gltf" "$work/cornell_box.glb"
 cp "$work/teapot.gltf" "$work/teapot.bin" "$work/cornell_box.glb" "$out/gltf/"
+# EXT_meshopt_compression as meshoptimizer's own gltfpack writes it (Debian gltfpack 0.18): the
+# vertex codec on float positions (-noq) in a GLB, and the codec with quantized positions
+# (KHR_mesh_quantization, -cc) in a .gltf with its .bin. gltfpack reorders the triangles for the
+# vertex cache: the same teapot, another triangle numbering.
+command -v gltfpack >/dev/null || DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gltfpack >/dev/null
+gltfpack -i "$work/teapot.gltf" -o "$out/gltf/teapot_meshopt.glb" -c -noq >/dev/null
+gltfpack -i "$work/teapot.gltf" -o "$out/gltf/teapot_meshopt_q.gltf" -cc >/dev/null
 
 # Textures (ImageMagick 6) and textured models.
 im=convert-im6.q16

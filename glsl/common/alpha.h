@@ -26,6 +26,7 @@
 // fetching its material; culling alone needs only the ray and the edges.
 #define GPURT_COVER_CULL 1
 #define GPURT_COVER_ALPHA 2
+#define GPURT_COVER_SHADOWLESS 4  // shadow rays (any-hit traversals) pass it: KHR_materials_unlit
 
 // The pattern dimension of the coverage keys (apart from every other dimension's range).
 #define GPURT_DIM_COVERAGE 8191u

@@ -7,7 +7,7 @@
 //                       (v1, coverage flags), (v2, 0), as the grid's cell lists
 //   GPURT_BVH_BOX_MIN   the scene box's corner and the size of one quantisation step on each axis
 //   GPURT_BVH_BOX_STEP  (vec3 each): a child's box is stored in 16-bit steps of the scene box
-//   GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2)  whether a candidate hit of triangle id at (u, v)
+//   GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2, anyHit)  whether a candidate hit of triangle id at (u, v)
 //                       counts (alpha coverage, back-face culling: common/alpha.h); flags: the
 //                       triangle's coverage flags (GPURT_COVER_*), 0 when it counts everywhere
 // A visit tests both children's boxes, intersects the triangles of the children that are leaves,
@@ -97,7 +97,7 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
             float u;
             float v;
             if (intersectTriangle(ray, v0, v1, v2, t, u, v) && t > 0.0f && t < bestT &&
-                GPURT_BVH_COVERED(int(tri.w), v1Flags.w, u, v, d, v1 - v0, v2 - v0)) {
+                GPURT_BVH_COVERED(int(tri.w), v1Flags.w, u, v, d, v1 - v0, v2 - v0, anyHit)) {
                 bestT = t;
                 bestU = u;
                 bestV = v;

@@ -15,7 +15,7 @@
 //                          every axis are empty; at least 1)
 //   GPURT_GRID_TRI(k, v0, v1, v2, flags)  entry k of the cells' lists: its triangle's vertices and
 //                          coverage flags (GPURT_COVER_*, 0 when it counts everywhere); the id
-//   GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2)  whether a candidate hit counts (common/alpha.h)
+//   GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit)  whether a candidate hit counts (common/alpha.h)
 // A ray that misses the box is RAY_INACTIVE; otherwise the voxel precalculation (ddaSetup) makes
 // it active, and at each cell it visits the cell's triangles are tested with the Purcell/Christen
 // rule (a hit counts in the cell it lies in, up to the cell's exit plus the tolerance, because a
@@ -42,7 +42,7 @@ GPURT_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec
         float w;
         tests += 1;
         if (intersectTriangle(ray, v0, v1, v2, t, u, w) && t > 0.0f && t < bestT &&
-            (anyHit || t <= tExit + GPURT_GRID_TOLERANCE) && GPURT_GRID_COVERED(id, flags, u, w, d, v1 - v0, v2 - v0)) {
+            (anyHit || t <= tExit + GPURT_GRID_TOLERANCE) && GPURT_GRID_COVERED(id, flags, u, w, d, v1 - v0, v2 - v0, anyHit)) {
             bestT = t;
             bestId = id;
             bestU = u;

@@ -25,7 +25,8 @@
 #define GPURT_MODEL_CLASSIC 0       // Phong lobes, mirror, smooth glass (materials/classic.h)
 #define GPURT_MODEL_DEBUG_NORMAL 1  // the shading normal as a colour (materials/debug_normal.h)
 #define GPURT_MODEL_GLTF 2          // glTF 2.0 metallic-roughness (materials/gltf.h)
-#define GPURT_MODEL_COUNT 3         // the models this gpurt knows (a packed file's are checked)
+#define GPURT_MODEL_UNLIT 3         // KHR_materials_unlit: its base colour, whatever lights it
+#define GPURT_MODEL_COUNT 4         // the models this gpurt knows (a packed file's are checked)
 
 // What the integrators know of a material at one hit.
 struct MaterialRecord {
@@ -55,6 +56,22 @@ struct MaterialRecord {
 #define GPURT_WITH_GLTF
 #include "materials/gltf.h"
 #endif
+// The models that show only themselves (debug normal, unlit): they send their own colour along
+// every ray that sees them (materialEmitted), reflect nothing and no light reaches them.
+#if defined(__cplusplus) || defined(SCENE_MODEL_1) || defined(SCENE_MODEL_3)
+#define GPURT_WITH_SELF_SHOWN
+GPURT_FN bool materialShowsItself(MaterialRecord m) {
+    return m.model == GPURT_MODEL_DEBUG_NORMAL || m.model == GPURT_MODEL_UNLIT;
+}
+#endif
+
+// Whether a path ray that left its last hit in a direction of pdf prevPdf passes the surface as if
+// it were not there: KHR_materials_unlit's, as Blender's importer builds it (its colour for camera
+// rays and what mirrors and glass show, prevPdf 0; transparent to every other ray, so it lights
+// nothing; shadow rays pass it in the traversals, common/alpha.h GPURT_COVER_SHADOWLESS).
+GPURT_FN bool materialHiddenFrom(MaterialRecord m, float prevPdf) {
+    return m.model == GPURT_MODEL_UNLIT && prevPdf > 0.0f;
+}
 
 // The record as the ray meets the surface, on the front side (`entering`: frontFace) or the back:
 // the glTF model's index of refraction becomes relative across the boundary in the ray's
@@ -87,12 +104,13 @@ GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return debugNormalEmitted(ns);
 #endif
+    if (m.model == GPURT_MODEL_UNLIT) return m.kd;
     return m.emission;
 }
 
 GPURT_FN vec3 materialAmbient(MaterialRecord m) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return vec3(0.0f);
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfAmbient(m);
@@ -103,8 +121,8 @@ GPURT_FN vec3 materialAmbient(MaterialRecord m) {
 // The ambient term under an environment light whose irradiance at the shading normal is E
 // (Whitted; common/environment.h environmentIrradiance): the diffuse reflection of E.
 GPURT_FN vec3 materialEnvironmentAmbient(MaterialRecord m, vec3 irradiance) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return vec3(0.0f);
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfEnvironmentAmbient(m, irradiance);
@@ -114,8 +132,8 @@ GPURT_FN vec3 materialEnvironmentAmbient(MaterialRecord m, vec3 irradiance) {
 
 GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
                             float intensity) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return vec3(0.0f);
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfLight(m, p, n, d, lightPos, lightColor, intensity);
@@ -124,8 +142,8 @@ GPURT_FN vec3 materialLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 light
 }
 
 GPURT_FN bool materialSpawns(MaterialRecord m) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return false;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfSpawns(m);
@@ -135,8 +153,8 @@ GPURT_FN bool materialSpawns(MaterialRecord m) {
 
 // Whether a hit may spawn two rays (glass: the ray tree's stacks are needed).
 GPURT_FN bool materialSplits(MaterialRecord m) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return false;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfSplits(m);
@@ -147,8 +165,8 @@ GPURT_FN bool materialSplits(MaterialRecord m) {
 GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec3 w,
                               GPURT_OUT(vec3) dirA, GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA,
                               GPURT_OUT(vec3) dirB, GPURT_OUT(vec3) weightB) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return 0;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfChildren(m, d, ng, ns, w, dirA, weightA, sideA, dirB, weightB);
@@ -157,8 +175,8 @@ GPURT_FN int materialChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool e
 }
 
 GPURT_FN bool materialLit(MaterialRecord m) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return false;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfLit(m);
@@ -167,8 +185,8 @@ GPURT_FN bool materialLit(MaterialRecord m) {
 }
 
 GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return vec3(0.0f);
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return vec3(0.0f);
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfEval(m, n, d, wi);
@@ -177,8 +195,8 @@ GPURT_FN vec3 materialEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
 }
 
 GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return 0.0f;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return 0.0f;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfMaterialPdf(m, n, d, wi);
@@ -189,8 +207,8 @@ GPURT_FN float materialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
 GPURT_FN bool materialSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, bool entering, vec2 u, float lobe,
                              GPURT_OUT(vec3) dir, GPURT_OUT(vec3) factor, GPURT_OUT(float) pdf,
                              GPURT_OUT(float) side) {
-#ifdef GPURT_WITH_DEBUG_NORMAL
-    if (m.model == GPURT_MODEL_DEBUG_NORMAL) return false;
+#ifdef GPURT_WITH_SELF_SHOWN
+    if (materialShowsItself(m)) return false;
 #endif
 #ifdef GPURT_WITH_GLTF
     if (m.model == GPURT_MODEL_GLTF) return gltfSample(m, d, ng, ns, u, lobe, dir, factor, pdf, side);

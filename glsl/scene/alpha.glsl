@@ -1,7 +1,8 @@
 // Alpha coverage and back-face culling inside the accelerators' traversals: whether a candidate
 // hit counts (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). The accelerators'
-// kernels include this file only when some material in use has alpha (SCENE_ALPHA) or culls its
-// back faces (SCENE_CULL_BACK: glTF doubleSided false); each compiles only its own test.
+// kernels include this file only when some material in use has alpha (SCENE_ALPHA), culls its
+// back faces (SCENE_CULL_BACK: glTF doubleSided false) or casts no shadow (SCENE_SHADOWLESS:
+// KHR_materials_unlit); each compiles only its own test.
 // GpuTracer binds the scene textures it reads and sets the sample's uniforms.
 #include "../common/sampling.h"
 #include "shading.glsl"
@@ -27,12 +28,15 @@ uint elementCoverageKey() { return 0u; }  // culling alone needs no key
 
 // Whether triangle `id` (edges e1, e2, coverage flags `flags`: common/alpha.h GPURT_COVER_*, the
 // w of its second texel in the accelerators' lists) covers the ray of key `key` and direction d at
-// barycentrics (u, v). Flags 0: it does, with no fetch; culling alone needs no fetch either;
+// barycentrics (u, v), a shadow ray (an any-hit traversal's) or not. Flags 0: it does, with no fetch; culling alone needs no fetch either;
 // alpha reads its material's texel 7 (alpha mode, factor, cutoff, channel) and the channel at the
 // hit's texture coordinates.
-bool hitCovered(int id, float flags, float u, float v, uint key, vec3 d, vec3 e1, vec3 e2) {
+bool hitCovered(int id, float flags, float u, float v, uint key, vec3 d, vec3 e1, vec3 e2, bool shadowRay) {
     int f = int(flags);
     if (f == 0) return true;
+#ifdef SCENE_SHADOWLESS
+    if ((f & GPURT_COVER_SHADOWLESS) != 0 && shadowRay) return false;
+#endif
 #ifdef SCENE_CULL_BACK
     if ((f & GPURT_COVER_CULL) != 0 && backFacing(d, e1, e2)) return false;
 #endif

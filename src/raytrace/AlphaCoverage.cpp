@@ -32,13 +32,21 @@ bool sceneCullsBackFaces(const Scene& scene) {
     return someTriangleHas(scene, [](const Material& m) { return m.cullsBackFaces(); });
 }
 
+bool sceneHasShadowless(const Scene& scene) {
+    return someTriangleHas(scene, [](const Material& m) { return m.castsNoShadow(); });
+}
+
 std::unique_ptr<const AlphaCoverage> AlphaCoverage::of(const Scene& scene) {
-    return sceneUsesAlpha(scene) || sceneCullsBackFaces(scene) ? std::make_unique<const AlphaCoverage>(scene) : nullptr;
+    return sceneUsesAlpha(scene) || sceneCullsBackFaces(scene) || sceneHasShadowless(scene)
+               ? std::make_unique<const AlphaCoverage>(scene)
+               : nullptr;
 }
 
 // glsl/scene/alpha.glsl hitCovered.
-bool AlphaCoverage::covers(int prim, float u, float v, uint32_t key, glm::vec3 d, glm::vec3 e1, glm::vec3 e2) const {
+bool AlphaCoverage::covers(int prim, float u, float v, uint32_t key, glm::vec3 d, glm::vec3 e1, glm::vec3 e2,
+                           bool shadowRay) const {
     const Material& m = scene_.materials[scene_.materialIds[size_t(prim)]];
+    if (shadowRay && m.castsNoShadow()) return false;
     if (m.cullsBackFaces() && raymath::backFacing(d, e1, e2)) return false;
     if (m.alphaMode == GPURT_ALPHA_OPAQUE) return true;
     float alpha = m.alphaFactor;

@@ -69,9 +69,10 @@ void writeTriangle(const Triangle& tri, float w, float* out) {
 }
 }  // namespace
 
-// The coverage flags of a material's triangles (common/alpha.h GPURT_COVER_CULL, _ALPHA).
+// The coverage flags of a material's triangles (common/alpha.h GPURT_COVER_CULL, _ALPHA, _SHADOWLESS).
 static float coverageFlags(const Material& m) {
-    return float((m.cullsBackFaces() ? GPURT_COVER_CULL : 0) | (m.hasAlpha() ? GPURT_COVER_ALPHA : 0));
+    return float((m.cullsBackFaces() ? GPURT_COVER_CULL : 0) | (m.hasAlpha() ? GPURT_COVER_ALPHA : 0) |
+                 (m.castsNoShadow() ? GPURT_COVER_SHADOWLESS : 0));
 }
 
 // An accelerator's triangle list: triangle ids[k] at entry k, (v0, id), (v1, coverage flags), (v2, 0):

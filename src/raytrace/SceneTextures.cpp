@@ -175,6 +175,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     }
     hasAlpha_ = sceneUsesAlpha(scene);
     cullsBackFaces_ = sceneCullsBackFaces(scene);
+    shadowless_ = sceneHasShadowless(scene);
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -220,6 +221,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
 void SceneTextures::bindCoverageDefines(GPUKernel& kernel) const {
     if (hasAlpha_) kernel.addDefine("SCENE_ALPHA");
     if (cullsBackFaces_) kernel.addDefine("SCENE_CULL_BACK");
+    if (shadowless_) kernel.addDefine("SCENE_SHADOWLESS");
 }
 
 void SceneTextures::bindCoverage(GPUKernel& kernel) const {

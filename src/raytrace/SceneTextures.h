@@ -41,7 +41,7 @@ class SceneTextures {
     // Whether some triangle's material culls its back faces (sceneCullsBackFaces).
     bool cullsBackFaces() const { return cullsBackFaces_; }
     // Whether the accelerators' kernels test candidate hits at all: alpha or culling.
-    bool hasCoverage() const { return hasAlpha_ || cullsBackFaces_; }
+    bool hasCoverage() const { return hasAlpha_ || cullsBackFaces_ || shadowless_; }
     // Defines SCENE_ALPHA and SCENE_CULL_BACK (each where the scene has it) in an accelerator's
     // kernel and adds what its coverage test reads (the triangles, materials, texture coordinates
     // and textures); nothing without coverage.
@@ -83,6 +83,7 @@ class SceneTextures {
     bool hasTransmissionMaps_ = false;  // one of them with a transmissionTexture (SCENE_TRANSMISSION_MAPS)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
+    bool shadowless_ = false;      // SCENE_SHADOWLESS in the accelerators' kernels
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;

@@ -22,6 +22,7 @@
 
 #include "image/InputError.h"
 #include "scene/GltfDraco.h"
+#include "scene/GltfMeshopt.h"
 #include "scene/SceneFile.h"
 
 namespace gpurt {
@@ -68,7 +69,7 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 const std::set<std::string> kExtensionsRead = {
     "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
-    "KHR_lights_punctual"};
+    "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -898,6 +899,7 @@ class GltfReader {
         const auto strength = g.extensions.find("KHR_materials_emissive_strength");
         if (strength != g.extensions.end()) emissive *= number(strength->second, "emissiveStrength", 1.0);
         m.emission = glm::vec3(emissive);
+        if (g.extensions.count("KHR_materials_unlit") > 0) return readUnlit(g, at, m, scene, index);
         // KHR_materials_ior: the dielectric's F0; KHR_materials_transmission: a rough dielectric
         // solid (glsl/common/materials/gltf.h; record ior > 0 with transmission t in all channels).
         m.transmission = glm::vec3(0.0f);
@@ -971,6 +973,31 @@ class GltfReader {
         // other unread extensions (kExtensionsRead).
         readAlpha(g, baseTexture, named, m, uv, scene);
         m.doubleSided = g.doubleSided;  // glTF's default: single-sided (back faces culled)
+        uvs_.resize(scene.materials.size() + 1);
+        uvs_.back() = uv;
+        scene.materials.push_back(m);
+        materialIds_[size_t(index)] = int(scene.materials.size() - 1);
+        return uint32_t(scene.materials.size() - 1);
+    }
+
+    // KHR_materials_unlit (glsl/common/material.h GPURT_MODEL_UNLIT): the base colour, its texture
+    // and alpha; what else the material holds is a warning.
+    uint32_t readUnlit(const tinygltf::Material& g, const std::string& at, Material& m, Scene& scene, int index) {
+        m.model = 3;
+        const std::string named = at + " ('" + m.name + "')";
+        if (m.emits()) warn(named + ": the emission of an unlit material is not used");
+        m.emission = glm::vec3(0.0f);
+        for (const char* other : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"})
+            if (g.extensions.count(other) > 0) warn(named + ": " + other + " of an unlit material is not used");
+        if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
+            g.occlusionTexture.index >= 0 || g.emissiveTexture.index >= 0)
+            warn(named + ": the textures of an unlit material other than baseColorTexture are not used");
+        MaterialUv uv;
+        const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
+        if (baseTexture.index >= 0)
+            m.diffuseTexture = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
+        readAlpha(g, baseTexture, named, m, uv, scene);
+        m.doubleSided = g.doubleSided;
         uvs_.resize(scene.materials.size() + 1);
         uvs_.back() = uv;
         scene.materials.push_back(m);
@@ -1229,7 +1256,7 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     loader.SetImageLoader(decodeGltfImage, &images);
     std::string err, warn;
     const bool glb = looksLikeGlb(bytes);
-    const std::string readable = withoutDracoIndices(bytes);
+    const std::string readable = withoutDracoIndices(withMeshoptDecoded(bytes, name, folder));
     if (readable.size() > UINT32_MAX) failAt(file, "larger than a glTF file can be (4 GiB)");
     // Known by its content, whatever its name says (CONTRACT.md; Blender's importer does the same).
     auto named = [&](std::string_view extension) {

@@ -93,6 +93,8 @@ struct Material {
     // is never culled, as the rays inside a solid meet its back faces.
     bool cullsBackFaces() const { return !doubleSided && !transmits(); }
     bool emits() const { return emission != glm::vec3(0.0f); }
+    // Whether shadow rays pass it (glsl/common/alpha.h GPURT_COVER_SHADOWLESS): KHR_materials_unlit.
+    bool castsNoShadow() const { return model == 3; }  // glsl/common/material.h GPURT_MODEL_UNLIT
 };
 
 // Wrap modes of a texture's coordinates (the values of glsl/common/texture.h).

@@ -3,6 +3,7 @@
 set(GPURT_SCENE_SOURCES
   GltfDraco.cpp
   GltfLoader.cpp
+  GltfMeshopt.cpp
   JsonScene.cpp
   ObjLoader.cpp
   PlyLoader.cpp

@@ -9,6 +9,8 @@
 #include "image/ImageIO.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -45,6 +47,42 @@ TEST_F(SceneFiles, GltfLoadsByItsContentWhateverItsName) {
     const std::string gltf = render(path("binary-named.gltf"), "gltf");
     EXPECT_NE(gltf.find("binary-named.gltf: warning: named .gltf but a binary glTF"), std::string::npos) << gltf;
     EXPECT_EQ(png("gltf"), png("cornell"));
+}
+
+// EXT_meshopt_compression as gltfpack writes it (tests/assets/gltf, scripts/make-test-assets.sh):
+// the vertex and index codecs decode to the same teapot (its triangles reordered for the vertex
+// cache; the .gltf's positions quantized to 14 bits), without a warning; data that does not
+// decode is refused naming the buffer view.
+TEST_F(SceneFiles, MeshoptCompressedGltfRendersAsItsSource) {
+    const fs::path assets = fs::absolute("tests/assets/gltf");
+    render((assets / "teapot.gltf").string(), "teapot");
+    int w = 0, h = 0;
+    const std::vector<unsigned char> source = pngPixels(png("teapot"), w, h);
+    for (const char* file : {"teapot_meshopt.glb", "teapot_meshopt_q.gltf"}) {
+        SCOPED_TRACE(file);
+        const std::string err = render((assets / file).string(), "meshopt");
+        EXPECT_EQ(err.find("EXT_meshopt_compression"), std::string::npos) << err;
+        int mw = 0, mh = 0;
+        const std::vector<unsigned char> decoded = pngPixels(png("meshopt"), mw, mh);
+        ASSERT_EQ(decoded.size(), source.size());
+        size_t close = 0;
+        for (size_t i = 0; i < source.size(); ++i) close += std::abs(int(decoded[i]) - int(source[i])) <= 2;
+        EXPECT_GE(double(close) / double(source.size()), 0.99);  // quantization moves an edge pixel or two
+    }
+    // The header byte of the compressed indices (buffer view 1's data in the binary chunk) zeroed.
+    std::string glb = readFile(assets / "teapot_meshopt.glb");
+    uint32_t jsonLength = 0;
+    std::memcpy(&jsonLength, glb.data() + 12, 4);
+    const nlohmann::json gltf = nlohmann::json::parse(glb.substr(20, jsonLength));
+    const size_t indices = gltf["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["byteOffset"].get<size_t>();
+    ASSERT_EQ(gltf["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["mode"], "TRIANGLES");
+    glb[20 + jsonLength + 8 + indices] = '\0';
+    std::ofstream(dir / "damaged.glb", std::ios::binary) << glb;
+    const GpurtRun r = gpurt("render " + quoted("damaged.glb") + " -o " + quoted("out.png"));
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("damaged.glb: bufferView"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("does not decode"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
 // The DamagedHelmet's case: a model whose only light is its material's emission still gets the

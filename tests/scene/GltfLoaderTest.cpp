@@ -247,6 +247,25 @@ TEST(GltfLoader, SpotAndDirectionalLights) {
     EXPECT_FLOAT_EQ(sun.intensity, float(3.0 / std::numbers::pi));
 }
 
+// KHR_materials_unlit: the unlit model (glsl/common/material.h GPURT_MODEL_UNLIT) with the base
+// colour; its emission is not used (a warning), and it casts no shadow.
+TEST(GltfLoader, UnlitMaterials) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const Scene scene = parse(g.json(
+        "\"extensionsUsed\": [\"KHR_materials_unlit\"], \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], "
+        "\"materials\": [{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.2, 0.4, 0.6, 1]}, \"emissiveFactor\": [1, 1, 1], "
+        "\"extensions\": {\"KHR_materials_unlit\": {}}}], "
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) + "}, \"material\": 0}]}]"));
+    ASSERT_EQ(scene.materials.size(), 2u);
+    const Material& unlit = scene.materials[1];
+    EXPECT_EQ(unlit.model, 3);
+    EXPECT_EQ(unlit.diffuse, glm::vec3(0.2f, 0.4f, 0.6f));
+    EXPECT_EQ(unlit.emission, glm::vec3(0.0f));
+    EXPECT_TRUE(unlit.castsNoShadow());
+    EXPECT_FALSE(hasOwnLight(scene));
+}
+
 // alphaMode: MASK with its alphaCutoff (default 0.5), BLEND; alpha is baseColorFactor[3] (no
 // texture here); OPAQUE and no mode are opaque. A cutoff outside [0, 1] is refused naming the
 // material.

@@ -7,11 +7,11 @@
 // Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl)
 // with the coverage key of the ray being traced, which the caller sets.
 uint rayCoverageKey = 0u;
-#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
+#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK) || defined(SCENE_SHADOWLESS)
 #include "scene/alpha.glsl"
-#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2) hitCovered(id, flags, u, v, rayCoverageKey, d, e1, e2)
+#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2, anyHit) hitCovered(id, flags, u, v, rayCoverageKey, d, e1, e2, anyHit)
 #else
-#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2) true
+#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2, anyHit) true
 #endif
 
 uniform usamplerBuffer bvhNodes;     // two texels a node, one per child (common/bvh.h)

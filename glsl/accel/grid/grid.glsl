@@ -43,7 +43,7 @@ int fetchListTriangle(uint k, out vec3 v0, out vec3 v1, out vec3 v2, out float f
 #define GPURT_GRID_RANGE(cell) cellRange(cell)
 #define GPURT_GRID_SKIP(cell, range) int((range).x)  // an empty cell's entry holds its skip distance
 #define GPURT_GRID_TRI(k, v0, v1, v2, flags) fetchListTriangle(k, v0, v1, v2, flags)
-#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2) GRID_COVERED(id, flags, u, v, d, e1, e2)
+#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit) GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit)
 
 // The grid-box entry parameter of a ray that starts at o, or GPURT_MISSED_BOX (-1) when the
 // segment [0, tLimit] misses the box.

@@ -6,11 +6,13 @@
 // triangle id (lists are ascending). No hit: one DDA step and back to ACTIVE.
 #include "grid.glsl"
 // Some material has alpha or culls its back faces: candidate hits are tested (scene/alpha.glsl).
-#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK)
+#if defined(SCENE_ALPHA) || defined(SCENE_CULL_BACK) || defined(SCENE_SHADOWLESS)
 #include "scene/alpha.glsl"
-#define GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(id, flags, u, v, elementCoverageKey(), d, e1, e2)
+uniform int shadowRays;  // 1 while the rays are shadow rays (GridGl::traceLoop's any-hit traces)
+#define GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit) \
+    hitCovered(id, flags, u, v, elementCoverageKey(), d, e1, e2, shadowRays != 0)
 #else
-#define GRID_COVERED(id, flags, u, v, d, e1, e2) true
+#define GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit) true
 #endif
 #include "common/grid.h"
 

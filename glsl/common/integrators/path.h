@@ -64,15 +64,21 @@ GPURT_FN void pathMiss(GPURT_INOUT(PathState) st, int b) {
 // The path's ray hit surface s at distance t, depth b: the hit's features while they are open,
 // and its emission, weighed against next-event estimation of the same point.
 GPURT_FN void pathArrive(GPURT_INOUT(PathState) st, SurfaceHit s, float t, int b) {
+    if (materialHiddenFrom(s.m, st.prevPdf)) return;  // not there for this ray (pathScatter passes it)
     if (st.open) recordFeatures(materialAlbedo(s.m), s.ns);
     float mis = s.m.emitterLight ? emissionWeight(st.prevPdf, t, s.n, st.d, emitterArea) : 1.0f;
     pathAdd(st, materialEmitted(s.m, s.ns) * mis, b);
 }
 
 // The path's next ray from its hit s at depth b: a direction the material samples from the
-// sample's numbers of this depth, the throughput times f cos / pdf, Russian roulette. False when
-// the path ends here (absorbed, below the surface, roulette).
+// sample's numbers of this depth, the throughput times f cos / pdf, Russian roulette (or the same
+// ray on past a surface hidden from it, common/material.h materialHiddenFrom). False when the path
+// ends here (absorbed, below the surface, roulette).
 GPURT_FN bool pathScatter(GPURT_INOUT(PathState) st, SurfaceHit s, int b) {
+    if (materialHiddenFrom(s.m, st.prevPdf)) {  // on through it, as it came (a depth spent)
+        st.o = offsetOrigin(s.p, -s.n, rayOffset);
+        return true;
+    }
     uint dim = GPURT_DIM_SCATTER + 2u * uint(b);
     vec2 u = pixelSample2D(dim);
     vec2 choice = pixelSampleChoice(dim + 1u);

@@ -26,8 +26,8 @@ struct BvhTexels {
 #define GPURT_BVH_TRI(i) bvh.triangles[i]
 #define GPURT_BVH_BOX_MIN bvh.boxMin
 #define GPURT_BVH_BOX_STEP bvh.boxStep
-#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2) \
-    ((flags) == 0.0f || hitCovered(bvh.coverage, id, u, v, bvh.coverageKey, d, e1, e2))
+#define GPURT_BVH_COVERED(id, flags, u, v, d, e1, e2, anyHit) \
+    ((flags) == 0.0f || hitCovered(bvh.coverage, id, u, v, bvh.coverageKey, d, e1, e2, anyHit))
 #include "../../../../glsl/common/bvh.h"
 
 std::vector<vec4> asVectors(const TextureTexels& texels) {

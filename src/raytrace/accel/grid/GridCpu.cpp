@@ -54,7 +54,8 @@ struct GridCells {
 #define GPURT_GRID_RANGE(cell) cells.range(cell)
 #define GPURT_GRID_SKIP(cell, range) int((range).x)
 #define GPURT_GRID_TRI(k, v0, v1, v2, flags) cells.triangle(k, v0, v1, v2, flags)
-#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2) hitCovered(cells.coverage, id, u, v, cells.coverageKey, d, e1, e2)
+#define GPURT_GRID_COVERED(id, flags, u, v, d, e1, e2, anyHit) \
+    hitCovered(cells.coverage, id, u, v, cells.coverageKey, d, e1, e2, anyHit)
 #include "../../../../glsl/common/grid.h"
 
 }  // namespace

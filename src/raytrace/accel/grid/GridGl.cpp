@@ -152,6 +152,7 @@ uint64_t GridGl::traceLoop(bool anyHit) {
         return rays;
     }
     const uint64_t rays = p.precalc.execute();
+    p.intersect.setUniform("shadowRays", anyHit ? 1 : 0);  // unlit materials cast no shadow
     const int limit = 2 * maxCells + 2;
     const bool balance = options_.waitThreshold > 0.0f;
     p.intersect.setMask(&p.waitMask, !balance);
