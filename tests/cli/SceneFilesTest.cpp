@@ -9,6 +9,9 @@
 #include "image/ImageIO.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -83,6 +86,21 @@ TEST_F(SceneFiles, MeshoptCompressedGltfRendersAsItsSource) {
     EXPECT_NE(r.err.find("damaged.glb: bufferView"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("does not decode"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+// --fstop N as CONTRACT.md defines it: the same picture as --lens-radius f / (2 N), f the focal
+// length of a 36 mm sensor across the image's larger side (square images here: the scene's fovy
+// of 32 degrees spans it).
+TEST_F(SceneFiles, AnFStopIsItsLensRadius) {
+    const std::string scene = fs::absolute("scenes/depth_of_field.json").string();
+    const double f = 0.018 / std::tan(16.0 * std::numbers::pi / 180.0);
+    char radius[32];
+    std::snprintf(radius, sizeof radius, "%.9g", f / (2.0 * 1.4));
+    render(scene, "fstop", "--spp 8 --fstop 1.4");
+    render(scene, "radius", std::string("--spp 8 --lens-radius ") + radius);
+    render(scene, "pinhole", "--spp 8 --lens-radius 0");
+    EXPECT_EQ(png("fstop"), png("radius"));
+    EXPECT_NE(png("fstop"), png("pinhole"));  // the scene's own lens_radius 0.25 replaced, not kept
 }
 
 // The DamagedHelmet's case: a model whose only light is its material's emission still gets the
