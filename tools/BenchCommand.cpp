@@ -5,16 +5,16 @@
 #include "Commands.h"
 #include "CommonOptions.h"
 
-#include "raytrace/BenchRays.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
-#include "raytrace/Renderer.h"
+#include "raytrace/accel/BenchRays.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
+#include "raytrace/render/Renderer.h"
 #include "base/Parallel.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/KernelStats.h"
 #ifdef GPURT_HAVE_EMBREE
-#include "raytrace/EmbreeTracer.h"
+#include "raytrace/accel/EmbreeTracer.h"
 #endif
 
 #include <nlohmann/json.hpp>

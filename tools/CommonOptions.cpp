@@ -1,6 +1,6 @@
 #include "CommonOptions.h"
 
-#include "raytrace/SceneScale.h"
+#include "raytrace/scene/SceneScale.h"
 #include "raytrace/integrators/Registry.h"
 #include "scene/SmoothNormals.h"
 #include "stream/StreamErrors.h"

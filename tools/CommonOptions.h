@@ -2,13 +2,13 @@
 // --target, --up, --fovy), the image size (--size), and their parsing into one-line errors.
 #pragma once
 
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 #include "image/Colour.h"
 #include "image/InputError.h"
-#include "raytrace/GlOptions.h"
-#include "raytrace/Renderer.h"
+#include "raytrace/common/GlOptions.h"
+#include "raytrace/render/Renderer.h"
 #include "scene/Scene.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "stream/GLContext.h"
@@ -53,7 +53,7 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text);
 // "WxH" -> (W, H) with 1 <= W, H <= 16384 and W * H <= 8192 * 8192.
 glm::ivec2 parseSize(const std::string& option, const std::string& text);
 
-// Throws EnvironmentError (exit 2) when a render of `size` (raytrace/Renderer.h renderBytes) would
+// Throws EnvironmentError (exit 2) when a render of `size` (raytrace/render/Renderer.h renderBytes) would
 // need more memory than the machine has available (MemAvailable): Linux overcommits, so past
 // that point the render would be killed instead of failing cleanly.
 void checkRenderFitsInMemory(glm::ivec2 size, Backend backend, Integrator integrator);
@@ -64,7 +64,7 @@ void addUpAxisOption(CLI::App& cmd, std::string& upAxis);
 // --up-axis as an axis (none when not given); InputError for a bad one.
 std::optional<UpAxis> upAxisOf(const std::string& upAxisOption);
 // Turns the loaded scene so that --up-axis (when given, else the scene's own) points up, with its
-// accelerator (the library's turnSceneUp, raytrace/SceneLoader.h). InputError for a bad --up-axis.
+// accelerator (the library's turnSceneUp, raytrace/scene/SceneLoader.h). InputError for a bad --up-axis.
 void turnSceneUp(LoadedScene& loaded, const std::string& upAxisOption);
 
 // Refuses an empty value ("--fovy ''"), which the options below would take for "not given".
@@ -157,7 +157,7 @@ struct PictureCliOptions {
                                    int scaleExponent);
 };
 
-// The scene as render and view trace it: the library's prepareScene (raytrace/SceneLoader.h) with
+// The scene as render and view trace it: the library's prepareScene (raytrace/scene/SceneLoader.h) with
 // --up-axis and --smooth (crease < 0: faceted). `normalsMs`, if given, gets the smooth normals'
 // share of the time (--stats' normals phase).
 LoadedScene loadSceneToRender(const std::string& path, const std::string& upAxisOption, float crease,

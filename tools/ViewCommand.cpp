@@ -10,10 +10,10 @@
 #include "raytrace/integrators/Registry.h"
 
 #include "image/AtomicFile.h"
-#include "raytrace/Renderer.h"
+#include "raytrace/render/Renderer.h"
 #include "stream/GPUKernel.h"
 #include "image/ImageIO.h"
-#include "raytrace/SceneScale.h"
+#include "raytrace/scene/SceneScale.h"
 #include "scene/SmoothNormals.h"
 #include "stream/GLWindow.h"
 #include "stream/KernelStats.h"

@@ -1,6 +1,6 @@
 // Alpha coverage (glTF alphaMode MASK / BLEND, MTL d / map_d) and back-face culling (glTF
 // doubleSided false), shared word for word by the accelerators' kernels (glsl/scene/alpha.glsl)
-// and the cpu backend (src/raytrace/AlphaCoverage), after raymath.h and sampling.h. A candidate hit on a surface with alpha counts only where the
+// and the cpu backend (src/raytrace/materials/AlphaCoverage), after raymath.h and sampling.h. A candidate hit on a surface with alpha counts only where the
 // surface covers the ray: MASK where alpha >= alphaCutoff, BLEND with probability alpha (stochastic
 // transparency: rays pass the surface with probability 1 - alpha). BLEND's choice is a hash of the
 // ray's key and the triangle, never a generator: every ray of one sample of one pixel (primary,

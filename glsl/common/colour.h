@@ -1,5 +1,5 @@
 // From linear radiance to the display: exposure, a tone map, the sRGB transfer function (CONTRACT.md,
-// "Colour, sampling and materials"). Shared word for word by C++ (src/raytrace/Colour.h, which
+// "Colour, sampling and materials"). Shared word for word by C++ (src/image/Colour.h, which
 // develops the PNG of both backends) and GLSL (for kernels that present an image), after
 // common/raymath.h. Same rules as raymath.h.
 #ifndef GPURT_COLOUR_H

@@ -1,6 +1,6 @@
 // The environment light (CONTRACT.md, "Environment light and the default light"), shared word for
 // word by the kernels (glsl/scene/scene.glsl, which fetches the map's texels and searches its
-// distribution) and the CPU backend (src/raytrace/EnvironmentTable), after common/shading.h and
+// distribution) and the CPU backend (src/raytrace/lights/EnvironmentTable), after common/shading.h and
 // common/texture.h. Same rules as raymath.h.
 //
 // Direction d (unit, scene coordinates, +Y up) reads the map at u = 0.5 + atan2(d.x, -d.z) / (2 pi),

@@ -1,7 +1,7 @@
 // The material seam, shared word for word by the kernels and the CPU backend (after
 // common/shading.h; same rules as raymath.h). A hit's material is fetched once, with its textures
 // at the hit, into a MaterialRecord (the kernels: shading.glsl fetchMaterialRecord; C++:
-// raytrace/MaterialRecord.h materialRecord); the integrators then ask it only through the
+// raytrace/materials/MaterialRecord.h materialRecord); the integrators then ask it only through the
 // functions below, which dispatch on the record's model to the model's file in materials/:
 //   Whitted:  materialAmbient (the ambient term; materialEnvironmentAmbient under an environment), materialLight (one unshadowed point light),
 //             materialSpawns / materialSplits / materialChildren (the reflected and refracted

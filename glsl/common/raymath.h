@@ -1,5 +1,5 @@
 // Ray math shared word for word by the GLSL kernels (#include "common/raymath.h") and the C++
-// CPU backend (src/raytrace/RayMath.h includes it inside a namespace with `using namespace glm`),
+// CPU backend (src/raytrace/common/RayMath.h includes it inside a namespace with `using namespace glm`),
 // so that both backends evaluate the same float operations in the same order.
 // Only the common subset of GLSL 4.50 and C++/GLM: no swizzle writes, float literals with 'f'.
 #ifndef GPURT_RAYMATH_H

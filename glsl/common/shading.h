@@ -1,5 +1,5 @@
 // The geometry and optics of a hit, shared word for word by the GLSL kernels (#include
-// "common/shading.h" after "common/raymath.h") and the C++ CPU backend (raytrace/RayMath.h
+// "common/shading.h" after "common/raymath.h") and the C++ CPU backend (raytrace/common/RayMath.h
 // includes it inside namespace gpurt::raymath), so both backends treat a hit with the same float
 // operations: normals, ray offsets, shadow rays, mirror and refracted directions, Fresnel, emitter
 // points. Same rules as raymath.h: the common subset of GLSL 4.50 and C++/GLM, no swizzle writes,
@@ -45,7 +45,7 @@ GPURT_FN vec3 facingNormal(vec3 e1, vec3 e2, vec3 d) {
 
 // The vertex colour at barycentrics (u, v) of a triangle whose corners have c0, c1, c2 (linear
 // RGB): it multiplies the diffuse colour at the hit (the kernels: shading.glsl fetchMaterialRecord;
-// C++: raytrace/MaterialRecord.cpp materialRecord). Written from c0 along the edges, so that equal
+// C++: raytrace/materials/MaterialRecord.cpp materialRecord). Written from c0 along the edges, so that equal
 // corners give exactly their colour (white changes nothing, bit for bit).
 GPURT_FN vec3 interpolateVertexColor(vec3 c0, vec3 c1, vec3 c2, float u, float v) {
     return c0 + (c1 - c0) * u + (c2 - c0) * v;

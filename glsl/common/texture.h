@@ -1,5 +1,5 @@
 // Texture filtering shared word for word by the GLSL kernels (glsl/scene/shading.glsl, which
-// fetches the texels) and the CPU backend (src/raytrace/SurfaceTexture.cpp), after
+// fetches the texels) and the CPU backend (src/raytrace/materials/SurfaceTexture.cpp), after
 // common/raymath.h. Same rules as raymath.h.
 //
 // Image coordinates: (0, 0) is the top-left corner of the image and (1, 1) its bottom-right one,

@@ -1,5 +1,5 @@
 // Alpha coverage and back-face culling inside the accelerators' traversals: whether a candidate
-// hit counts (common/alpha.h, src/raytrace/AlphaCoverage on the cpu backend). The accelerators'
+// hit counts (common/alpha.h, src/raytrace/materials/AlphaCoverage on the cpu backend). The accelerators'
 // kernels include this file only when some material in use has alpha (SCENE_ALPHA), culls its
 // back faces (SCENE_CULL_BACK: glTF doubleSided false) or casts no shadow (SCENE_SHADOWLESS:
 // KHR_materials_unlit); each compiles only its own test.

@@ -60,7 +60,7 @@ vec3 textureTexel(int first, int width, int x, int y) {
 }
 
 // The diffuse colour kd times texture `tex`'s filtered colour at image coordinates t (-1: no
-// texture; src/raytrace/SurfaceTexture.cpp diffuseAt).
+// texture; src/raytrace/materials/SurfaceTexture.cpp diffuseAt).
 vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 #ifdef SCENE_TEXTURES
     if (tex < 0) return kd;
@@ -77,7 +77,7 @@ vec3 texturedDiffuse(int tex, vec3 kd, vec2 t) {
 }
 
 // Channel `code` % 4 (0 R .. 3 A) of texture `code` / 4 at image coordinates t, filtered, as a
-// linear number in [0, 1]; 1 for code -1 (src/raytrace/SurfaceTexture.cpp sampleChannel).
+// linear number in [0, 1]; 1 for code -1 (src/raytrace/materials/SurfaceTexture.cpp sampleChannel).
 float textureChannel(int code, vec2 t) {
 #ifdef SCENE_TEXTURES
     if (code < 0) return 1.0f;

@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 #include "image/Colour.h"
 #include "image/ImageIO.h"
 #include "scene/ObjLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #ifdef GPURT_HAVE_EMBREE
-#include "raytrace/BenchRays.h"
-#include "raytrace/EmbreeTracer.h"
+#include "raytrace/accel/BenchRays.h"
+#include "raytrace/accel/EmbreeTracer.h"
 #endif
 
 namespace gpurt::test {

@@ -10,10 +10,10 @@
 
 #include <unistd.h>
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
 #include "image/InputError.h"
-#include "raytrace/SceneScale.h"
+#include "raytrace/scene/SceneScale.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::fuzz {

@@ -15,7 +15,7 @@
 
 #include "image/EnvironmentImage.h"
 #include "image/InputError.h"
-#include "raytrace/EnvironmentTable.h"
+#include "raytrace/lights/EnvironmentTable.h"
 
 namespace {
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

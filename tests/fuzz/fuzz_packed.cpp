@@ -13,7 +13,7 @@
 
 #include "FuzzScene.h"
 #include "image/InputError.h"
-#include "raytrace/PackedScene.h"
+#include "raytrace/scene/PackedScene.h"
 
 namespace {
 

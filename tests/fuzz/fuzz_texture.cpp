@@ -9,7 +9,7 @@
 
 #include "image/InputError.h"
 #include "image/TextureImage.h"
-#include "raytrace/SurfaceTexture.h"
+#include "raytrace/materials/SurfaceTexture.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     gpurt::Texture texture;

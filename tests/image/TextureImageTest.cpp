@@ -12,7 +12,7 @@
 #include "../common/ImageFiles.h"
 #include "../common/Refusal.h"
 #include "image/TextureImage.h"
-#include "raytrace/SurfaceTexture.h"
+#include "raytrace/materials/SurfaceTexture.h"
 
 namespace gpurt::test {
 namespace {

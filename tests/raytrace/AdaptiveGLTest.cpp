@@ -5,7 +5,7 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 
 #include <cmath>
 #include <numeric>

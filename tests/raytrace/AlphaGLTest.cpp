@@ -11,8 +11,8 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/AlphaCoverage.h"
-#include "raytrace/Renderer.h"
+#include "raytrace/materials/AlphaCoverage.h"
+#include "raytrace/render/Renderer.h"
 #include "raytrace/accel/Acceleration.h"
 #include "scene/ObjLoader.h"
 

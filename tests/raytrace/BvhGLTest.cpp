@@ -4,8 +4,8 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/Renderer.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/render/Renderer.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "scene/ObjLoader.h"
 
 #include <cmath>

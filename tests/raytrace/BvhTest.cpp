@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 #include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/bvh/BvhCpu.h"
 #include "raytrace/accel/grid/GridCpu.h"

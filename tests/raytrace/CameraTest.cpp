@@ -1,6 +1,6 @@
 // The camera against the contract's formulas evaluated independently in double precision, the
 // default camera, and the option errors.
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 
 #include <cmath>
 #include <numbers>

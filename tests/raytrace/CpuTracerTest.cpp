@@ -1,7 +1,7 @@
 // CpuTracer::trace against a brute-force closest hit over all triangles (Moller-Trumbore in
 // double, no grid) on random rays through real meshes, from outside and inside the grid, with
 // and without a ray limit; and render() bookkeeping (AOVs on misses, ray counts).
-#include "raytrace/CpuTracer.h"
+#include "raytrace/render/CpuTracer.h"
 
 #include <cmath>
 #include <limits>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/ObjLoader.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 
 namespace gpurt {
 namespace {

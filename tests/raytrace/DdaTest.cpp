@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {

@@ -7,7 +7,7 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "raytrace/denoise/DenoiseGl.h"
 
 #include <cmath>

@@ -9,11 +9,11 @@
 #include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/BenchRays.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/accel/BenchRays.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "raytrace/accel/Acceleration.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

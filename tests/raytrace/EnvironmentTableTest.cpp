@@ -5,8 +5,8 @@
 // table for a 2048 x 1024 map (docs/PERFORMANCE.md).
 #include "EnvironmentTestMaps.h"
 
-#include "raytrace/EnvironmentTable.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/lights/EnvironmentTable.h"
+#include "raytrace/common/RayMath.h"
 
 #include <gtest/gtest.h>
 

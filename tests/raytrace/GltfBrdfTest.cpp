@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "GltfReference.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 
 namespace gpurt::test {
 namespace {

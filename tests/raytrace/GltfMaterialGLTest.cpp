@@ -19,8 +19,8 @@
 #include "EnvironmentTestMaps.h"
 #include "GltfReference.h"
 #include "TestScenes.h"
-#include "raytrace/MaterialRecord.h"
-#include "raytrace/PackedScene.h"
+#include "raytrace/materials/MaterialRecord.h"
+#include "raytrace/scene/PackedScene.h"
 #include "scene/GltfLoader.h"
 #include "../common/TransmissionQuad.h"
 

@@ -3,7 +3,7 @@
 // CPU backend renders a packed scene exactly as its source; and every kind of damage is refused
 // with one line naming the file, never a crash. Damaged files are made by reading and patching
 // the documented layout here (with zlib's CRC-32 to reseal them), independently of the writer.
-#include "raytrace/PackedScene.h"
+#include "raytrace/scene/PackedScene.h"
 #include "raytrace/accel/bvh/Bvh.h"
 
 #include <gtest/gtest.h>
@@ -24,12 +24,14 @@
 #include <string>
 #include <vector>
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
 #include "image/InputError.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/SceneLoader.h"
-#include "raytrace/SceneTextureLayout.h"
+#include "raytrace/scene/SceneLoader.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/bvh/BvhTexels.h"
+#include "raytrace/accel/grid/GridTexels.h"
 
 namespace gpurt {
 namespace {

@@ -7,7 +7,7 @@
 #include "TestScenes.h"
 
 #include "scene/ObjLoader.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 
 #include <cmath>
 #include <functional>

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"

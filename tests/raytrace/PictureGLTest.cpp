@@ -6,13 +6,13 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 #include "image/Colour.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
 #include "image/ImageIO.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "scene/SmoothNormals.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "image/Colour.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 #include "scene/SmoothNormals.h"
 
 namespace gpurt::raymath {

@@ -1,14 +1,14 @@
 // Rescaling by powers of two (SceneScale.h): which scenes are rescaled and how far, and that a
 // rescaled scene renders the same image, bit for bit, with depths scaled back exactly.
-#include "raytrace/SceneScale.h"
+#include "raytrace/scene/SceneScale.h"
 
 #include <cfloat>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
 #include "scene/JsonScene.h"
 #include "scene/ObjLoader.h"
 

@@ -2,7 +2,9 @@
 // with the texel addresses worked out here from the header's description: cell c at (c % width,
 // c / width) of the voxel index, list entry k at (k % width, k / width), triangle t's texels at
 // row t / TRIANGLES_PER_ROW, columns 3 * (t % TRIANGLES_PER_ROW) + 0..2; every other texel 0.
-#include "raytrace/SceneTextureLayout.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/bvh/BvhTexels.h"
+#include "raytrace/accel/grid/GridTexels.h"
 
 #include <algorithm>
 #include <gtest/gtest.h>

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/common/RayMath.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt::raymath {

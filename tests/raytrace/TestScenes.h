@@ -2,10 +2,10 @@
 // path integrator (PictureGLTest, PathGLTest).
 #pragma once
 
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 #include "image/Colour.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
 #include "image/ImageIO.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

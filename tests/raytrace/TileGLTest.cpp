@@ -5,7 +5,7 @@
 #include "TestScenes.h"
 
 #include "image/InputError.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "image/Tiles.h"
 
 #include <cstdio>

@@ -3,9 +3,9 @@
 // mode and traversal step count gives the same first hits.
 #include "../common/GLTest.h"
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
 #include "scene/ObjLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

@@ -2,12 +2,13 @@
 // raymath.h DDA and triangle test, brute force over all triangles), on random inputs.
 #include "../common/GLTest.h"
 
-#include "raytrace/Camera.h"
-#include "raytrace/GpuPipeline.h"
-#include "raytrace/PackedScene.h"
-#include "raytrace/RayMath.h"
-#include "raytrace/SceneTextureLayout.h"
-#include "raytrace/SceneTextures.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/scene/PackedScene.h"
+#include "raytrace/common/RayMath.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/grid/GridTexels.h"
+#include "raytrace/textures/SceneTextures.h"
 #include "raytrace/accel/grid/GridGl.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

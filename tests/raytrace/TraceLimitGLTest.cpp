@@ -3,9 +3,9 @@
 // misses, on the fused and the split kernels alike.
 #include "../common/GLTest.h"
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
 #include "scene/ObjLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 

@@ -3,11 +3,11 @@
 // golden mismatch the actual image and a diff image are written next to the build's tests.
 #include "../common/GLTest.h"
 
-#include "raytrace/Camera.h"
-#include "raytrace/CpuTracer.h"
-#include "raytrace/GpuTracer.h"
+#include "raytrace/camera/Camera.h"
+#include "raytrace/render/CpuTracer.h"
+#include "raytrace/render/GpuTracer.h"
 #include "image/ImageIO.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 
 #include <png.h>

@@ -9,7 +9,7 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
-#include "raytrace/Renderer.h"
+#include "raytrace/render/Renderer.h"
 #include "raytrace/accel/Acceleration.h"
 
 #include <glm/glm.hpp>

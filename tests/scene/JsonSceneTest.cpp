@@ -16,7 +16,7 @@
 
 #include "image/InputError.h"
 #include "scene/ObjLoader.h"
-#include "raytrace/SceneLoader.h"
+#include "raytrace/scene/SceneLoader.h"
 #include "../common/TransmissionQuad.h"
 
 namespace gpurt {

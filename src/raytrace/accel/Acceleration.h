@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "raytrace/Camera.h"
+#include "raytrace/camera/Camera.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/accel/bvh/Bvh.h"
 #include "raytrace/accel/grid/UniformGrid.h"

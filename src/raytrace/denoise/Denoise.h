@@ -4,7 +4,7 @@
 // DenoiseGl.h runs the same passes as stream kernels.
 #pragma once
 
-#include "raytrace/RenderTypes.h"
+#include "raytrace/common/RenderTypes.h"
 
 #include <cstdint>
 #include <string>

@@ -3,7 +3,7 @@
 #include "raytrace/denoise/Denoise.h"
 
 #include "base/Parallel.h"
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 
 #include <algorithm>
 #include <chrono>

@@ -3,10 +3,14 @@
 // current GL context; the same filter as denoiseCpu (Denoise.h).
 #pragma once
 
-#include "raytrace/Renderer.h"
+#include "raytrace/common/RenderTypes.h"
 #include "raytrace/denoise/Denoise.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
 
 namespace gpurt {
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "raytrace/integrators/CpuIntegrator.h"
-#include "raytrace/integrators/PunctualLights.h"
+#include "raytrace/lights/PunctualLights.h"
 
 #include <vector>
 

@@ -4,7 +4,7 @@
 // Each has a gl twin (integrators/*/…Gl) that takes the same decisions from the same numbers.
 #pragma once
 
-#include "raytrace/CpuTracer.h"
+#include "raytrace/render/CpuTracer.h"
 
 #include <cstddef>
 #include <cstdint>

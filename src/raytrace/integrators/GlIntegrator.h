@@ -4,7 +4,7 @@
 // made by its registry entry (integrators/Registry.h); docs/ARCHITECTURE.md says how to add one.
 #pragma once
 
-#include "raytrace/RenderTypes.h"
+#include "raytrace/common/RenderTypes.h"
 #include "scene/Scene.h"
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"

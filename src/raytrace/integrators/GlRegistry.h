@@ -3,7 +3,7 @@
 // (GlRegistry.cpp lists them, one line each).
 #pragma once
 
-#include "raytrace/GlOptions.h"
+#include "raytrace/common/GlOptions.h"
 #include "raytrace/integrators/GlIntegrator.h"
 #include "raytrace/integrators/Registry.h"
 

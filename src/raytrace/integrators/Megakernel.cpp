@@ -1,5 +1,5 @@
 #include "raytrace/integrators/Megakernel.h"
-#include "raytrace/integrators/PunctualLights.h"
+#include "raytrace/lights/PunctualLights.h"
 
 #include "raytrace/integrators/SharedPasses.h"
 #include "stream/StreamErrors.h"

@@ -3,9 +3,9 @@
 // the pass's counters (glsl/integrators/megakernel.glsl) read into RenderStats.
 #pragma once
 
-#include "raytrace/GpuPipeline.h"
-#include "raytrace/RenderTypes.h"
-#include "raytrace/SceneTextures.h"
+#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/common/RenderTypes.h"
+#include "raytrace/textures/SceneTextures.h"
 #include "raytrace/accel/GlAccelerator.h"
 #include "raytrace/integrators/GlIntegrator.h"
 #include "stream/GPUFloatArray.h"

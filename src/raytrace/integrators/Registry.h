@@ -5,7 +5,7 @@
 // --help, and the benchmarks read the registry; docs/ARCHITECTURE.md says how to add one.
 #pragma once
 
-#include "raytrace/RenderTypes.h"
+#include "raytrace/common/RenderTypes.h"
 #include "raytrace/integrators/CpuIntegrator.h"
 
 #include <string>

@@ -1,5 +1,5 @@
 #include "raytrace/integrators/SharedPasses.h"
-#include "raytrace/integrators/PunctualLights.h"
+#include "raytrace/lights/PunctualLights.h"
 
 namespace gpurt {
 

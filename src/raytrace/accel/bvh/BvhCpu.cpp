@@ -3,8 +3,9 @@
 #include <cstring>
 #include <limits>
 
-#include "raytrace/RayMath.h"
-#include "raytrace/SceneTextureLayout.h"
+#include "raytrace/common/RayMath.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/bvh/BvhTexels.h"
 
 namespace gpurt {
 

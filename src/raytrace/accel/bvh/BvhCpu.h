@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raytrace/AlphaCoverage.h"
+#include "raytrace/materials/AlphaCoverage.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/accel/bvh/Bvh.h"
 #include "scene/Scene.h"

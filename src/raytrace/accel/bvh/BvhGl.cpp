@@ -2,8 +2,9 @@
 
 #include <string>
 
-#include "raytrace/SceneTextureLayout.h"
-#include "raytrace/SceneTextures.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/bvh/BvhTexels.h"
+#include "raytrace/textures/SceneTextures.h"
 
 namespace gpurt {
 

@@ -5,7 +5,7 @@
 
 #include <limits>
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 
 namespace gpurt {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "raytrace/AlphaCoverage.h"
+#include "raytrace/materials/AlphaCoverage.h"
 #include "raytrace/accel/CpuAccelerator.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/Scene.h"

@@ -1,7 +1,8 @@
 #include "raytrace/accel/grid/GridGl.h"
 
-#include "raytrace/SceneTextureLayout.h"
-#include "raytrace/SceneTextures.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+#include "raytrace/accel/grid/GridTexels.h"
+#include "raytrace/textures/SceneTextures.h"
 #include "stream/KernelChain.h"
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "raytrace/GlOptions.h"
+#include "raytrace/common/GlOptions.h"
 #include "raytrace/accel/GlAccelerator.h"
 #include "raytrace/accel/grid/UniformGrid.h"
 #include "scene/Scene.h"

@@ -1,6 +1,6 @@
 #include "raytrace/integrators/path/PathGl.h"
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 #include "raytrace/integrators/GlRegistry.h"
 #include "raytrace/integrators/path/PathMegakernelGl.h"
 #include "raytrace/integrators/SharedPasses.h"

@@ -5,8 +5,8 @@
 // the streams once many have ended (stream compaction, Purcell et al. 2002). CPU twin: PathCpu.
 #pragma once
 
-#include "raytrace/GlOptions.h"
-#include "raytrace/GpuPipeline.h"
+#include "raytrace/common/GlOptions.h"
+#include "raytrace/render/GpuPipeline.h"
 #include "raytrace/integrators/GlIntegrator.h"
 
 #include <optional>

@@ -1,6 +1,6 @@
 #include "raytrace/integrators/whitted/WhittedGl.h"
 
-#include "raytrace/RayMath.h"
+#include "raytrace/common/RayMath.h"
 #include "raytrace/integrators/GlRegistry.h"
 #include "raytrace/integrators/Megakernel.h"
 #include "raytrace/integrators/SharedPasses.h"

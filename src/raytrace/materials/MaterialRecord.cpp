@@ -1,0 +1,54 @@
+#include "raytrace/materials/MaterialRecord.h"
+
+#include "raytrace/materials/SurfaceTexture.h"
+
+namespace gpurt {
+
+namespace {
+
+// A texture channel's value at t (glsl/scene/shading.glsl textureChannel): 1 without the texture
+// or without texture coordinates in the scene (the kernels compile textures out then).
+float channelAt(const Scene& scene, TextureChannel c, glm::vec2 t) {
+    if (!c.given() || scene.texcoords.empty()) return 1.0f;
+    return sampleChannel(scene.textures[size_t(c.texture)], t, c.channel);
+}
+
+}  // namespace
+
+raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float u, float v) {
+    const Material& m = scene.materials[scene.materialIds[prim]];
+    raymath::MaterialRecord r = materialRecord(m);
+    r.kd = diffuseAt(scene, m, prim, u, v);
+    r.kd = r.kd * vertexColorAt(scene, prim, u, v);
+    if (m.model == GPURT_MODEL_GLTF) {  // shading.glsl: SCENE_MODEL_2
+        const glm::vec2 t = texcoordAt(scene, prim, u, v);
+        r.metallic = m.metallic * channelAt(scene, m.metallicTexture, t);
+        r.roughness = m.roughness * channelAt(scene, m.roughnessTexture, t);
+        r.occlusion = 1.0f + m.occlusionStrength * (channelAt(scene, m.occlusionTexture, t) - 1.0f);
+        r.tf = m.transmission * channelAt(scene, m.transmissionTexture, t);  // shading.glsl: SCENE_TRANSMISSION_MAPS
+        if (m.emissiveTexture >= 0) {
+            r.emitterLight = false;
+            if (!scene.texcoords.empty()) r.emission = m.emission * sampleTexture(scene.textures[size_t(m.emissiveTexture)], t);
+        }
+    }
+    return r;
+}
+
+raymath::MaterialRecord materialRecord(const Material& m) {
+    raymath::MaterialRecord r;
+    r.model = m.model;
+    r.kd = m.diffuse;
+    r.ks = m.specular;
+    r.ns = m.shininess;
+    r.reflectivity = m.reflectivity;
+    r.tf = m.transmission;
+    r.ior = m.ior;
+    r.emission = m.emission;
+    r.emitterLight = true;
+    r.metallic = m.model == GPURT_MODEL_GLTF ? m.metallic : 0.0f;
+    r.roughness = m.model == GPURT_MODEL_GLTF ? m.roughness : 1.0f;
+    r.occlusion = 1.0f;
+    return r;
+}
+
+}  // namespace gpurt

@@ -1,0 +1,250 @@
+// The CPU backend: the integrators' per-sample code (Whitted's ray tree, the path integrator) over
+// a CpuAccelerator, with the shared shading, material and path code of glsl/common.
+#include "raytrace/render/CpuTracer.h"
+
+#include "raytrace/materials/SurfaceTexture.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include "raytrace/materials/MaterialRecord.h"
+#include "raytrace/accel/grid/GridCpu.h"
+#include "raytrace/integrators/Registry.h"
+#include "raytrace/integrators/whitted/WhittedCpu.h"
+#include "base/Parallel.h"
+#include "raytrace/common/RayMath.h"
+
+namespace gpurt {
+
+using namespace raymath;
+
+CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
+    : CpuTracer(scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset()) {}
+
+CpuTracer::CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset)
+    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)),
+      environment_(buildEnvironmentTable(scene)) {
+    triangles_.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles)
+        triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
+}
+
+TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->closestHit(o, d, tLimit, coverageKey);
+}
+
+TraceHit CpuTracer::traceAny(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->anyHit(o, d, tLimit, coverageKey);
+}
+
+uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
+                               std::vector<glm::vec4>& hits) const {
+    const size_t n = rays.tLimit.size();
+    hits.assign(n, glm::vec4(std::numeric_limits<float>::infinity(), 0.0f, 0.0f, -1.0f));
+    parallelChunks(n, std::max<size_t>(8, size_t(rays.width)), threads, [&](size_t begin, size_t end, size_t) {
+        for (size_t i = begin; i < end; ++i) {
+            if (rays.tLimit[i] < 0.0f) continue;
+            // Element (x, y) as pixel (x, y) of sample 0, seed 0 (the gl trace kernels' default uniforms).
+            const uint32_t key = coverageKey(uint32_t(i % size_t(rays.width)), uint32_t(i / size_t(rays.width)), 0u, 0u);
+            const TraceHit h = anyHit ? traceAny(rays.origin[i], rays.direction[i], rays.tLimit[i], key)
+                                      : trace(rays.origin[i], rays.direction[i], rays.tLimit[i], key);
+            if (h.prim >= 0) hits[i] = glm::vec4(h.t, h.u, h.v, float(h.prim));
+        }
+    });
+    return rays.rays();
+}
+
+bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const {
+    const TraceHit blocker = traceAny(origin, dir, limit, coverageKey);
+    ++stats.shadowRays;
+    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+    return blocker.prim < 0;
+}
+
+SurfaceHit CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
+    const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
+    SurfaceHit s;
+    s.front = frontFace(tri.e1, tri.e2, d);
+    s.m = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), s.front);
+    s.p = o + hit.t * d;
+    s.n = facingNormal(tri.e1, tri.e2, d);
+    s.ns = s.n;  // the shading normal (surface.frag)
+    if (!scene_.normals.empty()) {
+        const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
+        s.ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, s.n);
+    }
+    const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+    if (m.normalTexture >= 0 && !scene_.texcoords.empty()) {  // shading.glsl fetchMappedNormal
+        const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
+        const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
+        const Texture& map = scene_.textures[size_t(m.normalTexture)];
+        const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
+        const bool front = frontFace(tri.e1, tri.e2, d);
+        if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
+            const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
+            s.ns = normalMappedTangent(s.ns, s.n, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1,
+                                       tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        } else {
+            s.ns = normalMapped(s.ns, s.n, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        }
+    }
+    return s;
+}
+
+// The pixel-centre ray for the AOVs when there are several samples, then the samples of the
+// integrator (integrators/whitted/WhittedCpu, integrators/path/PathCpu), summed in order and
+// divided by their number (as the GL accumulate pass sums). Rows are handed out one at a time:
+// cost varies strongly across the image. Adaptive sampling (settings.adaptive()) takes the samples
+// in rounds over the whole image, as the gl backend's passes do, with a convergence pass between
+// them (common/adaptive.h) that stops pixels; the rounds and decisions are the gl backend's.
+RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
+    const auto start = std::chrono::steady_clock::now();
+    RenderOutput out;
+    out.width = camera.width;
+    out.height = camera.rows();  // image rows camera.rowBegin on (pixel (i, j) of the camera is
+                                 // element (i, j - rowBegin) of the output)
+    const size_t pixels = size_t(camera.width) * size_t(out.height);
+    out.color.assign(pixels, glm::vec3(0.0f));
+    if (settings.aovs) {
+        out.depth.assign(pixels, std::numeric_limits<float>::infinity());
+        out.prim.assign(pixels, -1.0f);
+        out.normal.assign(pixels, glm::vec3(0.0f));
+        out.steps.assign(pixels, 0.0f);
+    }
+
+    const IntegratorInfo& info = integratorInfo(settings.integrator);
+    // The integrator's own options, each resolved once (its default where none is given; an
+    // unlimited one as GPURT_FAR, as the kernels' uniforms hold it), not once a sample.
+    RenderSettings sampleSettings = settings;
+    for (const IntegratorOption& option : info.options)
+        sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
+    const std::vector<Light> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    const int bounces = std::max(0, settings.maxBounces);
+    const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
+    const uint32_t samples = std::max(1u, settings.samples);
+    const bool adaptive = settings.adaptive() && samples > 1;
+    // Each pixel's sums: of all its samples (and their count), of its odd-numbered ones.
+    std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
+    std::vector<float> counts(pixels, 0.0f);
+    std::vector<glm::vec3> squares(settings.variance ? pixels : 0, glm::vec3(0.0f));
+    const bool features = settings.features && info.features;
+    std::vector<glm::vec3> albedoSums(features ? pixels : 0, glm::vec3(0.0f)), normalSums(albedoSums);
+    std::vector<uint8_t> active(pixels, 1);
+    auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
+    // Samples [first, last) of pixel (i, j), and its AOVs with the first.
+    auto shadePixel = [&](int i, int j, uint32_t first, uint32_t last, RenderStats& stats) {
+        const size_t pixel = pixelIndex(i, j);
+        if (!active[pixel]) return;
+        if (first == 0 && samples > 1 && settings.aovs)
+            whittedSample(*this, {i, j, 0, 1, settings.seed, settings.sampler}, camera.eye,
+                          primaryDirection(camera, i, j), lights, -1, stackSlots, {&out, pixel}, stats);
+        const PixelAovs aovs = samples == 1 && settings.aovs ? PixelAovs{&out, pixel} : PixelAovs{};
+        for (uint32_t s = first; s < last; ++s) {
+            const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
+            const CameraRay ray = sampleRay(camera, i, j, s, samples, settings.seed, settings.sampler);
+            SampleFeatures f;
+            const glm::vec3 c = info.cpuSample(*this, px, ray.origin, ray.direction, lights, sampleSettings, aovs,
+                                               stats, features ? &f : nullptr);
+            if (features) {
+                albedoSums[pixel] += f.albedo;
+                normalSums[pixel] += f.normal;
+            }
+            sums[pixel] += c;
+            counts[pixel] += 1.0f;
+            if (adaptive && (s & 1u) != 0u) oddSums[pixel] += c;
+            if (settings.variance) squares[pixel] += c * c;
+        }
+    };
+
+    const int threads = std::min(resolveThreads(settings.threads), std::max(1, out.height));
+    std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
+    std::mutex progressMutex;
+    size_t rowsDone = 0;
+    uint32_t taken = 0;
+    while (taken < samples) {
+        const auto roundStart = std::chrono::steady_clock::now();
+        uint32_t next = taken + 1;  // the round: up to the next convergence pass, or the last sample
+        if (adaptive)
+            while (next < samples && !adaptiveCheckAfter(next, settings)) ++next;
+        else
+            next = samples;
+        parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
+            for (int i = 0; i < camera.width; ++i)
+                shadePixel(i, camera.rowBegin + int(row), taken, next, threadStats[worker]);
+            if (settings.progress && !adaptive) {
+                const std::lock_guard<std::mutex> lock(progressMutex);
+                if (++rowsDone < size_t(out.height)) settings.progress(double(rowsDone) / double(out.height));
+            }
+        });
+        taken = next;
+        if (!adaptive || taken >= samples) break;
+        if (settings.progress) settings.progress(double(taken) / double(samples));
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - roundStart).count();
+        const uint64_t left = convergencePass(camera.width, out.height, sums, oddSums, counts, settings.noiseThreshold,
+                                              threads, active);
+        out.stats.adaptive.push_back({taken, left, ms});
+        if (settings.adaptiveProgress) settings.adaptiveProgress(taken, left);
+        if (left == 0) break;
+    }
+    for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
+    if (adaptive) out.spp = counts;
+    if (features) {
+        out.albedo.resize(pixels);
+        out.shadingNormal.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+            out.albedo[p] = albedoSums[p] / counts[p];
+            out.shadingNormal[p] = normalSums[p] / counts[p];
+        }
+    }
+    if (settings.variance) {
+        out.variance.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) out.variance[p] = gpurt::varianceOfMean(sums[p], squares[p], counts[p]);
+    }
+    if (settings.progress) settings.progress(1.0);
+    for (const RenderStats& s : threadStats) {
+        out.stats.primaryRays += s.primaryRays;
+        out.stats.shadowRays += s.shadowRays;
+        out.stats.secondaryRays += s.secondaryRays;
+        out.stats.overflowRays += s.overflowRays;
+        for (size_t b = 0; b < s.livePaths.size(); ++b) out.stats.addLivePaths(b, s.livePaths[b]);
+    }
+    for (float c : counts) out.stats.samples += uint64_t(c);
+    out.stats.totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+// The convergence pass of integrators/converge.frag over a width x height image of sums: each
+// active pixel stays active while an error of its 3 x 3 neighbourhood is at or above the
+// threshold. Returns the pixels still active.
+uint64_t convergencePass(int width, int height, const std::vector<glm::vec3>& sums,
+                         const std::vector<glm::vec3>& oddSums, const std::vector<float>& counts, float threshold,
+                         int threads, std::vector<uint8_t>& active) {
+    std::vector<uint8_t> next(active.size(), 0);
+    parallelChunks(size_t(height), 1, threads, [&](size_t row, size_t, size_t) {
+        for (int x = 0; x < width; ++x) {
+            const size_t at = row * size_t(width) + size_t(x);
+            if (!active[at]) continue;
+            float error = 0.0f;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int qx = x + dx, qy = int(row) + dy;
+                    if (qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
+                    const size_t q = size_t(qy) * size_t(width) + size_t(qx);
+                    error = std::max(error, pixelError(sums[q], oddSums[q], counts[q]));
+                }
+            }
+            next[at] = pixelConverged(error, threshold) ? 0 : 1;
+        }
+    });
+    active.swap(next);
+    uint64_t left = 0;
+    for (uint8_t a : active) left += a;
+    return left;
+}
+
+}  // namespace gpurt
