@@ -129,8 +129,7 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
     if (!up.empty()) spec.up = parseVec3("--up", up);
     spec.metre = std::ldexp(1.0f, -scaleExponent);
     if (!lensRadius.empty()) {
-        spec.lensRadius = std::ldexp(parseFiniteFloat("--lens-radius", lensRadius), -scaleExponent);
-        if (spec.lensRadius < 0.0f) throw InputError("--lens-radius: " + lensRadius + " is negative");
+        spec.lensRadius = std::ldexp(parseFiniteFloat("--lens-radius", lensRadius), -scaleExponent);  // makeCamera checks it
         spec.fstop = 0.0f;
     }
     if (!fstop.empty()) {
@@ -142,11 +141,7 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
         spec.focusDistance = std::ldexp(parseFiniteFloat("--focus-distance", focusDistance), -scaleExponent);
         if (!(spec.focusDistance > 0.0f)) throw InputError("--focus-distance: " + focusDistance + " is not above 0");
     }
-    if (!blades.empty()) {
-        spec.blades = int(parseCount("--blades", blades, 0, 64));
-        if (spec.blades == 1 || spec.blades == 2)
-            throw InputError("--blades: " + blades + " blades make no aperture (0 for a disc, or 3 to 64)");
-    }
+    if (!blades.empty()) spec.blades = int(parseCount("--blades", blades, 0, 64));  // 1 and 2: makeCamera refuses
     if (!bladeRotation.empty()) spec.bladeRotation = parseFiniteFloat("--blade-rotation", bladeRotation);
     return spec;
 }

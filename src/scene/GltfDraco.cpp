@@ -1,6 +1,7 @@
 // KHR_draco_mesh_compression: the JSON rewrite that lets tinygltf read such files, and the
 // decoding of one primitive's Draco data, every size and index checked before it is used.
 #include "scene/GltfDraco.h"
+#include "scene/GltfBytes.h"
 
 #include <cstring>
 #include <exception>
@@ -15,15 +16,6 @@ namespace gpurt {
 namespace {
 
 constexpr char kDraco[] = "KHR_draco_mesh_compression";
-constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
-
-uint32_t readU32(const std::string& bytes, size_t at) {
-    uint32_t v;
-    std::memcpy(&v, bytes.data() + at, 4);
-    return v;
-}
-
-void appendU32(std::string& out, uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); }
 
 // The JSON text with "indices" taken out of the Draco primitives; false when there was none to
 // take out or the text is no JSON object.
@@ -109,21 +101,10 @@ bool componentOf(draco::DataType type, const uint8_t* p, double& out) {
 
 std::string withoutDracoIndices(const std::string& bytes) {
     if (bytes.find(kDraco) == std::string::npos) return bytes;
+    GltfParts parts;
     std::string json;
-    if (bytes.compare(0, 4, "glTF") != 0) return rewriteJson(bytes, json) ? json : bytes;
-    // GLB: a 12-byte header (magic, version, total length), then the JSON chunk (length, type,
-    // text), then the rest (the BIN chunk), which is kept as it is.
-    if (bytes.size() < 20 || readU32(bytes, 16) != kGlbJsonChunk) return bytes;
-    const size_t length = readU32(bytes, 12);
-    if (length > bytes.size() - 20 || !rewriteJson(bytes.substr(20, length), json)) return bytes;
-    while (json.size() % 4) json += ' ';  // chunks are padded to 4 bytes, JSON with spaces
-    const std::string rest = bytes.substr(20 + length);
-    if (20 + json.size() + rest.size() > UINT32_MAX) return bytes;
-    std::string glb = bytes.substr(0, 8);
-    appendU32(glb, uint32_t(20 + json.size() + rest.size()));
-    appendU32(glb, uint32_t(json.size()));
-    appendU32(glb, kGlbJsonChunk);
-    return glb + json + rest;
+    if (!splitGltf(bytes, parts) || !rewriteJson(parts.json, json)) return bytes;
+    return joinGltf(parts, json, bytes);
 }
 
 DracoMesh decodeDracoMesh(const unsigned char* data, size_t size, uint64_t maxPoints,

@@ -7,9 +7,7 @@
 #include <climits>
 #include <cmath>
 #include <numbers>
-#include <cctype>
 #include <cstring>
-#include <string_view>
 #include <fstream>
 #include <map>
 #include <set>
@@ -21,6 +19,7 @@
 #include <tiny_gltf.h>
 
 #include "image/InputError.h"
+#include "image/AtomicFile.h"
 #include "scene/GltfDraco.h"
 #include "scene/GltfMeshopt.h"
 #include "scene/SceneFile.h"
@@ -1259,14 +1258,9 @@ Scene parseGltf(const std::string& bytes, const std::string& name, const std::fi
     const std::string readable = withoutDracoIndices(withMeshoptDecoded(bytes, name, folder));
     if (readable.size() > UINT32_MAX) failAt(file, "larger than a glTF file can be (4 GiB)");
     // Known by its content, whatever its name says (CONTRACT.md; Blender's importer does the same).
-    auto named = [&](std::string_view extension) {
-        if (name.size() < extension.size()) return false;
-        for (size_t i = 0; i < extension.size(); ++i)
-            if (std::tolower(static_cast<unsigned char>(name[name.size() - extension.size() + i])) != extension[i]) return false;
-        return true;
-    };
-    if (!glb && named(".glb")) warnAt(file, "named .glb but a JSON glTF file (not binary): read as JSON glTF");
-    if (glb && named(".gltf")) warnAt(file, "named .gltf but a binary glTF file (.glb): read as binary glTF");
+    const std::string extension = lowerExtension(name);
+    if (!glb && extension == ".glb") warnAt(file, "named .glb but a JSON glTF file (not binary): read as JSON glTF");
+    if (glb && extension == ".gltf") warnAt(file, "named .gltf but a binary glTF file (.glb): read as binary glTF");
     bool ok = false;
     try {
         ok = glb ? loader.LoadBinaryFromMemory(

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "image/InputError.h"
+#include "scene/GltfBytes.h"
 #include "scene/SceneFile.h"
 
 namespace gpurt {
@@ -19,19 +20,6 @@ namespace {
 using nlohmann::json;
 
 constexpr char kExtension[] = "EXT_meshopt_compression";
-constexpr uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
-
-uint32_t load32(const std::string& s, size_t at) {
-    uint32_t v = 0;
-    std::memcpy(&v, s.data() + at, 4);
-    return v;
-}
-
-void store32(std::string& s, uint32_t v) {
-    char b[4];
-    std::memcpy(b, &v, 4);
-    s.append(b, 4);
-}
 
 std::string base64(std::string_view bytes) {
     static const char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -69,36 +57,19 @@ int hexValue(char c) {
 class Decoder {
   public:
     Decoder(const std::string& bytes, const std::string& name, const std::filesystem::path& folder)
-        : file_{name}, folder_(folder) {
-        glb_ = bytes.size() >= 12 && load32(bytes, 0) == kGlbMagic;
-        if (!glb_) {
-            text_ = bytes;
-            return;
-        }
-        // The GLB's chunks (their lengths checked here; tinygltf checks the rest again).
-        size_t at = 12;
-        while (at + 8 <= bytes.size()) {
-            const uint32_t length = load32(bytes, at), type = load32(bytes, at + 4);
-            if (length > bytes.size() - at - 8) failAt(file_, "a GLB chunk is longer than the file");
-            if (type == kJsonChunk && text_.empty()) text_ = bytes.substr(at + 8, length);
-            else if (type == kBinChunk && !hasBin_) {
-                bin_ = bytes.substr(at + 8, length);
-                hasBin_ = true;
-            }
-            at += 8 + size_t(length);
-        }
-    }
+        : bytes_(bytes), file_{name}, folder_(folder) {}
 
     // False when the file does not use the extension (then nothing else is done).
     bool parse() {
-        if (text_.find(kExtension) == std::string::npos) return false;
-        root_ = json::parse(text_, nullptr, false);
+        if (bytes_.find(kExtension) == std::string::npos || !splitGltf(bytes_, parts_)) return false;
+        hasBin_ = glbBinChunk(parts_, bin_);
+        root_ = json::parse(parts_.json, nullptr, false);
         return root_.is_object();  // tinygltf names what is wrong with a file that is not JSON
     }
 
     std::string decoded() {
         json& views = root_["bufferViews"];
-        if (!views.is_array()) return original();
+        if (!views.is_array()) return bytes_;
         std::string blob;
         for (size_t v = 0; v < views.size(); ++v) {
             json& view = views[v];
@@ -130,34 +101,10 @@ class Decoder {
                     if (e != kExtension) kept.push_back(e);
                 root_[list] = kept;
             }
-        return rebuilt(root_.dump());
+        return joinGltf(parts_, root_.dump(), bytes_);
     }
 
   private:
-    std::string original() const { return rebuilt(text_); }
-
-    // The file again with JSON `text`: as it was, JSON or binary (the binary chunk kept).
-    std::string rebuilt(std::string text) const {
-        if (!glb_) return text;
-        while (text.size() % 4 != 0) text += ' ';
-        std::string out;
-        store32(out, kGlbMagic);
-        store32(out, 2);
-        const size_t total = 12 + 8 + text.size() + (hasBin_ ? 8 + (bin_.size() + 3) / 4 * 4 : 0);
-        store32(out, uint32_t(total));
-        store32(out, uint32_t(text.size()));
-        store32(out, kJsonChunk);
-        out += text;
-        if (hasBin_) {
-            std::string bin = bin_;
-            while (bin.size() % 4 != 0) bin += '\0';
-            store32(out, uint32_t(bin.size()));
-            store32(out, kBinChunk);
-            out += bin;
-        }
-        return out;
-    }
-
     uint64_t unsignedField(const json& object, const char* key, const std::string& at, bool required, uint64_t fallback = 0) const {
         if (!object.contains(key)) {
             if (required) failAt(file_, at + ": " + key + " is missing");
@@ -177,7 +124,7 @@ class Decoder {
         std::string data;
         const std::string uri = b.is_object() && b.contains("uri") && b["uri"].is_string() ? b["uri"].get<std::string>() : "";
         if (uri.empty()) {
-            if (!glb_ || index != 0 || !hasBin_) failAt(file_, at + ": buffer " + std::to_string(index) + " has no data");
+            if (!parts_.glb || index != 0 || !hasBin_) failAt(file_, at + ": buffer " + std::to_string(index) + " has no data");
             data = bin_;
         } else if (uri.rfind("data:", 0) == 0) {
             const size_t comma = uri.find(',');
@@ -255,10 +202,12 @@ class Decoder {
         return out;
     }
 
+    const std::string& bytes_;
     FileLoc file_;
     std::filesystem::path folder_;
-    bool glb_ = false, hasBin_ = false;
-    std::string text_, bin_;
+    GltfParts parts_;
+    bool hasBin_ = false;
+    std::string bin_;
     json root_;
     std::map<uint64_t, std::string> buffers_;
 };

@@ -1,6 +1,7 @@
 # The sources of gpurt_scene, listed once: src/scene/CMakeLists.txt builds the library from them
 # and tests/fuzz instruments them for libFuzzer (none needs GL).
 set(GPURT_SCENE_SOURCES
+  GltfBytes.cpp
   GltfDraco.cpp
   GltfLoader.cpp
   GltfMeshopt.cpp

@@ -13,7 +13,7 @@
 namespace gpurt::raymath {
 
 struct CpuHooks {
-    CpuHooks(const CpuTracer& tracer, const PixelSample& px, const std::vector<Light>& lights, PixelAovs aovs,
+    CpuHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
              RenderStats& stats)
         : tracer(tracer), px(px), lights(lights), aovs(aovs), stats(stats), rayOffset(tracer.rayOffset()),
           emitterArea(tracer.emitters().totalArea), background(tracer.scene().background),
@@ -22,7 +22,7 @@ struct CpuHooks {
 
     const CpuTracer& tracer;
     const PixelSample& px;
-    const std::vector<Light>& lights;
+    const PunctualLights& lights;  // the render's, converted once (punctualLights)
     PixelAovs aovs;       // where the camera ray's AOVs go
     RenderStats& stats;   // the rays traced
     TraceHit hit{};       // the last closest hit traced (surfaceAt reads it)
@@ -39,7 +39,7 @@ struct CpuHooks {
     vec2 pixelSample2D(uint dim) const { return px.sample2D(dim); }
     vec2 pixelSampleChoice(uint dim) const { return px.sampleChoice(dim); }
 
-    PunctualLight punctualLight(int k) const { return punctualOf(lights[size_t(k)]); }
+    PunctualLight punctualLight(int k) const { return lights[size_t(k)]; }
     vec3 environmentRadiance(vec3 d) const { return tracer.environment().radiance(d); }
     float environmentLightPdf(vec3 d) const { return tracer.environment().pdf(d); }
     vec3 environmentAmbient(vec3 n) const { return tracer.environment().irradiance(n); }

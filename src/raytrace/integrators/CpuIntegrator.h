@@ -4,6 +4,7 @@
 // Each has a gl twin (integrators/*/…Gl) that takes the same decisions from the same numbers.
 #pragma once
 
+#include "raytrace/lights/PunctualLights.h"
 #include "raytrace/render/CpuTracer.h"
 
 #include <cstddef>

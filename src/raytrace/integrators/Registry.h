@@ -17,7 +17,7 @@ namespace gpurt {
 // sample's features there (integrators with IntegratorInfo::features). settings.integratorOptions
 // holds every option of the integrator (CpuTracer::render resolves them).
 using CpuSample = glm::vec3 (*)(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                                const std::vector<Light>& lights, const RenderSettings& settings, PixelAovs aovs,
+                                const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                                 RenderStats& stats, SampleFeatures* features);
 
 // An option of an integrator's own: --NAME VALUE on the commands, uniform `uniform` of its kernels

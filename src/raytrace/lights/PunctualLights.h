@@ -22,6 +22,15 @@ inline raymath::PunctualLight punctualOf(const Light& l) {
     return p;
 }
 
+// The cpu backend's lights, converted once a render (CpuTracer), not once a sample.
+using PunctualLights = std::vector<raymath::PunctualLight>;
+inline PunctualLights punctualLights(const std::vector<Light>& lights) {
+    PunctualLights out;
+    out.reserve(lights.size());
+    for (const Light& l : lights) out.push_back(punctualOf(l));
+    return out;
+}
+
 // The megakernels' light texture (integrators/megakernel.glsl punctualLight): four texels a
 // light, (position, intensity), (colour, kind), (direction, range), (cone, 0, 0).
 constexpr int kTexelsPerLight = 4;

@@ -1,6 +1,7 @@
 // The CPU backend: the integrators' per-sample code (Whitted's ray tree, the path integrator) over
 // a CpuAccelerator, with the shared shading, material and path code of glsl/common.
 #include "raytrace/render/CpuTracer.h"
+#include "raytrace/lights/PunctualLights.h"
 
 #include "raytrace/materials/SurfaceTexture.h"
 
@@ -121,7 +122,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     RenderSettings sampleSettings = settings;
     for (const IntegratorOption& option : info.options)
         sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
-    const std::vector<Light> lights = lightsOrHeadlight(scene_, camera.eye, info.pathStreams);
+    const PunctualLights lights = punctualLights(lightsOrHeadlight(scene_, camera.eye, info.pathStreams));
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);

@@ -11,7 +11,7 @@ namespace raymath {
 namespace {
 
 struct AoHooks : CpuHooks {
-    AoHooks(const CpuTracer& tracer, const PixelSample& px, const std::vector<Light>& lights, PixelAovs aovs,
+    AoHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
             RenderStats& stats, float aoDistance)
         : CpuHooks(tracer, px, lights, aovs, stats), aoDistance(aoDistance) {}
 
@@ -28,7 +28,7 @@ struct AoHooks : CpuHooks {
 namespace {
 
 glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                    const std::vector<Light>& lights, const RenderSettings& settings, PixelAovs aovs,
+                    const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures*) {
     raymath::AoHooks hooks(tracer, px, lights, aovs, stats, settings.integratorOptions.at("aoDistance"));
     return hooks.aoTrace(eye, d);

@@ -9,7 +9,7 @@ namespace gpurt {
 namespace {
 
 glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                    const std::vector<Light>& lights, const RenderSettings& settings, PixelAovs aovs,
+                    const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures* features) {
     return pathSample(tracer, px, eye, d, lights, std::max(0, settings.maxBounces),
                       {settings.clampDirect, settings.clampIndirect}, aovs, stats, features);

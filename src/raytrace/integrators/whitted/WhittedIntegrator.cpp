@@ -9,7 +9,7 @@ namespace gpurt {
 namespace {
 
 glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
-                    const std::vector<Light>& lights, const RenderSettings& settings, PixelAovs aovs,
+                    const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures*) {
     const int bounces = std::max(0, settings.maxBounces);
     return whittedSample(tracer, px, eye, d, lights, bounces, std::min(bounces, GPURT_STACK_SLOTS), aovs, stats);
