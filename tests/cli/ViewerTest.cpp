@@ -32,12 +32,22 @@ class XServer {
     }
     const std::string& display() const { return display_; }
     const std::string& failure() const { return failure_; }
+    // What a test that could not reach the display reports: whether the server still runs, its
+    // log, and the X sockets there are (a display another server answers on looks the same).
+    std::string state() {
+        std::string sockets;
+        std::error_code error;
+        for (const auto& entry : fs::directory_iterator("/tmp/.X11-unix", error)) sockets += " " + entry.path().filename().string();
+        return "Xvfb on " + display_ + (server_ && server_->running() ? " is running" : " has exited") +
+               "; /tmp/.X11-unix:" + (sockets.empty() ? " (none)" : sockets) + "; its log: " + readFile(log_);
+    }
 
   private:
     // Xvfb chooses a free display itself (-displayfd): test processes run side by side.
     XServer() {
         const std::string stem = (fs::temp_directory_path() / ("gpurt-xvfb-" + std::to_string(getpid()))).string();
         const fs::path number = stem + ".display", log = stem + ".log";
+        log_ = log;
         server_ = std::make_unique<Background>(
             std::vector<std::string>{"/usr/bin/Xvfb", "-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"},
             number, log, "", false);
@@ -56,6 +66,7 @@ class XServer {
         fs::remove(number);
     }
     std::string display_, failure_;
+    fs::path log_;
     std::unique_ptr<Background> server_;
 };
 
@@ -86,15 +97,22 @@ class Viewer : public GpurtTest {
         return std::make_unique<Background>(argv, dir / "view.out", dir / "view.err", XServer::get().display());
     }
     // The id of the viewer's window, once it is mapped and has shown a frame (its title then
-    // carries the frame rate and the frame count); polled for at most two minutes.
-    std::string window() {
+    // carries the frame rate and the frame count); polled for at most two minutes, or until the
+    // viewer exits.
+    std::string window(Background& viewer) {
         const auto end = std::chrono::steady_clock::now() + 120s;
-        while (std::chrono::steady_clock::now() < end) {
+        while (std::chrono::steady_clock::now() < end && viewer.running()) {
             const std::string out = xdotool("search --onlyvisible --name '^gpurt view: '");
             if (!out.empty() && std::isdigit(static_cast<unsigned char>(out[0]))) return out.substr(0, out.find('\n'));
             std::this_thread::sleep_for(50ms);
         }
         return {};
+    }
+    // Why window() found none: the viewer's errors, the X server's state, and what xdotool makes
+    // of the display.
+    std::string noWindow() {
+        return "no viewer window appeared: " + readFile(dir / "view.err") + "; " + XServer::get().state() +
+               "; xdotool getdisplaygeometry: " + xdotool("getdisplaygeometry");
     }
     // The frame count in the window's title ("..., frame N"), or -1.
     static int titleFrame(const std::string& id) {
@@ -191,8 +209,8 @@ TEST_F(Viewer, PathTracedFramesAreTheRenderWithAsManySamples) {
 TEST_F(Viewer, KeyNTogglesTheDenoiser) {
     auto v = view("scenes/cornell.json", {"--size", "96x96", "--integrator", "path", "--spp", "4", "--screenshot",
                                           path("shot.png")});
-    const std::string id = window();
-    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    const std::string id = window(*v);
+    ASSERT_FALSE(id.empty()) << noWindow();
     xdotool("windowfocus --sync " + id);
     xdotool("key n");
     ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
@@ -225,8 +243,8 @@ TEST_F(Viewer, KeyFFocusesOnTheSurfaceUnderTheMouse) {
     std::ofstream(scene) << (R"({"meshes": [{"file": ")" + floor + R"(", "transform": {"translate": [0, 0, -3],
         "rotate": [90, 0, 0], "scale": 5}}], "camera": {"eye": [0, 0, 2], "target": [0, 0, 0], "lens_radius": 0.2}})");
     auto v = view(scene, {"--size", "120x90", "--spp", "2", "--screenshot", path("shot.png")});
-    const std::string id = window();
-    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    const std::string id = window(*v);
+    ASSERT_FALSE(id.empty()) << noWindow();
     xdotool("mousemove --window " + id + " 70 40");
     ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
     xdotool("windowfocus --sync " + id);
@@ -249,8 +267,8 @@ TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
     ASSERT_EQ(still->wait(120s), 0) << readFile(dir / "view.err");
     const std::string initial = printedCamera();
     auto v = view("scenes/boxes.json", {"--size", "200x150", "--spp", "1", "--screenshot", path("shot.png")});
-    const std::string id = window();
-    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    const std::string id = window(*v);
+    ASSERT_FALSE(id.empty()) << noWindow();
     // X delivers the events in order; each group is waited for by the frames rendered after it.
     xdotool("mousemove --window " + id + " 100 75");
     ASSERT_TRUE(framesAfterEvents(id)) << "the viewer rendered no frames: " << readFile(dir / "view.err");
@@ -272,8 +290,8 @@ TEST_F(Viewer, MouseDragAndKeysMoveTheCamera) {
 // new size.
 TEST_F(Viewer, DisplayModeKeyShowsTheAovAndResizeKeepsRendering) {
     auto v = view("scenes/boxes.json", {"--size", "200x150", "--spp", "1", "--screenshot", path("shot.png")});
-    const std::string id = window();
-    ASSERT_FALSE(id.empty()) << "no viewer window appeared: " << readFile(dir / "view.err");
+    const std::string id = window(*v);
+    ASSERT_FALSE(id.empty()) << noWindow();
     xdotool("windowsize --sync " + id + " 240 180");
     xdotool("windowfocus --sync " + id);
     xdotool("key 3");
