@@ -11,7 +11,8 @@
 #include "raytrace/render/Renderer.h"
 #include "base/Parallel.h"
 #include "raytrace/scene/SceneLoader.h"
-#include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/GlRegistry.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "stream/KernelStats.h"
 #ifdef GPURT_HAVE_EMBREE
 #include "raytrace/accel/EmbreeTracer.h"
@@ -123,8 +124,8 @@ BenchResult benchGl(const BenchOptions& o, const BenchInput& in) {
     KernelStats::global().setTiming(false);
     for (const auto& [name, p] : KernelStats::global().passes())
         if (p.calls > 0) r.passes[name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
-    r.renderer += std::string(", ") + accelName(in.accel.kind);
-    if (in.accel.kind == AccelKind::Grid) r.renderer += std::string(", ") + traceKernelName(options.kernel) + " kernel";
+    r.renderer += std::string(", ") + std::string(in.accel.name());
+    if (gridOf(in.accel.structure)) r.renderer += std::string(", ") + traceKernelName(options.kernel) + " kernel";
     return r;
 }
 
@@ -132,7 +133,7 @@ BenchResult benchCpu(const BenchOptions& o, const BenchInput& in) {
     BenchResult r;
     r.backend = "cpu";
     r.threads = resolveThreads(o.threads);
-    r.renderer = std::string("gpurt C++ ") + accelName(in.accel.kind) + " tracer";
+    r.renderer = std::string("gpurt C++ ") + std::string(in.accel.name()) + " tracer";
     const CpuTracer tracer(in.scene, makeCpuAccelerator(in.scene, in.accel), in.accel.rayOffset());
     measure(r, o.runs, [&] { return tracer.traceStream(in.rays, in.shadow, r.threads, r.hits); });
     return r;
@@ -204,9 +205,9 @@ void printBenchJson(const BenchOptions& o, const BenchInput& in, double gridMs, 
     const glm::ivec3 grid = in.accel.gridResolution;
     j["grid"] = {grid.x, grid.y, grid.z};
     j["grid_ms"] = gridMs;  // the acceleration structure's build (both, for auto)
-    j["accel"] = accelName(in.accel.kind);
+    j["accel"] = in.accel.name();
     j["accel_source"] = in.accel.source;
-    if (in.accel.estimate) j["accel_estimate"] = {{"grid", in.accel.estimate->grid}, {"bvh", in.accel.estimate->bvh}};
+    addAccelJson(j, in.accel);
     j["width"] = in.camera.width;
     j["height"] = in.camera.height;
     j["ray_kind"] = o.rays;
@@ -224,16 +225,9 @@ void printBenchTable(const BenchOptions& o, const BenchInput& in, double gridMs,
     const CameraBasis& camera = in.camera;
     const uint64_t rayCount = in.rays.rays();
     const Acceleration& a = in.accel;
-    char structure[96];
-    if (a.kind == AccelKind::Grid)
-        std::snprintf(structure, sizeof structure, "grid %dx%dx%d", a.grid->resolution.x, a.grid->resolution.y,
-                      a.grid->resolution.z);
-    else
-        std::snprintf(structure, sizeof structure, "bvh of %zu nodes, depth %d", a.bvh->nodes.size(), a.bvh->depth);
     std::printf("scene    %s: %zu triangles, %s (%s in %.0f ms)\n", o.scene.c_str(), in.scene.triangles.size(),
-                structure, a.source.c_str(), gridMs);
-    if (a.estimate)
-        std::printf("auto     estimated cost per ray: grid %.1f, bvh %.1f\n", a.estimate->grid, a.estimate->bvh);
+                a.structure->summary().c_str(), a.source.c_str(), gridMs);
+    if (!a.estimate.empty()) std::printf("auto     estimated cost per ray: %s\n", estimateText(a).c_str());
     std::printf("rays     %s, %llu rays (%dx%d image), median of %d runs after a warm-up\n", o.rays.c_str(),
                 (unsigned long long)rayCount, camera.width, camera.height, o.runs);
     std::printf("%-8s %7s %10s %10s %9s %9s  %s\n", "backend", "threads", "ms", "Mrays/s", "x embree", "agree",

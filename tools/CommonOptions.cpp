@@ -5,6 +5,8 @@
 #include "scene/SmoothNormals.h"
 #include "stream/StreamErrors.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -147,11 +149,11 @@ CameraSpec CameraOptions::spec(const Scene& scene, glm::ivec2 imageSize, int sca
 }
 
 void GridCliOptions::add(CLI::App& cmd) {
-    cmd.add_option("--accel", accel,
-                   "Acceleration structure: grid (uniform grid), bvh (bounding volume hierarchy) or auto "
-                   "(default: builds both and keeps the one an estimate of the trace cost says is cheaper; a packed "
-                   "scene's own structure stands)")
-        ->check(CLI::IsMember({"grid", "bvh", "auto"}));
+    std::string help = "Acceleration structure:";
+    for (const AcceleratorInfo* a : accelerators()) help += " " + std::string(a->name) + " (" + std::string(a->help) + "),";
+    help += " or auto (default: builds each and keeps the one an estimate of the trace cost says is cheapest; a packed "
+            "scene's own structure stands)";
+    cmd.add_option("--accel", accel, help)->check(CLI::IsMember(accelChoices()));
     lambdaOption = cmd.add_option("--lambda", lambda,
                                   "Grid density: cells along the longest axis ~ lambda * N^(1/3) "
                                   "(a packed scene's own grid is used unless this is given)")
@@ -161,18 +163,46 @@ void GridCliOptions::add(CLI::App& cmd) {
 }
 
 Acceleration GridCliOptions::accelerate(const LoadedScene& loaded, const CameraBasis& camera) const {
-    AccelChoice choice = AccelChoice::Auto;
-    parseAccelChoice(accel, choice);
-    std::optional<UniformGrid> grid = loaded.grid;
-    if (lambdaOption && lambdaOption->count() > 0) {
-        grid.reset();  // built as asked: --lambda asks for a grid
-        if (choice == AccelChoice::Auto) choice = AccelChoice::Grid;
+    AccelOptions options;
+    options.grid.lambda = lambda;
+    options.grid.skip = skip;
+    // --lambda asks for a grid built from the triangles as any other scene's, so that every route
+    // gives the same image.
+    options.newGrid = lambdaOption && lambdaOption->count() > 0;
+    const std::string choice = options.newGrid && accel == "auto" ? "grid" : accel;
+    return chooseAcceleration(loaded.scene, choice, loaded.accel, options, camera);
+}
+
+std::vector<std::string> accelChoices() {
+    std::vector<std::string> names;
+    for (const AcceleratorInfo* a : accelerators()) names.emplace_back(a->name);
+    names.emplace_back("auto");
+    return names;
+}
+
+void addAccelJson(nlohmann::json& j, const Acceleration& accel) {
+    if (!accel.estimate.empty()) {
+        j["accel_estimate"] = nlohmann::json::object();
+        for (const auto& [name, cost] : accel.estimate) j["accel_estimate"][name] = cost;
     }
-    else if (grid && !skip) grid->skip.clear();
-    GridOptions options;
-    options.lambda = lambda;
-    options.skip = skip;
-    return chooseAcceleration(loaded.scene, choice, std::move(grid), loaded.bvh, options, camera);
+    const std::vector<std::pair<std::string, double>> figures = accel.structure->figures();
+    if (!figures.empty()) {
+        nlohmann::json& f = j[std::string(accel.name())] = nlohmann::json::object();
+        for (const auto& [name, value] : figures) {
+            if (value == std::floor(value) && std::abs(value) < 1e15) f[name] = int64_t(value);  // counts stay integers
+            else f[name] = value;
+        }
+    }
+}
+
+std::string estimateText(const Acceleration& accel) {
+    std::string text;
+    char number[32];
+    for (const auto& [name, cost] : accel.estimate) {
+        std::snprintf(number, sizeof number, " %.1f", cost);
+        text += (text.empty() ? "" : ", ") + name + number;
+    }
+    return text;
 }
 
 void TracerCliOptions::add(CLI::App& cmd) {

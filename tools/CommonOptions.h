@@ -15,6 +15,7 @@
 #include "stream/ShaderLibrary.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -185,6 +186,15 @@ struct GridCliOptions {
     // `camera` is the view auto's estimate traces.
     Acceleration accelerate(const LoadedScene& loaded, const CameraBasis& camera) const;
 };
+
+// --accel's values: the registered accelerators' names (accel/Accelerator.h) and auto.
+std::vector<std::string> accelChoices();
+
+// What render and bench report of the structure: auto's estimates ("accel_estimate": {name:
+// cost}) and the structure's figures under its accelerator's name ("bvh": {"nodes", "depth"}).
+void addAccelJson(nlohmann::json& j, const Acceleration& accel);
+// Auto's estimates as text: "grid 12.3, bvh 8.1".
+std::string estimateText(const Acceleration& accel);
 
 // The GL trace loop's options of render and bench: --kernel, --traverse-steps, --mask and
 // --wait-threshold.

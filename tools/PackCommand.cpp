@@ -10,7 +10,8 @@
 #include "raytrace/scene/PackedScene.h"
 #include "raytrace/scene/SceneLoader.h"
 #include "raytrace/textures/SceneTextureLayout.h"
-#include "raytrace/accel/bvh/BvhTexels.h"
+#include "raytrace/accel/bvh/BvhAccelerator.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/accel/grid/GridTexels.h"
 #include "raytrace/camera/Camera.h"
 #include "raytrace/accel/Acceleration.h"
@@ -152,7 +153,7 @@ GridOptions checkedOptions(const PackOptions& o) {
     gridOptions.threads = o.threads;
     if (gridOptions.resolution && o.lambdaGiven)
         throw InputError("--lambda: only for --grid auto (the grid is given as " + o.grid + ")");
-    if (o.accel == "bvh" && (gridOptions.resolution || o.lambdaGiven))
+    if (o.accel != "grid" && o.accel != "auto" && (gridOptions.resolution || o.lambdaGiven))
         throw InputError(std::string(gridOptions.resolution ? "--grid" : "--lambda") + ": only with --accel grid or auto");
     // The output's folder must exist before --dump writes anything.
     const std::filesystem::path outputFolder = std::filesystem::absolute(o.output).parent_path();
@@ -235,40 +236,39 @@ int runPack(const PackOptions& o) {
     // Three steps: reading the scene, building the grid, encoding and writing.
     ProgressDisplay progress(o.progress.mode());
     LoadedScene loaded = loadScene(o.scene);
-    loaded.grid.reset();  // a packed input is repacked with a structure built as asked
-    loaded.bvh.reset();
+    loaded.accel.reset();  // a packed input is repacked with a structure built as asked
     turnSceneUp(loaded, o.upAxis);  // the packed scene is stored turned: its up axis is y
     progress.update(1.0 / 3.0);
     const auto gridStart = std::chrono::steady_clock::now();
     // auto: an explicit --grid NX,NY,NZ asks for the grid; else the estimate chooses, for the
     // scene's camera (the default camera without one).
-    AccelChoice choice = AccelChoice::Auto;
-    parseAccelChoice(o.accel, choice);
-    if (choice == AccelChoice::Auto && gridOptions.resolution) choice = AccelChoice::Grid;
+    const std::string choice = o.accel == "auto" && gridOptions.resolution ? "grid" : o.accel;
     const CameraSpec view = loaded.scene.camera ? *loaded.scene.camera : defaultCamera(loaded.scene.bounds(), 64, 64);
-    const Acceleration accel =
-        chooseAcceleration(loaded.scene, choice, std::nullopt, std::nullopt, gridOptions, makeCamera(view, 64, 64));
+    AccelOptions options;
+    options.threads = o.threads;
+    options.grid = gridOptions;
+    const Acceleration accel = chooseAcceleration(loaded.scene, choice, nullptr, options, makeCamera(view, 64, 64));
+    const UniformGrid* grid = gridOf(accel.structure);
     const double gridMs = millisecondsSince(gridStart);
     progress.update(2.0 / 3.0);
-    const std::vector<unsigned char> bytes = accel.grid ? encodePackedScene(loaded, *accel.grid, o.scene)
-                                                        : encodePackedScene(loaded, *accel.bvh, o.scene);
-
-    const std::vector<TextureTexels> textures = accel.grid ? sceneTextureTexels(loaded.scene, *accel.grid)
-                                                           : sceneTextureTexels(loaded.scene, *accel.bvh);
+    const std::vector<unsigned char> bytes = encodePackedScene(loaded, *accel.structure, o.scene);
+    const std::vector<TextureTexels> textures = accel.structure->texels(loaded.scene);
     if (!o.dump.empty()) {
         for (const TextureTexels& t : textures) dumpTexture(o.dump, t);
-        if (accel.grid) dumpOccupancy(o.dump, *accel.grid, occupancyOf(*accel.grid).longest);
+        if (grid) dumpOccupancy(o.dump, *grid, occupancyOf(*grid).longest);
     }
     writePackedScene(o.output, bytes);
     const double totalMs = millisecondsSince(start);
     progress.finish();
 
     printScene(o.scene, loaded.scene);
-    if (accel.grid) printGrid(o, gridOptions, *accel.grid, loaded.scene.triangles.size(), occupancyOf(*accel.grid));
-    else std::printf("bvh          %zu nodes, depth %d, SAH cost %.2f\n", accel.bvh->nodes.size(), accel.bvh->depth, accel.bvh->sahCost());
-    if (accel.estimate)
-        std::printf("accel        %s (auto: estimated cost per ray grid %.1f, bvh %.1f)\n", accelName(accel.kind),
-                    accel.estimate->grid, accel.estimate->bvh);
+    if (grid) printGrid(o, gridOptions, *grid, loaded.scene.triangles.size(), occupancyOf(*grid));
+    else if (const Bvh* bvh = bvhOf(accel.structure))
+        std::printf("bvh          %zu nodes, depth %d, SAH cost %.2f\n", bvh->nodes.size(), bvh->depth, bvh->sahCost());
+    else std::printf("accel        %s\n", accel.structure->summary().c_str());
+    if (!accel.estimate.empty())
+        std::printf("accel        %s (auto: estimated cost per ray %s)\n", std::string(accel.name()).c_str(),
+                    estimateText(accel).c_str());
     size_t textureBytes = 0;
     for (const TextureTexels& t : textures) {
         std::printf("texture      %-10s %-8s %5dx%-6d %12zu bytes\n", t.name.c_str(),
@@ -277,7 +277,7 @@ int runPack(const PackOptions& o) {
     }
     std::printf("textures     %zu bytes\n", textureBytes);
     std::printf("file         %s, %zu bytes\n", o.output.c_str(), bytes.size());
-    std::printf("build time   %s %.1f ms, total %.1f ms\n", accel.estimate ? "grid and bvh" : accelName(accel.kind), gridMs, totalMs);
+    std::printf("build time   %s %.1f ms, total %.1f ms\n", accel.estimate.empty() ? std::string(accel.name()).c_str() : "all structures", gridMs, totalMs);
     if (!o.dump.empty()) std::printf("dump         %s\n", o.dump.c_str());
     return 0;
 }
@@ -293,7 +293,7 @@ void addPackCommand(CLI::App& app, std::function<int()>& run) {
     cmd->add_option("--accel", o->accel,
                     "Acceleration structure stored: grid, bvh or auto (default: the cheaper by the estimate "
                     "gpurt render --accel auto makes, for the scene's camera; grid when --grid gives a resolution)")
-        ->check(CLI::IsMember({"grid", "bvh", "auto"}));
+        ->check(CLI::IsMember(accelChoices()));
     cmd->add_option("--grid", o->grid, "Grid resolution: auto (default) or NX,NY,NZ");
     auto* lambda = cmd->add_option("--lambda", o->lambda,
                                    "With --grid auto: cells along the longest axis ~ lambda * "

@@ -94,9 +94,9 @@ std::string renderFingerprint(const Scene& scene, const CameraBasis& camera, con
                        camera.right.x, camera.right.y, camera.right.z, camera.upOrtho.x, camera.upOrtho.y,
                        camera.upOrtho.z, camera.tanHalf, camera.aspect};
     add(c, sizeof(c));
-    const glm::ivec3 grid = accel.kind == AccelKind::Grid ? accel.grid->resolution : glm::ivec3(0);
-    const int ints[] = {camera.width, camera.height, grid.x, grid.y, grid.z, int(accel.kind),
-                        settings.maxBounces, int(settings.samples), int(settings.seed)};
+    const std::string structure = accel.structure->summary();
+    add(structure.data(), structure.size());
+    const int ints[] = {camera.width, camera.height, settings.maxBounces, int(settings.samples), int(settings.seed)};
     add(ints, sizeof(ints));
     const std::string text = picture.exposure + "|" + picture.tonemap + "|" + picture.smooth + "|" + backend + "|" +
                              picture.sampler + "|" + std::to_string(settings.noiseThreshold) + "|" +
@@ -149,10 +149,9 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         const glm::ivec3 grid = accel.gridResolution;
         j["grid"] = {grid.x, grid.y, grid.z};
         j["grid_source"] = accel.source;
-        j["accel"] = accelName(accel.kind);  // the structure traced; grid is the grid's (or would-be) size
-        j["accel_source"] = accel.source;     // built, packed, or auto (built and chosen)
-        if (accel.estimate) j["accel_estimate"] = {{"grid", accel.estimate->grid}, {"bvh", accel.estimate->bvh}};
-        if (accel.bvh) j["bvh"] = {{"nodes", accel.bvh->nodes.size()}, {"depth", accel.bvh->depth}};
+        j["accel"] = accel.name();        // the structure traced; grid is the grid's (or would-be) size
+        j["accel_source"] = accel.source;  // built, packed, or auto (built and chosen)
+        addAccelJson(j, accel);
         j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
         j["passes"] = nlohmann::json::object();
         for (const auto& [name, p] : KernelStats::global().passes())
@@ -184,14 +183,8 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
     if (frame) std::printf("frame      %d\n", *frame);
     std::printf("image      %dx%d\n", out.width, out.height);
     std::printf("triangles  %zu\n", scene.triangles.size());
-    if (accel.kind == AccelKind::Grid)
-        std::printf("accel      grid %dx%dx%d (%s)\n", accel.grid->resolution.x, accel.grid->resolution.y,
-                    accel.grid->resolution.z, accel.source.c_str());
-    else
-        std::printf("accel      bvh, %zu nodes, depth %d (%s)\n", accel.bvh->nodes.size(), accel.bvh->depth,
-                    accel.source.c_str());
-    if (accel.estimate)
-        std::printf("estimate   per ray: grid %.1f, bvh %.1f (triangle tests)\n", accel.estimate->grid, accel.estimate->bvh);
+    std::printf("accel      %s (%s)\n", accel.structure->summary().c_str(), accel.source.c_str());
+    if (!accel.estimate.empty()) std::printf("estimate   per ray: %s (triangle tests)\n", estimateText(accel).c_str());
     std::printf("rays       %llu primary, %llu shadow, %llu secondary\n", (unsigned long long)s.primaryRays,
                 (unsigned long long)s.shadowRays, (unsigned long long)s.secondaryRays);
     std::printf("samples    %llu, %.3g per second (%u a pixel%s)\n", (unsigned long long)s.samples, samplesPerS, spp,
@@ -514,7 +507,7 @@ int runRender(const RenderOptions& o) {
         if (out.stats.overflowRays > 0)  // never for a correct traversal: say so rather than hide it
             std::fprintf(stderr, "gpurt: warning: %llu rays reached the traversal limit of the %s "
                          "and were counted as misses\n", (unsigned long long)out.stats.overflowRays,
-                         accelName(accel.kind));
+                         std::string(accel.name()).c_str());
 
         const auto writeStart = std::chrono::steady_clock::now();
         if (tiled) tile.fingerprint = renderFingerprint(scene, camera, accel, settings, o.picture, o.backend);

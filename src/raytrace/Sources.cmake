@@ -3,15 +3,19 @@
 # nothing of src/stream goes in the first.
 set(GPURT_RAYTRACE_CPU_SOURCES
   accel/Acceleration.cpp
+  accel/Registry.cpp
   accel/BenchRays.cpp
   accel/SceneBox.cpp
   accel/bvh/Bvh.cpp
+  accel/bvh/BvhAccelerator.cpp
   accel/bvh/BvhCpu.cpp
   accel/bvh/BvhTexels.cpp
+  accel/grid/GridAccelerator.cpp
   accel/grid/GridCpu.cpp
   accel/grid/GridTexels.cpp
   accel/grid/UniformGrid.cpp
   camera/Camera.cpp
+  common/PackedBytes.cpp
   common/RenderTypes.cpp
   denoise/DenoiseCpu.cpp
   denoise/DenoiseFiles.cpp
@@ -32,6 +36,7 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   scene/SceneScale.cpp
   textures/SceneTextureLayout.cpp)
 set(GPURT_RAYTRACE_GL_SOURCES
+  accel/GlRegistry.cpp
   accel/bvh/BvhGl.cpp
   accel/grid/GridGl.cpp
   denoise/DenoiseGl.cpp

@@ -14,7 +14,7 @@
 #include "raytrace/render/CpuTracer.h"
 #include "image/InputError.h"
 #include "raytrace/scene/SceneScale.h"
-#include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 
 namespace gpurt::fuzz {
 namespace {
@@ -63,7 +63,7 @@ const std::filesystem::path& scratchFolder() {
 
 void silenceWarnings() { std::cerr.setstate(std::ios::badbit); }
 
-void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
+void exerciseScene(const Scene& original, const AccelStructure* packed) {
     FUZZ_CHECK(!original.materials.empty());
     FUZZ_CHECK(original.materialIds.size() == original.triangles.size());
     for (uint32_t id : original.materialIds) FUZZ_CHECK(id < original.materials.size());
@@ -79,17 +79,18 @@ void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
     Scene scene = original;
     const int scaleExponent = renderScaleExponent(scene);
     rescaleScene(scene, scaleExponent);
-    UniformGrid grid;
-    if (packedGrid) {  // a packed scene's own grid, validated by its reader
-        grid = *packedGrid;
-        rescaleGrid(grid, scaleExponent);
+    std::shared_ptr<const AccelStructure> structure;
+    if (packed) {  // a packed scene's own structure, validated by its reader
+        structure = packed->rescaled(scaleExponent);
     } else {
-        GridOptions gridOptions;
-        gridOptions.threads = 1;
-        grid = buildGrid(scene, gridOptions);
+        AccelOptions options;
+        options.threads = 1;
+        structure = gridAccelerator().build(scene, options);
     }
-    FUZZ_CHECK(grid.cellStart.size() == grid.cells() + 1);
-    FUZZ_CHECK(grid.cellStart.back() == grid.cellTriangles.size());
+    if (const UniformGrid* grid = gridOf(structure)) {
+        FUZZ_CHECK(grid->cellStart.size() == grid->cells() + 1);
+        FUZZ_CHECK(grid->cellStart.back() == grid->cellTriangles.size());
+    }
 
     constexpr int kSize = 6;
     // An animation's frames interpolate its keys: each either makes a camera or is refused, around
@@ -119,7 +120,7 @@ void exerciseScene(const Scene& original, const UniformGrid* packedGrid) {
     RenderSettings settings;
     settings.threads = 1;
     settings.maxBounces = std::min(scene.maxBounces, 2);
-    const RenderOutput out = CpuTracer(scene, grid).render(camera, settings);
+    const RenderOutput out = CpuTracer(scene, structure->cpu(scene), structure->rayOffset()).render(camera, settings);
     FUZZ_CHECK(out.stats.overflowRays == 0);
     for (size_t k = 0; k < out.depth.size(); ++k) {
         FUZZ_CHECK(!std::isnan(out.depth[k]));

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "scene/Scene.h"
-#include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/Accelerator.h"
 
 namespace gpurt::fuzz {
 
@@ -20,8 +20,8 @@ const std::filesystem::path& scratchFolder();
 // mirrors. Only an InputError from the scene file's own camera is accepted; anything else that
 // is wrong aborts, which libFuzzer reports as a crash: an exception, a NaN in colour or depth, a
 // depth without a hit, a ray stopped by the traversal limit.
-// With `packedGrid` (a packed scene's), that grid is traced instead of a new one.
-void exerciseScene(const Scene& scene, const UniformGrid* packedGrid = nullptr);
+// With `packed` (a packed scene's structure, a grid or a BVH), that is traced instead of a new grid.
+void exerciseScene(const Scene& scene, const AccelStructure* packed = nullptr);
 
 // Makes std::cerr silent (the OBJ reader's warnings would flood the fuzzer's output).
 void silenceWarnings();

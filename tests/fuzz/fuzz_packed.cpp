@@ -24,7 +24,7 @@ void tryDecode(std::span<const unsigned char> bytes) {
     } catch (const gpurt::InputError&) {
         return;
     }
-    gpurt::fuzz::exerciseScene(loaded.scene, loaded.grid ? &*loaded.grid : nullptr);
+    gpurt::fuzz::exerciseScene(loaded.scene, loaded.accel.get());
 }
 
 }  // namespace

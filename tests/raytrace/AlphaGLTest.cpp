@@ -89,22 +89,22 @@ glm::dvec3 centreRay(const CameraSpec& spec, int size, int i, int j) {
 }
 
 struct Variant {
-    AccelChoice accel;
+    const char* accel;
     Backend backend;
     TraceKernel kernel;
     const char* name;
 };
-const Variant kVariants[] = {{AccelChoice::Grid, Backend::Cpu, TraceKernel::Fused, "grid cpu"},
-                             {AccelChoice::Grid, Backend::Gl, TraceKernel::Fused, "grid gl"},
-                             {AccelChoice::Grid, Backend::Gl, TraceKernel::Split, "grid gl split"},
-                             {AccelChoice::Bvh, Backend::Cpu, TraceKernel::Fused, "bvh cpu"},
-                             {AccelChoice::Bvh, Backend::Gl, TraceKernel::Fused, "bvh gl"}};
+const Variant kVariants[] = {{"grid", Backend::Cpu, TraceKernel::Fused, "grid cpu"},
+                             {"grid", Backend::Gl, TraceKernel::Fused, "grid gl"},
+                             {"grid", Backend::Gl, TraceKernel::Split, "grid gl split"},
+                             {"bvh", Backend::Cpu, TraceKernel::Fused, "bvh cpu"},
+                             {"bvh", Backend::Gl, TraceKernel::Fused, "bvh gl"}};
 
 RenderOutput render(const Scene& scene, const CameraSpec& spec, int size, const Variant& v,
                     Integrator integrator = Integrator::Whitted, uint32_t samples = 1) {
     const CameraBasis camera = makeCamera(spec, size, size);
     const Acceleration accel =
-        chooseAcceleration(scene, v.accel, std::nullopt, std::nullopt, {}, camera);
+        chooseAcceleration(scene, v.accel, nullptr, {}, camera);
     RenderSettings settings;
     settings.width = settings.height = size;
     settings.samples = samples;

@@ -27,8 +27,8 @@ View view(const std::string& path, int width, int height) {
     return v;
 }
 
-Acceleration accelerate(const View& v, AccelChoice choice) {
-    return chooseAcceleration(v.loaded.scene, choice, std::nullopt, std::nullopt, {}, v.camera);
+Acceleration accelerate(const View& v, const char* choice) {
+    return chooseAcceleration(v.loaded.scene, choice, nullptr, {}, v.camera);
 }
 
 RenderOutput render(const View& v, const Acceleration& accel, Backend backend, Integrator integrator, uint32_t samples,
@@ -53,7 +53,7 @@ TEST_F(BvhGL, BothBackendsFindTheSameHitsAndPictures) {
     for (const char* path : {"scenes/room.json", "scenes/highlow.json", "scenes/cornell_blocks.json",
                              "../shared/models/bunny_lo.obj"}) {
         const View v = view(path, 96, 96);
-        const Acceleration bvh = accelerate(v, AccelChoice::Bvh);
+        const Acceleration bvh = accelerate(v, "bvh");
         const RenderOutput gl = render(v, bvh, Backend::Gl, Integrator::Whitted, 1);
         const RenderOutput cpu = render(v, bvh, Backend::Cpu, Integrator::Whitted, 1);
         // As the grid's backends: equal but where the kernels' float rounding differs from C++'s
@@ -71,8 +71,8 @@ TEST_F(BvhGL, BothBackendsFindTheSameHitsAndPictures) {
 
 TEST_F(BvhGL, EitherAcceleratorGivesTheSameImageOnEachBackend) {
     const View v = view("scenes/cornell_blocks.json", 64, 64);
-    const Acceleration grid = accelerate(v, AccelChoice::Grid);
-    const Acceleration bvh = accelerate(v, AccelChoice::Bvh);
+    const Acceleration grid = accelerate(v, "grid");
+    const Acceleration bvh = accelerate(v, "bvh");
     for (Backend backend : {Backend::Gl, Backend::Cpu})
         for (Integrator integrator : {Integrator::Whitted, Integrator::Path}) {
             const uint32_t samples = integrator == Integrator::Path ? 3 : 1;
@@ -93,7 +93,7 @@ TEST_F(BvhGL, EitherAcceleratorGivesTheSameImageOnEachBackend) {
 
 TEST_F(BvhGL, EachTileIsItsRowsOfTheWholeRender) {
     const View v = view("scenes/room.json", 48, 40);
-    const Acceleration bvh = accelerate(v, AccelChoice::Bvh);
+    const Acceleration bvh = accelerate(v, "bvh");
     const RenderOutput whole = render(v, bvh, Backend::Gl, Integrator::Path, 2);
     int row = 0;
     for (int i = 0; i < 3; ++i) {
@@ -110,7 +110,7 @@ TEST_F(BvhGL, EachTileIsItsRowsOfTheWholeRender) {
 
 TEST_F(BvhGL, RaysPastTheNodeLimitAreCountedAsOverflow) {
     const View v = view("../shared/models/bunny_lo.obj", 48, 48);
-    const Acceleration bvh = accelerate(v, AccelChoice::Bvh);
+    const Acceleration bvh = accelerate(v, "bvh");
     // The cpu backend's node counts say how many primary rays reach 4 visits (as for the grid's
     // cells, the count includes rays that end at the last visit allowed).
     const RenderOutput cpu = render(v, bvh, Backend::Cpu, Integrator::Whitted, 1);

@@ -2,6 +2,8 @@
 // leaf, child boxes holding their triangles and inside their parents), the same tree for any
 // thread count, checkBvh refusing damaged trees, and its traversal finding the same closest hits
 // as an independent brute force over all triangles (and the grid) and the same occlusion.
+#include "raytrace/accel/bvh/BvhAccelerator.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/accel/bvh/Bvh.h"
 
 #include <cmath>
@@ -193,19 +195,31 @@ TEST(BvhTest, ClosestAndAnyHitAgreeWithBruteForceAndTheGrid) {
 TEST(BvhTest, AutoPicksByTheEstimateAndKeepsOnlyTheChosenStructure) {
     const Scene scene = loadObj("../shared/models/bunny_lo.obj");
     const CameraBasis camera = makeCamera(defaultCamera(scene.bounds(), 64, 64), 64, 64);
-    const Acceleration a = chooseAcceleration(scene, AccelChoice::Auto, std::nullopt, std::nullopt, {}, camera);
-    ASSERT_TRUE(a.estimate);
-    EXPECT_EQ(a.kind, a.estimate->bvh < a.estimate->grid ? AccelKind::Bvh : AccelKind::Grid);
-    EXPECT_EQ(a.grid.has_value(), a.kind == AccelKind::Grid);
-    EXPECT_EQ(a.bvh.has_value(), a.kind == AccelKind::Bvh);
+    const Acceleration a = chooseAcceleration(scene, "auto", nullptr, {}, camera);
+    // Every registered accelerator estimated, as each one built alone estimates; the cheapest kept.
+    ASSERT_EQ(a.estimate.size(), accelerators().size());
+    std::string cheapest;
+    double best = 0;
+    for (size_t k = 0; k < accelerators().size(); ++k) {
+        const AcceleratorInfo& info = *accelerators()[k];
+        EXPECT_EQ(a.estimate[k].first, info.name);
+        EXPECT_EQ(a.estimate[k].second, estimateCost(scene, *info.build(scene, {}), camera)) << info.name;
+        if (cheapest.empty() || a.estimate[k].second < best) {
+            cheapest = info.name;
+            best = a.estimate[k].second;
+        }
+    }
+    EXPECT_EQ(a.name(), cheapest);
+    EXPECT_EQ(gridOf(a.structure) != nullptr, a.name() == "grid");
+    EXPECT_EQ(bvhOf(a.structure) != nullptr, a.name() == "bvh");
     EXPECT_EQ(a.source, "auto");
     // A given structure stands under auto (a packed scene's).
-    const Acceleration packed = chooseAcceleration(scene, AccelChoice::Auto, std::nullopt, buildBvh(scene), {}, camera);
-    EXPECT_EQ(packed.kind, AccelKind::Bvh);
+    const Acceleration packed = chooseAcceleration(scene, "auto", makeStructure(buildBvh(scene)), {}, camera);
+    EXPECT_EQ(packed.name(), "bvh");
     EXPECT_EQ(packed.source, "packed");
-    EXPECT_FALSE(packed.estimate);
+    EXPECT_TRUE(packed.estimate.empty());
     // Both structures offset secondary rays alike: the same images.
-    const Acceleration grid = chooseAcceleration(scene, AccelChoice::Grid, std::nullopt, std::nullopt, {}, camera);
+    const Acceleration grid = chooseAcceleration(scene, "grid", nullptr, {}, camera);
     EXPECT_EQ(grid.rayOffset(), packed.rayOffset());
 }
 

@@ -19,6 +19,8 @@
 #include "EnvironmentTestMaps.h"
 #include "GltfReference.h"
 #include "TestScenes.h"
+#include "raytrace/accel/bvh/BvhAccelerator.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/materials/MaterialRecord.h"
 #include "raytrace/scene/PackedScene.h"
 #include "scene/GltfLoader.h"
@@ -369,14 +371,14 @@ TEST_F(GltfMaterials, PackedTangentsRenderAsTheirSource) {
     const glm::vec4 t(0.0f, 1.0f, 0.0f, -1.0f);
     source.scene.tangents = {TriangleTangents{t, t, t}, TriangleTangents{}};
     const UniformGrid grid = buildGrid(source.scene, GridOptions{});
-    const LoadedScene packed = decodePackedScene(encodePackedScene(source, grid, "tangents"), "tangents.gpscene");
-    ASSERT_TRUE(packed.grid);
+    const LoadedScene packed = decodePackedScene(encodePackedScene(source, *makeStructure(grid), "tangents"), "tangents.gpscene");
+    ASSERT_TRUE(gridOf(packed.accel));
     ASSERT_EQ(packed.scene.tangents.size(), 2u);
     const CameraBasis camera = makeCamera(quadView(false), 16, 16);
     const RenderOutput a = GpuTracer(source.scene, grid).render(camera, smallImage());
-    const RenderOutput b = GpuTracer(packed.scene, *packed.grid).render(camera, smallImage());
+    const RenderOutput b = GpuTracer(packed.scene, *gridOf(packed.accel)).render(camera, smallImage());
     const RenderOutput ac = CpuTracer(source.scene, grid).render(camera, smallImage());
-    const RenderOutput bc = CpuTracer(packed.scene, *packed.grid).render(camera, smallImage());
+    const RenderOutput bc = CpuTracer(packed.scene, *gridOf(packed.accel)).render(camera, smallImage());
     ASSERT_EQ(a.color.size(), b.color.size());
     EXPECT_EQ(a.color, b.color);
     EXPECT_EQ(ac.color, bc.color);

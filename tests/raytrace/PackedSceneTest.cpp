@@ -3,6 +3,8 @@
 // CPU backend renders a packed scene exactly as its source; and every kind of damage is refused
 // with one line naming the file, never a crash. Damaged files are made by reading and patching
 // the documented layout here (with zlib's CRC-32 to reseal them), independently of the writer.
+#include "raytrace/accel/bvh/BvhAccelerator.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/scene/PackedScene.h"
 #include "raytrace/accel/bvh/Bvh.h"
 
@@ -85,11 +87,47 @@ Entry section(const Bytes& b, const char* tag) {
     return {0, 0, 0};
 }
 
+// A file of the header of `header` and the given sections (each from its file, by tag), laid out
+// in that order as the layout says (8-byte aligned), its size and checksum rewritten: what another
+// writer may have stored.
+Bytes relaidOut(const Bytes& header, const std::vector<std::pair<const Bytes*, std::string>>& sections) {
+    Bytes out(header.begin(), header.begin() + 32);
+    put32(out, 24, uint32_t(sections.size()));
+    out.resize(32 + 24 * sections.size(), 0);
+    for (size_t k = 0; k < sections.size(); ++k) {
+        const auto& [file, tag] = sections[k];
+        const Entry e = section(*file, tag.c_str());
+        while (out.size() % 8 != 0) out.push_back(0);
+        const size_t at = 32 + 24 * k;
+        std::memcpy(&out[at], tag.data(), 4);
+        put64(out, at + 8, out.size());
+        put64(out, at + 16, e.size);
+        out.insert(out.end(), file->begin() + std::ptrdiff_t(e.offset), file->begin() + std::ptrdiff_t(e.offset + e.size));
+    }
+    while (out.size() % 8 != 0) out.push_back(0);
+    put64(out, 16, out.size());
+    reseal(out);
+    return out;
+}
+
+// The same with every section from `file`, in the order of `tags`.
+Bytes relaidOut(const Bytes& file, const std::vector<std::string>& tags) {
+    std::vector<std::pair<const Bytes*, std::string>> sections;
+    for (const std::string& tag : tags) sections.emplace_back(&file, tag);
+    return relaidOut(file, sections);
+}
+
+// The tags of a file's section table, in table order.
+std::vector<std::string> sectionTags(const Bytes& b) {
+    std::vector<std::string> tags;
+    for (uint32_t k = 0; k < get32(b, 24); ++k) tags.emplace_back(reinterpret_cast<const char*>(&b[32 + 24 * size_t(k)]), 4);
+    return tags;
+}
+
 // --- Scenes ------------------------------------------------------------------------------------
 
 LoadedScene objScene(const char* model) {
-    return LoadedScene{loadObj(std::string("../shared/models/") + model), std::nullopt, std::nullopt,
-                       std::nullopt};
+    return LoadedScene{loadObj(std::string("../shared/models/") + model), std::nullopt, nullptr};
 }
 
 // Every field set, with values a careless writer would get wrong: -0, a denormal, the largest
@@ -276,14 +314,14 @@ void expectSameTextures(const LoadedScene& a, const UniformGrid& gridA, const Lo
 
 void expectRoundTrip(const LoadedScene& source) {
     const UniformGrid grid = buildGrid(source.scene, {});
-    const Bytes bytes = encodePackedScene(source, grid, "source");
+    const Bytes bytes = encodePackedScene(source, *makeStructure(grid), "source");
     const LoadedScene packed = decodePackedScene(bytes, "packed.gpscene");
-    ASSERT_TRUE(packed.grid);
+    ASSERT_TRUE(gridOf(packed.accel));
     expectSameScene(source, packed);
-    expectSameGrid(grid, *packed.grid);
-    expectSameTextures(source, grid, packed, *packed.grid);
+    expectSameGrid(grid, *gridOf(packed.accel));
+    expectSameTextures(source, grid, packed, *gridOf(packed.accel));
     // And again: packing what was read gives the same bytes.
-    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), bytes);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), bytes);
 }
 
 // The message of the InputError that decoding `bytes` throws (Refusal.h).
@@ -301,7 +339,7 @@ class PackedSceneTest : public ::testing::Test {
         fs::create_directories(dir_);
         source_ = unusualScene();
         grid_ = buildGrid(source_.scene, {});
-        bytes_ = encodePackedScene(source_, grid_, "source");
+        bytes_ = encodePackedScene(source_, *makeStructure(grid_), "source");
     }
     void TearDown() override { fs::remove_all(dir_); }
 
@@ -368,11 +406,11 @@ TEST_F(PackedSceneTest, HeaderFollowsTheDocumentedLayout) {
 TEST_F(PackedSceneTest, FilesAreRecognisedByTheirMagicAndCarryTheirGrid) {
     // Named like an OBJ; the magic decides.
     const fs::path path = dir_ / "looks-like.obj";
-    writePackedScene(path, source_, grid_, "source");
+    writePackedScene(path, source_, *makeStructure(grid_), "source");
     const LoadedScene loaded = loadScene(path);
-    ASSERT_TRUE(loaded.grid);
+    ASSERT_TRUE(gridOf(loaded.accel));
     expectSameScene(source_, loaded);
-    expectSameGrid(grid_, *loaded.grid);
+    expectSameGrid(grid_, *gridOf(loaded.accel));
     // Written atomically: nothing but the file in the folder.
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
     std::ifstream in(path, std::ios::binary);
@@ -383,10 +421,10 @@ TEST_F(PackedSceneTest, SameBytesForAnyThreadCount) {
     const LoadedScene bunny = objScene("bunny_lo.obj");
     GridOptions options;
     options.threads = 1;
-    const Bytes one = encodePackedScene(bunny, buildGrid(bunny.scene, options), "bunny_lo");
+    const Bytes one = encodePackedScene(bunny, *makeStructure(buildGrid(bunny.scene, options)), "bunny_lo");
     for (int threads : {2, 3, 8, 0}) {
         options.threads = threads;
-        EXPECT_EQ(encodePackedScene(bunny, buildGrid(bunny.scene, options), "bunny_lo"), one)
+        EXPECT_EQ(encodePackedScene(bunny, *makeStructure(buildGrid(bunny.scene, options)), "bunny_lo"), one)
             << threads << " threads";
     }
 }
@@ -395,13 +433,13 @@ TEST_F(PackedSceneTest, CpuBackendRendersThePackedSceneExactlyAsItsSource) {
     const LoadedScene teapot = objScene("teapot.obj");
     const UniformGrid grid = buildGrid(teapot.scene, {});
     const LoadedScene packed =
-        decodePackedScene(encodePackedScene(teapot, grid, "teapot"), "teapot.gpscene");
+        decodePackedScene(encodePackedScene(teapot, *makeStructure(grid), "teapot"), "teapot.gpscene");
     const CameraBasis camera = makeCamera({{20, 15, 40}, {0, 0, 0}, {0, 1, 0}, 45.0f}, 40, 30);
     RenderSettings settings;
     settings.width = 40;
     settings.height = 30;
     const RenderOutput a = CpuTracer(teapot.scene, grid).render(camera, settings);
-    const RenderOutput b = CpuTracer(packed.scene, *packed.grid).render(camera, settings);
+    const RenderOutput b = CpuTracer(packed.scene, *gridOf(packed.accel)).render(camera, settings);
     auto bytesOf = [](const auto& v) { return v.size() * sizeof(v[0]); };
     ASSERT_EQ(a.color.size(), b.color.size());
     EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), bytesOf(a.color)), 0);
@@ -416,16 +454,16 @@ TEST_F(PackedSceneTest, CpuBackendRendersThePackedSceneExactlyAsItsSource) {
 TEST_F(PackedSceneTest, WriterRefusesScenesItCannotPack) {
     LoadedScene bad = source_;
     bad.scene.materialIds[3] = uint32_t(bad.scene.materials.size());
-    EXPECT_THROW(encodePackedScene(bad, grid_, "source"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "source"), InputError);
     UniformGrid otherGrid = buildGrid(objScene("teapot.obj").scene, {});
     try {
-        encodePackedScene(source_, otherGrid, "source.obj");
+        encodePackedScene(source_, *makeStructure(otherGrid), "source.obj");
         ADD_FAILURE() << "a grid of another scene was packed";
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()).rfind("source.obj: ", 0), 0u) << e.what();
     }
     EXPECT_FALSE(fs::exists(dir_ / "x.gpscene"));
-    EXPECT_THROW(writePackedScene(dir_ / "x.gpscene", bad, grid_, "source"), InputError);
+    EXPECT_THROW(writePackedScene(dir_ / "x.gpscene", bad, *makeStructure(grid_), "source"), InputError);
     EXPECT_FALSE(fs::exists(dir_ / "x.gpscene"));
 }
 
@@ -434,7 +472,7 @@ TEST_F(PackedSceneTest, WriterRefusesScenesItCannotPack) {
 TEST_F(PackedSceneTest, RefusesMaterialAndLightValuesOutOfRange) {
     const auto refused = [&](LoadedScene scene, const char* what) {
         try {
-            encodePackedScene(scene, grid_, "source");
+            encodePackedScene(scene, *makeStructure(grid_), "source");
             ADD_FAILURE() << what << " was packed";
         } catch (const InputError& e) {
             EXPECT_NE(std::string(e.what()).find("must be"), std::string::npos) << e.what();
@@ -541,7 +579,7 @@ TEST_F(PackedSceneTest, RefusesSizesThatLie) {
         still.scene.texcoords.clear();
         still.scene.textures.clear();
         for (Material& m : still.scene.materials) m.diffuseTexture = -1;
-        Bytes b = encodePackedScene(still, grid_, "still");
+        Bytes b = encodePackedScene(still, *makeStructure(grid_), "still");
         put32(b, 24, get32(b, 24) - 1);
         reseal(b);
         EXPECT_REFUSED(b, "LIST");
@@ -593,7 +631,7 @@ TEST_F(PackedSceneTest, VertexColoursTravelInTheirOwnSection) {
         coloured.scene.colors.push_back({glm::vec3(float(t) / float(n), 0.0f, 1.0f),
                                          glm::vec3(-0.0f, std::numeric_limits<float>::denorm_min(), 0.5f), glm::vec3(1.0f)});
     const UniformGrid grid = buildGrid(coloured.scene, {});
-    const Bytes b = encodePackedScene(coloured, grid, "coloured");
+    const Bytes b = encodePackedScene(coloured, *makeStructure(grid), "coloured");
     const Entry vcol = section(b, "VCOL");
     EXPECT_EQ(vcol.size, 8 + 36 * n);
     EXPECT_EQ(get64(b, vcol.offset), n);
@@ -614,10 +652,10 @@ TEST_F(PackedSceneTest, VertexColoursTravelInTheirOwnSection) {
     refusal(patched(b, [&](Bytes& p) { put64(p, vcol.at + 16, vcol.size - 36); }));
     LoadedScene bad = coloured;
     bad.scene.colors[3].c1.y = 2.0f;
-    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid), "bad"), InputError);
     bad.scene.colors.pop_back();
     bad.scene.colors[3].c1.y = 0.0f;
-    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid), "bad"), InputError);
 }
 
 // Vertex tangents (TANG, twelve floats a triangle: each corner's tangent and handedness): written
@@ -636,7 +674,7 @@ TEST_F(PackedSceneTest, VertexTangentsTravelInTheirOwnSection) {
                                           glm::vec4(0.0f, -1.0f, std::numeric_limits<float>::denorm_min(), -1.0f),
                                           glm::vec4(0.0f)});  // a corner without: all zero
     const UniformGrid grid = buildGrid(tangent.scene, {});
-    const Bytes b = encodePackedScene(tangent, grid, "tangent");
+    const Bytes b = encodePackedScene(tangent, *makeStructure(grid), "tangent");
     const Entry tang = section(b, "TANG");
     EXPECT_EQ(tang.size, 8 + 48 * n);
     EXPECT_EQ(get64(b, tang.offset), n);
@@ -659,10 +697,10 @@ TEST_F(PackedSceneTest, VertexTangentsTravelInTheirOwnSection) {
     refusal(patched(b, [&](Bytes& p) { put64(p, tang.at + 16, tang.size - 48); }));
     LoadedScene bad = tangent;
     bad.scene.tangents[3].t1.w = 2.0f;
-    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid), "bad"), InputError);
     bad.scene.tangents[3].t1.w = 1.0f;
     bad.scene.tangents.pop_back();
-    EXPECT_THROW(encodePackedScene(bad, grid, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid), "bad"), InputError);
 }
 
 // Alpha coverage (ALPH, five words a material): written only when some material has alpha, so
@@ -676,7 +714,7 @@ TEST_F(PackedSceneTest, AlphaCoverageTravelsInItsOwnSection) {
     alpha.scene.materials[2].alphaMode = 2;  // BLEND
     alpha.scene.materials[2].alphaFactor = 0.3f;
     const size_t materials = alpha.scene.materials.size();
-    const Bytes b = encodePackedScene(alpha, grid_, "alpha");
+    const Bytes b = encodePackedScene(alpha, *makeStructure(grid_), "alpha");
     const Entry alph = section(b, "ALPH");
     EXPECT_EQ(alph.size, 8 + 20 * materials);
     EXPECT_EQ(get64(b, alph.offset), materials);
@@ -693,7 +731,7 @@ TEST_F(PackedSceneTest, AlphaCoverageTravelsInItsOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, alph.offset + 8 + 12, 7); }), "texture 7 out of range");
     LoadedScene bad = alpha;
     bad.scene.materials[1].alphaCutoff = -1.0f;
-    EXPECT_THROW(encodePackedScene(bad, grid_, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
 }
 
 // Sides (SIDE, one u32 a material: 1 double-sided, 0 single-sided): written only when some
@@ -701,11 +739,11 @@ TEST_F(PackedSceneTest, AlphaCoverageTravelsInItsOwnSection) {
 // any other value is refused.
 TEST_F(PackedSceneTest, SidesTravelInTheirOwnSection) {
     EXPECT_FALSE(findSection(bytes_, "SIDE")) << "a scene of double-sided materials";
-    EXPECT_EQ(encodePackedScene(source_, grid_, "again"), bytes_) << "unchanged without single-sided materials";
+    EXPECT_EQ(encodePackedScene(source_, *makeStructure(grid_), "again"), bytes_) << "unchanged without single-sided materials";
     LoadedScene sided = source_;
     sided.scene.materials[1].doubleSided = false;
     const size_t materials = sided.scene.materials.size();
-    const Bytes b = encodePackedScene(sided, grid_, "sided");
+    const Bytes b = encodePackedScene(sided, *makeStructure(grid_), "sided");
     const Entry side = section(b, "SIDE");
     EXPECT_EQ(side.size, 8 + 4 * materials);
     EXPECT_EQ(get64(b, side.offset), materials);
@@ -714,7 +752,7 @@ TEST_F(PackedSceneTest, SidesTravelInTheirOwnSection) {
     expectSameScene(sided, packed);
     EXPECT_FALSE(packed.scene.materials[1].doubleSided);
     EXPECT_TRUE(packed.scene.materials[0].doubleSided);
-    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8 + 4, 2); }), "material 1: double-sided 2");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, side.offset + 8, 0xffffffffu); }), "material 0: double-sided");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, side.offset, materials + 1); }), "section SIDE");
@@ -732,7 +770,7 @@ TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
     mapped.scene.materials[2].transmission = glm::vec3(0.75f);
     mapped.scene.materials[2].transmissionTexture = {1, 0};
     const size_t materials = mapped.scene.materials.size();
-    const Bytes b = encodePackedScene(mapped, grid_, "mapped");
+    const Bytes b = encodePackedScene(mapped, *makeStructure(grid_), "mapped");
     const Entry trns = section(b, "TRNS");
     EXPECT_EQ(trns.size, 8 + 8 * materials);
     EXPECT_EQ(get64(b, trns.offset), materials);
@@ -744,7 +782,7 @@ TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
     expectSameScene(mapped, packed);
     EXPECT_EQ(packed.scene.materials[2].transmissionTexture.texture, 1);
     EXPECT_FALSE(packed.scene.materials[1].transmissionTexture.given());
-    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
     const uint32_t textures = uint32_t(mapped.scene.textures.size());
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, trns.offset + 8 + 16, textures); }),
                    "material 2: texture " + std::to_string(textures) + " out of range");
@@ -753,7 +791,7 @@ TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, trns.offset, materials + 1); }), "section TRNS");
     LoadedScene bad = mapped;
     bad.scene.materials[2].transmissionTexture.channel = -1;
-    EXPECT_THROW(encodePackedScene(bad, grid_, "bad"), InputError);
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the
@@ -764,7 +802,7 @@ TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
     LoadedScene debug = source_;
     debug.scene.materials[2].model = 1;  // GPURT_MODEL_DEBUG_NORMAL
     const size_t materials = debug.scene.materials.size();
-    const Bytes b = encodePackedScene(debug, grid_, "debug");
+    const Bytes b = encodePackedScene(debug, *makeStructure(grid_), "debug");
     const Entry modl = section(b, "MODL");
     EXPECT_EQ(modl.size, 8 + 4 * materials);
     EXPECT_EQ(get64(b, modl.offset), materials);
@@ -775,7 +813,7 @@ TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
         EXPECT_EQ(packed.scene.materials[m].model, m == 2 ? 1 : 0) << m;
     }
     expectSameScene(debug, packed);
-    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
 
     // A count that does not fit the section, or (the section shortened to fit it) is not the
     // materials'; models this gpurt does not know.
@@ -794,7 +832,7 @@ TEST_F(PackedSceneTest, MaterialModelsTravelInTheirOwnSection) {
         LoadedScene unknown = debug;
         unknown.scene.materials[4].model = model;
         const std::string message =
-            test::refusalOf([&] { encodePackedScene(unknown, grid_, "unknown"); }, "unknown: ");
+            test::refusalOf([&] { encodePackedScene(unknown, *makeStructure(grid_), "unknown"); }, "unknown: ");
         EXPECT_NE(message.find("material 4: unknown material model " + std::to_string(model)), std::string::npos)
             << message;
     }
@@ -809,7 +847,7 @@ TEST_F(PackedSceneTest, ClassicMaterialsKeepTheirNormalAndEmissiveMaps) {
     mapped.scene.materials[2].normalScale = 0.5f;
     mapped.scene.materials[3].emissiveTexture = 0;
     ASSERT_EQ(mapped.scene.materials[2].model, 0);
-    const Bytes b = encodePackedScene(mapped, grid_, "mapped");
+    const Bytes b = encodePackedScene(mapped, *makeStructure(grid_), "mapped");
     EXPECT_TRUE(findSection(b, "PBRM"));
     const LoadedScene packed = decodePackedScene(b, "mapped.gpscene");
     EXPECT_EQ(packed.scene.materials[2].normalTexture, 1);
@@ -885,23 +923,23 @@ TEST_F(PackedSceneTest, RefusesAnInconsistentGrid) {
 
 TEST_F(PackedSceneTest, CarriesABvhInsteadOfTheGrid) {
     const Bvh bvh = buildBvh(source_.scene);
-    const Bytes b = encodePackedScene(source_, bvh, "source");
+    const Bytes b = encodePackedScene(source_, *makeStructure(bvh), "source");
     const LoadedScene packed = decodePackedScene(b, "source.gpscene");
-    EXPECT_FALSE(packed.grid);
-    ASSERT_TRUE(packed.bvh);
-    EXPECT_EQ(packed.bvh->triangles, bvh.triangles);
-    ASSERT_EQ(packed.bvh->nodes.size(), bvh.nodes.size());
+    EXPECT_FALSE(gridOf(packed.accel));
+    ASSERT_TRUE(bvhOf(packed.accel));
+    EXPECT_EQ(bvhOf(packed.accel)->triangles, bvh.triangles);
+    ASSERT_EQ(bvhOf(packed.accel)->nodes.size(), bvh.nodes.size());
     for (size_t n = 0; n < bvh.nodes.size(); ++n)
         for (int c = 0; c < 2; ++c) {
-            EXPECT_EQ(packed.bvh->nodes[n].child[c].min, bvh.nodes[n].child[c].min);
-            EXPECT_EQ(packed.bvh->nodes[n].child[c].max, bvh.nodes[n].child[c].max);
-            EXPECT_EQ(packed.bvh->nodes[n].child[c].ref, bvh.nodes[n].child[c].ref);
-            EXPECT_EQ(packed.bvh->nodes[n].child[c].count, bvh.nodes[n].child[c].count);
+            EXPECT_EQ(bvhOf(packed.accel)->nodes[n].child[c].min, bvh.nodes[n].child[c].min);
+            EXPECT_EQ(bvhOf(packed.accel)->nodes[n].child[c].max, bvh.nodes[n].child[c].max);
+            EXPECT_EQ(bvhOf(packed.accel)->nodes[n].child[c].ref, bvh.nodes[n].child[c].ref);
+            EXPECT_EQ(bvhOf(packed.accel)->nodes[n].child[c].count, bvh.nodes[n].child[c].count);
         }
-    EXPECT_EQ(packed.bvh->min, bvh.min);
-    EXPECT_EQ(packed.bvh->max, bvh.max);
-    EXPECT_EQ(packed.bvh->depth, bvh.depth);
-    EXPECT_EQ(encodePackedScene(packed, *packed.bvh, "again"), b);
+    EXPECT_EQ(bvhOf(packed.accel)->min, bvh.min);
+    EXPECT_EQ(bvhOf(packed.accel)->max, bvh.max);
+    EXPECT_EQ(bvhOf(packed.accel)->depth, bvh.depth);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
     // The grid's sections are absent, the BVH's present; a grid file has none of the BVH's.
     EXPECT_EQ(section(b, "BVHN").size % 64, 8u);
     for (const char* tag : {"GRID", "CELL", "LIST"}) EXPECT_FALSE(findSection(b, tag)) << tag;
@@ -910,7 +948,7 @@ TEST_F(PackedSceneTest, CarriesABvhInsteadOfTheGrid) {
 
 TEST_F(PackedSceneTest, RefusesADamagedBvh) {
     const Bvh bvh = buildBvh(source_.scene);
-    const Bytes b = encodePackedScene(source_, bvh, "source");
+    const Bytes b = encodePackedScene(source_, *makeStructure(bvh), "source");
     const Entry nodes = section(b, "BVHN"), list = section(b, "BVHL");
     const size_t n = source_.scene.triangles.size();
     // Child k of node j: (min, max, ref, count) at 8 + 64 j + 32 k.
@@ -949,6 +987,55 @@ TEST_F(PackedSceneTest, RefusesADamagedBvh) {
     // A grid and a BVH, or half of one, are refused.
     const size_t gridEntry = section(bytes_, "GRID").at;
     EXPECT_REFUSED(patched([&](Bytes& x) { std::memcpy(&x[gridEntry], "BVHN", 4); }), "acceleration structure");
+    EXPECT_EQ(relaidOut(bytes_, sectionTags(bytes_)), bytes_);  // the rebuilder lays a file out as the writer does
+    for (const char* tag : {"BVHN", "BVHL"}) {
+        // The grid file with one or both of the BVH's sections after its own.
+        std::vector<std::pair<const Bytes*, std::string>> parts;
+        for (const std::string& t : sectionTags(bytes_)) parts.emplace_back(&bytes_, t);
+        parts.emplace_back(&b, tag);
+        EXPECT_NE(refusal(relaidOut(bytes_, parts)).find("not one accelerator's"), std::string::npos) << tag;
+        parts.emplace_back(&b, std::string(tag) == "BVHN" ? "BVHL" : "BVHN");
+        EXPECT_NE(refusal(relaidOut(bytes_, parts)).find("not one accelerator's"), std::string::npos) << tag;
+    }
+}
+
+// An accelerator's sections are read wherever the table puts them: a BVH file written before the
+// registry stored BVHN and BVHL after ENVM, and one with them last reads the same.
+TEST_F(PackedSceneTest, ReadsTheStructureWhereverTheTablePutsIt) {
+    LoadedScene lit = source_;
+    auto image = std::make_shared<EnvironmentImage>();
+    image->width = 2;
+    image->height = 1;
+    image->texels = {glm::vec3(1.0f), glm::vec3(0.5f)};
+    Environment env;
+    env.image = image;
+    lit.scene.environment = env;
+    const Bytes b = encodePackedScene(lit, *makeStructure(buildBvh(lit.scene)), "source");
+    std::vector<std::string> tags = sectionTags(b), old, last;
+    // The writer's order: the structure right after RNDR.
+    const auto render = std::find(tags.begin(), tags.end(), "RNDR");
+    ASSERT_NE(render, tags.end());
+    ASSERT_LT(size_t(render - tags.begin()) + 2, tags.size());
+    EXPECT_EQ(*(render + 1), "BVHN");
+    EXPECT_EQ(*(render + 2), "BVHL");
+    for (const std::string& t : tags)
+        if (t != "BVHN" && t != "BVHL") {
+            old.push_back(t);
+            last.push_back(t);
+            if (t == "ENVM") old.insert(old.end(), {"BVHN", "BVHL"});
+        }
+    last.insert(last.end(), {"BVHL", "BVHN"});  // and in the other order
+    ASSERT_NE(std::find(old.begin(), old.end(), "BVHN"), old.end());
+    const LoadedScene want = decodePackedScene(b, "new.gpscene");
+    for (const auto& order : {old, last}) {
+        const LoadedScene got = decodePackedScene(relaidOut(b, order), "old.gpscene");
+        expectSameScene(want, got);
+        ASSERT_TRUE(bvhOf(got.accel));
+        EXPECT_EQ(bvhOf(got.accel)->triangles, bvhOf(want.accel)->triangles);
+        EXPECT_EQ(bvhOf(got.accel)->nodes.size(), bvhOf(want.accel)->nodes.size());
+        // Written again, it is the writer's layout.
+        EXPECT_EQ(encodePackedScene(got, *got.accel, "source"), b);
+    }
 }
 
 TEST_F(PackedSceneTest, RefusesBadValues) {
@@ -1005,7 +1092,7 @@ TEST_F(PackedSceneTest, FuzzedFilesNeverCrash) {
     small.size = glm::ivec2(16, 16);
     GridOptions options;
     options.resolution = glm::ivec3(3, 2, 3);
-    const Bytes bytes = encodePackedScene(small, buildGrid(small.scene, options), "cornell");
+    const Bytes bytes = encodePackedScene(small, *makeStructure(buildGrid(small.scene, options)), "cornell");
     size_t refused = 0, loaded = 0;
     auto attempt = [&](const Bytes& b) {
         try {
@@ -1015,7 +1102,7 @@ TEST_F(PackedSceneTest, FuzzedFilesNeverCrash) {
             RenderSettings settings;
             settings.width = settings.height = 4;
             settings.threads = 1;
-            CpuTracer(scene.scene, *scene.grid).render(camera, settings);
+            CpuTracer(scene.scene, *gridOf(scene.accel)).render(camera, settings);
         } catch (const InputError& e) {
             ++refused;
             const std::string message = e.what();
@@ -1067,7 +1154,7 @@ TEST_F(PackedSceneTest, EnvironmentTravelsInItsOwnSection) {
     env.file = "sky.hdr";
     lit.scene.environment = env;
     lit.scene.backgroundGiven = true;
-    const Bytes b = encodePackedScene(lit, grid_, "lit");
+    const Bytes b = encodePackedScene(lit, *makeStructure(grid_), "lit");
     const Entry envm = section(b, "ENVM");
     EXPECT_EQ(envm.size, 24 + 7 + 12 * 8);
     const LoadedScene packed = decodePackedScene(b, "lit.gpscene");
@@ -1077,11 +1164,11 @@ TEST_F(PackedSceneTest, EnvironmentTravelsInItsOwnSection) {
     EXPECT_EQ(packed.scene.environment->strength, 1.5f);
     EXPECT_EQ(packed.scene.environment->rotation, -30.0f);
     EXPECT_EQ(packed.scene.environment->file, "sky.hdr");
-    EXPECT_EQ(encodePackedScene(packed, *packed.grid, "again"), b);
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
 
     LoadedScene background = source_;  // the flag alone
     background.scene.backgroundGiven = true;
-    const Bytes g = encodePackedScene(background, grid_, "background");
+    const Bytes g = encodePackedScene(background, *makeStructure(grid_), "background");
     EXPECT_EQ(section(g, "ENVM").size, 4u);
     EXPECT_TRUE(decodePackedScene(g, "g.gpscene").scene.backgroundGiven);
     EXPECT_FALSE(decodePackedScene(g, "g.gpscene").scene.environment);

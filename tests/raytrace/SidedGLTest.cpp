@@ -68,21 +68,21 @@ bool insideQuad(double x, double z, double margin, bool& clear) {
 }
 
 struct Variant {
-    AccelChoice accel;
+    const char* accel;
     Backend backend;
     TraceKernel kernel;
     const char* name;
 };
-const Variant kVariants[] = {{AccelChoice::Grid, Backend::Cpu, TraceKernel::Fused, "grid cpu"},
-                             {AccelChoice::Grid, Backend::Gl, TraceKernel::Fused, "grid gl"},
-                             {AccelChoice::Grid, Backend::Gl, TraceKernel::Split, "grid gl split"},
-                             {AccelChoice::Bvh, Backend::Cpu, TraceKernel::Fused, "bvh cpu"},
-                             {AccelChoice::Bvh, Backend::Gl, TraceKernel::Fused, "bvh gl"}};
+const Variant kVariants[] = {{"grid", Backend::Cpu, TraceKernel::Fused, "grid cpu"},
+                             {"grid", Backend::Gl, TraceKernel::Fused, "grid gl"},
+                             {"grid", Backend::Gl, TraceKernel::Split, "grid gl split"},
+                             {"bvh", Backend::Cpu, TraceKernel::Fused, "bvh cpu"},
+                             {"bvh", Backend::Gl, TraceKernel::Fused, "bvh gl"}};
 
 RenderOutput render(const Scene& scene, const CameraSpec& spec, int size, const Variant& v,
                     Integrator integrator = Integrator::Whitted) {
     const CameraBasis camera = makeCamera(spec, size, size);
-    const Acceleration accel = chooseAcceleration(scene, v.accel, std::nullopt, std::nullopt, {}, camera);
+    const Acceleration accel = chooseAcceleration(scene, v.accel, nullptr, {}, camera);
     RenderSettings settings;
     settings.width = settings.height = size;
     settings.samples = 1;

@@ -2,6 +2,8 @@
 // raymath.h DDA and triangle test, brute force over all triangles), on random inputs.
 #include "../common/GLTest.h"
 
+#include "raytrace/accel/bvh/BvhAccelerator.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/camera/Camera.h"
 #include "raytrace/render/GpuPipeline.h"
 #include "raytrace/scene/PackedScene.h"
@@ -325,9 +327,9 @@ TEST_F(TraceKernels, UploadedTexturesAreTheCpuLayout) {
     source.scene.materials.back().diffuseTexture = 1;
     const UniformGrid grid = buildGrid(source.scene, {});
     const LoadedScene packed =
-        decodePackedScene(encodePackedScene(source, grid, "random"), "random.gpscene");
-    const SceneTextures textures(packed.scene, packed.grid->rayOffset());
-    const GridGl accel(packed.scene, *packed.grid, {});
+        decodePackedScene(encodePackedScene(source, *makeStructure(grid), "random"), "random.gpscene");
+    const SceneTextures textures(packed.scene, gridOf(packed.accel)->rayOffset());
+    const GridGl accel(packed.scene, *gridOf(packed.accel), {});
     const std::vector<TextureTexels> cpu = sceneTextureTexels(source.scene, grid);
     const GPUFloatArray* gpu[] = {&accel.voxelIndex(), &accel.cellTriangles(), &textures.triangles(),
                                   &textures.materials(), &textures.vertexNormals(), &textures.emitters(),

@@ -2,6 +2,7 @@
 // independent brute force that clips each triangle to each cell), the lists are well formed and
 // the same for any thread count, and the box and resolution follow the stated rules.
 #include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -287,6 +288,29 @@ TEST(UniformGridTest, SkipIsTheChessboardDistanceToTheNearestNonEmptyCell) {
                     ASSERT_EQ(int(grid.skip[size_t(grid.cellIndex({x, y, z}))]), best)
                         << "trial " << trial << " cell " << x << "," << y << "," << z;
                 }
+    }
+}
+
+// A packed grid turns with its scene (--up-axis): the turned grid is the one built for the turned
+// scene, cell for cell (the box pads alike on every side and the resolution follows the extents).
+TEST(UniformGrid, TurnedGridIsTheGridOfTheTurnedScene) {
+    const Scene scene = loadObj("../shared/models/bunny_lo.obj");
+    const std::shared_ptr<const AccelStructure> packed = gridAccelerator().build(scene, {});
+    for (const UpAxis axis : {UpAxis::PosX, UpAxis::NegX, UpAxis::NegY, UpAxis::PosZ, UpAxis::NegZ}) {
+        SCOPED_TRACE(int(axis));
+        Scene turned = scene;
+        rotateUpToY(turned, axis);
+        const UniformGrid built = buildGrid(turned, {});
+        const std::shared_ptr<const AccelStructure> t = packed->turnedUp(axis);
+        ASSERT_TRUE(gridOf(t));
+        const UniformGrid& grid = *gridOf(t);
+        EXPECT_EQ(grid.resolution, built.resolution);
+        EXPECT_EQ(grid.min, built.min);
+        EXPECT_EQ(grid.max, built.max);
+        EXPECT_EQ(grid.cellSize, built.cellSize);
+        EXPECT_EQ(grid.cellStart, built.cellStart);
+        EXPECT_EQ(grid.cellTriangles, built.cellTriangles);
+        EXPECT_EQ(grid.skip, built.skip);
     }
 }
 

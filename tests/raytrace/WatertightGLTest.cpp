@@ -9,6 +9,7 @@
 #include "../common/GLTest.h"
 #include "TestScenes.h"
 
+#include "raytrace/accel/GlRegistry.h"
 #include "raytrace/render/Renderer.h"
 #include "raytrace/accel/Acceleration.h"
 
@@ -235,7 +236,7 @@ size_t failures(const Rays& r, const std::vector<glm::vec4>& hits, bool anyHit, 
 struct Tracer {
     std::string name;
     Backend backend;
-    AccelChoice accel;
+    const char* accel;
     TraceKernel kernel = TraceKernel::Fused;
 };
 
@@ -257,11 +258,11 @@ std::vector<glm::vec4> trace(const Scene& scene, const Acceleration& accel, cons
 TEST_F(Watertight, RaysAtSharedEdgesAndVerticesNeverPassThrough) {
     const std::vector<Mesh> meshes = {uvSphere(glm::vec3(0.11f, -0.07f, 0.05f), 1.0f, 48, 96),
                                       subdividedBox({-0.7f, -0.45f, -0.9f}, {0.8f, 0.65f, 0.55f}, 7)};
-    const std::vector<Tracer> tracers = {{"gl grid (fused kernel)", Backend::Gl, AccelChoice::Grid, TraceKernel::Fused},
-                                         {"gl grid (split kernels)", Backend::Gl, AccelChoice::Grid, TraceKernel::Split},
-                                         {"gl bvh", Backend::Gl, AccelChoice::Bvh},
-                                         {"cpu grid", Backend::Cpu, AccelChoice::Grid},
-                                         {"cpu bvh", Backend::Cpu, AccelChoice::Bvh}};
+    const std::vector<Tracer> tracers = {{"gl grid (fused kernel)", Backend::Gl, "grid", TraceKernel::Fused},
+                                         {"gl grid (split kernels)", Backend::Gl, "grid", TraceKernel::Split},
+                                         {"gl bvh", Backend::Gl, "bvh"},
+                                         {"cpu grid", Backend::Cpu, "grid"},
+                                         {"cpu bvh", Backend::Cpu, "bvh"}};
     for (const Mesh& m : meshes) {
         Scene scene;
         const uint32_t material = addMaterial(scene, glm::vec3(0.8f));
@@ -278,7 +279,7 @@ TEST_F(Watertight, RaysAtSharedEdgesAndVerticesNeverPassThrough) {
         const Rays shadow = shadowRays(outside);
         const CameraBasis camera = makeCamera(defaultCamera(scene.bounds(), 64, 64), 64, 64);
         for (const Tracer& how : tracers) {
-            const Acceleration accel = chooseAcceleration(scene, how.accel, std::nullopt, std::nullopt, {}, camera);
+            const Acceleration accel = chooseAcceleration(scene, how.accel, nullptr, {}, camera);
             const struct {
                 const char* what;
                 const Rays& rays;

@@ -2,94 +2,79 @@
 
 #include <future>
 
-#include "raytrace/accel/SceneBox.h"
-#include "raytrace/accel/bvh/BvhCpu.h"
-#include "raytrace/accel/grid/GridCpu.h"
+#include "image/InputError.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 
 namespace gpurt {
 
 namespace {
 
-// The cost of a grid cell's and a BVH node's visit on the gl backend, in triangle tests: a least
-// squares fit of the gl trace times of seven scenes (boxes to the bunny, 512 x 512 primary rays,
-// llvmpipe on 2 cores) to these counts (docs/PERFORMANCE.md, "A second accelerator"); with them the
-// estimate picked the faster structure on all seven.
-constexpr double kCellCost = 1.6;
-constexpr double kNodeCost = 2.6;
-constexpr double kTestCost = 1.0;
 constexpr int kEstimateSize = 64;
+
+// Every accelerator's structure at once: all but the last are built beside it (the grid's serial
+// steps, the counting sort's prefix sums and the skip distances, run beside the BVH's build).
+std::vector<std::shared_ptr<const AccelStructure>> buildAll(const Scene& scene, const AccelOptions& options) {
+    const std::vector<const AcceleratorInfo*>& all = accelerators();
+    std::vector<std::future<std::shared_ptr<const AccelStructure>>> beside;
+    for (size_t k = 0; k + 1 < all.size(); ++k)
+        beside.push_back(std::async(std::launch::async, [&, k] { return all[k]->build(scene, options); }));
+    std::shared_ptr<const AccelStructure> last = all.back()->build(scene, options);
+    std::vector<std::shared_ptr<const AccelStructure>> built;
+    for (auto& b : beside) built.push_back(b.get());
+    built.push_back(std::move(last));
+    return built;
+}
 
 }  // namespace
 
-const char* accelName(AccelKind kind) { return kind == AccelKind::Bvh ? "bvh" : "grid"; }
-
-bool parseAccelChoice(const std::string& text, AccelChoice& choice) {
-    if (text == "grid") choice = AccelChoice::Grid;
-    else if (text == "bvh") choice = AccelChoice::Bvh;
-    else if (text == "auto") choice = AccelChoice::Auto;
-    else return false;
-    return true;
-}
-
-float Acceleration::rayOffset() const {
-    if (grid) return grid->rayOffset();
-    if (bvh) return bvh->rayOffset();
-    return sceneRayOffset(glm::vec3(-1.0f), glm::vec3(1.0f));
-}
-
-AccelEstimate estimateAccelerators(const Scene& scene, const UniformGrid& grid, const Bvh& bvh,
-                                   const CameraBasis& view) {
+double estimateCost(const Scene& scene, const AccelStructure& structure, const CameraBasis& view) {
     CameraBasis camera = view;
     camera.width = camera.height = kEstimateSize;  // the same view (its aspect stays)
     camera.rowBegin = camera.rowCount = 0;
-    const GridCpu gridTracer(scene, grid);
-    const BvhCpu bvhTracer(scene, bvh);
-    double cells = 0, gridTests = 0, nodes = 0, bvhTests = 0;
+    const std::unique_ptr<CpuAccelerator> tracer = structure.cpu(scene);
+    double visits = 0, tests = 0;
     for (int j = 0; j < kEstimateSize; ++j)
         for (int i = 0; i < kEstimateSize; ++i) {
-            const glm::vec3 d = primaryDirection(camera, i, j);
-            const TraceHit g = gridTracer.closestHit(camera.eye, d, 1e30f, 0u);
-            const TraceHit b = bvhTracer.closestHit(camera.eye, d, 1e30f, 0u);
-            cells += g.steps;
-            gridTests += g.tests;
-            nodes += b.steps;
-            bvhTests += b.tests;
+            const TraceHit h = tracer->closestHit(camera.eye, primaryDirection(camera, i, j), 1e30f, 0u);
+            visits += h.steps;
+            tests += h.tests;
         }
     const double rays = double(kEstimateSize) * kEstimateSize;
-    return {(cells * kCellCost + gridTests * kTestCost) / rays, (nodes * kNodeCost + bvhTests * kTestCost) / rays};
+    return (visits * structure.accelerator().visitCost + tests) / rays;
 }
 
-Acceleration chooseAcceleration(const Scene& scene, AccelChoice choice, std::optional<UniformGrid> grid,
-                                std::optional<Bvh> bvh, const GridOptions& gridOptions, const CameraBasis& camera) {
+Acceleration chooseAcceleration(const Scene& scene, std::string_view choice, std::shared_ptr<const AccelStructure> packed,
+                                const AccelOptions& options, const CameraBasis& camera) {
+    if (choice != "auto" && !findAccelerator(choice))
+        throw InputError("--accel: unknown structure '" + std::string(choice) + "' (" + acceleratorNames(", ") +
+                         " or auto)");
     // A packed scene carries the one its packing chose: it stands.
-    if (choice == AccelChoice::Auto && grid.has_value() != bvh.has_value())
-        choice = bvh ? AccelChoice::Bvh : AccelChoice::Grid;
+    if (choice == "auto" && packed) choice = packed->accelerator().name;
     Acceleration a;
-    a.kind = choice == AccelChoice::Bvh ? AccelKind::Bvh : AccelKind::Grid;
-    a.source = (choice == AccelChoice::Grid && grid) || (choice == AccelChoice::Bvh && bvh) ? "packed" : "built";
-    if (choice == AccelChoice::Auto && !grid && !bvh) {
-        // Both at once: the grid's serial steps (the counting sort's prefix sums, the skip
-        // distances) run beside the BVH's build rather than after it.
-        std::future<UniformGrid> built = std::async(std::launch::async, [&] { return buildGrid(scene, gridOptions); });
-        bvh = buildBvh(scene, BvhOptions{gridOptions.threads});
-        grid = built.get();
+    if (packed && packed->accelerator().name == choice) {
+        a.structure = packed->accelerator().reuse(packed, options);
+        if (a.structure) a.source = "packed";
     }
-    if (choice != AccelChoice::Bvh && !grid) grid = buildGrid(scene, gridOptions);
-    if (choice != AccelChoice::Grid && !bvh) bvh = buildBvh(scene, BvhOptions{gridOptions.threads});
-    if (choice == AccelChoice::Auto) {
-        a.estimate = estimateAccelerators(scene, *grid, *bvh, camera);
-        a.kind = a.estimate->bvh < a.estimate->grid ? AccelKind::Bvh : AccelKind::Grid;
+    if (!a.structure && choice != "auto") a.structure = findAccelerator(choice)->build(scene, options);
+    if (!a.structure) {
+        double best = 0;
+        for (std::shared_ptr<const AccelStructure>& s : buildAll(scene, options)) {
+            const double cost = estimateCost(scene, *s, camera);
+            a.estimate.emplace_back(s->accelerator().name, cost);
+            if (!a.structure || cost < best) {
+                a.structure = std::move(s);
+                best = cost;
+            }
+        }
         a.source = "auto";
     }
-    a.gridResolution = grid ? grid->resolution : gridResolution(scene, gridOptions);
-    if (a.kind == AccelKind::Bvh) a.bvh = std::move(bvh);
-    else a.grid = std::move(grid);
+    const UniformGrid* grid = gridOf(a.structure);
+    a.gridResolution = grid ? grid->resolution : gridResolution(scene, options.grid);
     return a;
 }
 
 std::unique_ptr<CpuAccelerator> makeCpuAccelerator(const Scene& scene, const Acceleration& accel) {
-    if (accel.kind == AccelKind::Bvh) return std::make_unique<BvhCpu>(scene, *accel.bvh);
-    return std::make_unique<GridCpu>(scene, *accel.grid);
+    return accel.structure->cpu(scene);
 }
 
 }  // namespace gpurt

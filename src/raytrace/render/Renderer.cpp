@@ -4,7 +4,7 @@
 
 #include "raytrace/render/CpuTracer.h"
 #include "raytrace/render/GpuTracer.h"
-#include "raytrace/accel/bvh/BvhGl.h"
+#include "raytrace/accel/GlRegistry.h"
 #include "raytrace/accel/grid/GridCpu.h"
 #include "raytrace/accel/grid/GridGl.h"
 #include "stream/KernelStats.h"
@@ -132,12 +132,6 @@ std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene
     if (config.backend == Backend::Cpu)
         return std::make_unique<CpuRenderer>(config, scene, makeCpuAccelerator(scene, accel), accel.rayOffset());
     return std::make_unique<GlRenderer>(config, scene, makeGlAccelerator(scene, accel, config.gl), accel.rayOffset());
-}
-
-std::unique_ptr<GlAccelerator> makeGlAccelerator(const Scene& scene, const Acceleration& accel,
-                                                 const GpuTracerOptions& options) {
-    if (accel.kind == AccelKind::Bvh) return std::make_unique<BvhGl>(scene, *accel.bvh, options);
-    return std::make_unique<GridGl>(scene, *accel.grid, options);
 }
 
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid) {

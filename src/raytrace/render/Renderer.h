@@ -88,13 +88,10 @@ TimedRender renderWithinTime(Renderer& renderer, const CameraBasis& camera, cons
 // fixed part): what the commands check against the free memory before they start.
 double renderBytes(Backend backend, Integrator integrator, double pixels);
 
-// The renderer for `config` over `scene` and its acceleration structure (the grid or the BVH),
+// The renderer for `config` over `scene` and its acceleration structure,
 // which must outlive it. The gl backend needs a current GL context and uploads the scene textures
 // now.
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const Acceleration& accel);
-// The gl backend's accelerator over `accel`'s structure (gpurt bench drives GpuTracer with it).
-std::unique_ptr<GlAccelerator> makeGlAccelerator(const Scene& scene, const Acceleration& accel,
-                                                 const GpuTracerOptions& options);
 // The same over the uniform grid.
 std::unique_ptr<Renderer> makeRenderer(const RendererConfig& config, const Scene& scene, const UniformGrid& grid);
 

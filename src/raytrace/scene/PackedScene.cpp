@@ -5,7 +5,6 @@
 // last the contents (validateScene, which the writer runs too so that it never writes a file
 // the reader would refuse).
 #include "raytrace/scene/PackedScene.h"
-#include "raytrace/accel/SceneBox.h"
 
 #include <algorithm>
 #include <tuple>
@@ -24,6 +23,7 @@
 
 #include "image/AtomicFile.h"
 #include "image/InputError.h"
+#include "raytrace/common/PackedBytes.h"
 #include "raytrace/common/RayMath.h"
 #include "raytrace/textures/SceneTextureLayout.h"
 #include "scene/SceneFile.h"
@@ -39,17 +39,12 @@ constexpr char kCamera[] = "CAMR";
 constexpr char kAnimation[] = "ANIM";
 constexpr char kBackground[] = "BKGD";
 constexpr char kRender[] = "RNDR";
-constexpr char kGrid[] = "GRID";
-constexpr char kCellStart[] = "CELL";
-constexpr char kCellList[] = "LIST";
 constexpr char kNormals[] = "NRML";
 constexpr char kTexcoords[] = "TXCO";
 constexpr char kTextures[] = "TEXS";
 constexpr char kModels[] = "MODL";
 constexpr char kPbr[] = "PBRM";
 constexpr char kEnvironment[] = "ENVM";
-constexpr char kBvhNodes[] = "BVHN";
-constexpr char kBvhList[] = "BVHL";
 constexpr char kColors[] = "VCOL";
 constexpr char kAlpha[] = "ALPH";
 constexpr char kTangents[] = "TANG";
@@ -58,33 +53,23 @@ constexpr char kTransmissionMaps[] = "TRNS";
 constexpr char kLens[] = "LENS";
 constexpr char kGlow[] = "GLOW";
 constexpr char kLightKinds[] = "LGTX";
-// In the order the writer stores them; all but the camera, its animation, the normals, the
-// texture coordinates, the textures, the material models, the environment, the acceleration structure's
-// the vertex colours, the alpha coverage, the vertex tangents, the sides and the transmission maps are required. The structure is the grid's three sections or the BVH's two (one of them, whole).
+// The scene's sections in the order the writer stores them; the acceleration structure's (its
+// accelerator's, accel/Accelerator.h) follow RNDR. All but the camera, its animation, the normals,
+// the texture coordinates, the textures, the material models, the environment, the vertex
+// colours, the alpha coverage, the vertex tangents, the sides, the transmission maps, the lens,
+// the glow flags and the light kinds are required, and one accelerator's sections, whole.
 constexpr const char* kSectionOrder[] = {kTriangles, kMaterials, kLights,   kCamera,    kBackground, kRender,
-                                         kGrid,      kCellStart, kCellList, kNormals,   kAnimation,  kTexcoords,
-                                         kTextures,  kModels,    kPbr,       kEnvironment, kBvhNodes, kBvhList,
-                                         kColors,    kAlpha,     kTangents, kSided,     kTransmissionMaps, kLens,
-                                         kGlow, kLightKinds};
-constexpr bool gridSection(std::string_view tag) { return tag == kGrid || tag == kCellStart || tag == kCellList; }
-constexpr bool bvhSection(std::string_view tag) { return tag == kBvhNodes || tag == kBvhList; }
+                                         kNormals,   kAnimation, kTexcoords, kTextures, kModels,     kPbr,
+                                         kEnvironment, kColors,  kAlpha,    kTangents,  kSided,      kTransmissionMaps,
+                                         kLens,      kGlow,      kLightKinds};
+// Where the structure's sections go: after this one.
+constexpr std::string_view kStructureAfter = kRender;
 constexpr bool optionalSection(std::string_view tag) {
     return tag == kCamera || tag == kNormals || tag == kAnimation || tag == kTexcoords || tag == kTextures ||
            tag == kModels || tag == kPbr || tag == kEnvironment || tag == kColors || tag == kAlpha || tag == kTangents ||
-           tag == kSided || tag == kTransmissionMaps || tag == kLens || tag == kGlow || tag == kLightKinds || gridSection(tag) || bvhSection(tag);
+           tag == kSided || tag == kTransmissionMaps || tag == kLens || tag == kGlow || tag == kLightKinds;
 }
-// Bytes of a BVH node in BVHN: two children of (min, max, ref, count).
-constexpr size_t kBvhNodeBytes = 2 * (6 * 4 + 4 + 4);
-
-// The structure a file is written with: one of the two.
-struct PackedAccel {
-    const UniformGrid* grid = nullptr;
-    const Bvh* bvh = nullptr;
-};
-
-bool hasSection(const LoadedScene& loaded, const PackedAccel& accel, std::string_view tag) {
-    if (gridSection(tag)) return accel.grid != nullptr;
-    if (bvhSection(tag)) return accel.bvh != nullptr;
+bool hasSection(const LoadedScene& loaded, std::string_view tag) {
     if (tag == kCamera) return bool(loaded.scene.camera);
     // Only for a camera with a lens: other files stay as they were before the section existed.
     if (tag == kLens) return loaded.scene.camera && loaded.scene.camera->hasLens();
@@ -165,7 +150,6 @@ constexpr size_t kAnimationKeyBytes = 11 * 4;  // the time, then a camera
 constexpr uint64_t kMaxAnimationKeys = 1 << 20;
 constexpr size_t kBackgroundBytes = 3 * 4;
 constexpr size_t kRenderBytes = 4 * 4;
-constexpr size_t kGridBytes = 3 * 4 + 9 * 4;
 // More sections than a version-1 file can hold is a damaged table, not a big scene.
 constexpr uint32_t kMaxSections = 64;
 // What a JSON scene may say (docs/SCENE_FORMAT.md): render.size and render.max_bounces.
@@ -193,84 +177,6 @@ uint32_t crc32Of(std::span<const unsigned char> bytes) {
     return static_cast<uint32_t>(
         crc32_z(crc32_z(0L, Z_NULL, 0), bytes.data(), static_cast<z_size_t>(bytes.size())));
 }
-
-// Little-endian output, whatever the host's byte order.
-class ByteWriter {
-  public:
-    void u32(uint32_t v) {
-        for (int k = 0; k < 4; ++k) bytes_.push_back(static_cast<unsigned char>(v >> (8 * k)));
-    }
-    void u64(uint64_t v) {
-        for (int k = 0; k < 8; ++k) bytes_.push_back(static_cast<unsigned char>(v >> (8 * k)));
-    }
-    void f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
-    void vec3(glm::vec3 v) {
-        f32(v.x);
-        f32(v.y);
-        f32(v.z);
-    }
-    void raw(const void* data, size_t size) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        bytes_.insert(bytes_.end(), p, p + size);
-    }
-    void padTo(size_t alignment) {
-        while (bytes_.size() % alignment != 0) bytes_.push_back(0);
-    }
-    void patch32(size_t at, uint32_t v) {
-        for (int k = 0; k < 4; ++k)
-            bytes_[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
-    }
-    void patch64(size_t at, uint64_t v) {
-        for (int k = 0; k < 8; ++k)
-            bytes_[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
-    }
-    size_t size() const { return bytes_.size(); }
-    std::vector<unsigned char>& bytes() { return bytes_; }
-
-  private:
-    std::vector<unsigned char> bytes_;
-};
-
-uint32_t load32(const unsigned char* p) {
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
-uint64_t load64(const unsigned char* p) {
-    return uint64_t(load32(p)) | uint64_t(load32(p + 4)) << 32;
-}
-
-// Little-endian input from one section. Reads past its end throw; the decoder checks sizes
-// first, so that is a second line of defence, not the way errors are found.
-class ByteReader {
-  public:
-    // `section` ("section TAG") names the section in `file` in messages.
-    ByteReader(std::span<const unsigned char> bytes, FileLoc file, std::string section)
-        : bytes_(bytes), file_(std::move(file)), section_(std::move(section)) {}
-
-    uint32_t u32() { return load32(take(4)); }
-    uint64_t u64() { return load64(take(8)); }
-    float f32() { return std::bit_cast<float>(u32()); }
-    glm::vec3 vec3() {
-        glm::vec3 v;
-        v.x = f32();
-        v.y = f32();
-        v.z = f32();
-        return v;
-    }
-    const unsigned char* take(size_t n) {
-        if (n > remaining()) failAt(file_, section_ + ": section ends early");
-        const unsigned char* p = bytes_.data() + at_;
-        at_ += n;
-        return p;
-    }
-    size_t remaining() const { return bytes_.size() - at_; }
-
-  private:
-    std::span<const unsigned char> bytes_;
-    size_t at_ = 0;
-    FileLoc file_;
-    std::string section_;
-};
 
 bool isFinite(glm::vec3 v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -448,68 +354,9 @@ void checkRenderSettings(const FileLoc& file, const LoadedScene& loaded) {
     }
 }
 
-// The grid's resolution, box and cell size, the shape buildGrid gives and the traversal relies
-// on; returns the number of cells.
-uint64_t checkGridShape(const FileLoc& file, const Scene& scene, const UniformGrid& grid) {
-    const glm::ivec3 r = grid.resolution;
-    if (r.x < 1 || r.y < 1 || r.z < 1)
-        failAt(file, "grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
-                         std::to_string(r.z) + " is not at least 1 on every axis");
-    uint64_t cells = 1;
-    for (int a = 0; a < 3; ++a) {
-        // Each factor is checked before the product grows, so the product cannot overflow.
-        if (uint64_t(r[a]) > kMaxGridCells || cells * uint64_t(r[a]) > kMaxGridCells)
-            failAt(file, "grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
-                             std::to_string(r.z) + " has more than " + std::to_string(kMaxGridCells) +
-                             " cells");
-        cells *= uint64_t(r[a]);
-    }
-    if (!isFinite(grid.min) || !isFinite(grid.max) || !isFinite(grid.cellSize))
-        failAt(file, "grid: bounds or cell size are not finite");
-    for (int a = 0; a < 3; ++a)
-        if (!(grid.min[a] < grid.max[a]))
-            failAt(file, "grid: bounds are empty on axis " + std::to_string(a));
-    const glm::vec3 cellSize = (grid.max - grid.min) / glm::vec3(r);
-    if (cellSize != grid.cellSize) failAt(file, "grid: cell size is not (max - min) / resolution");
-    const Bounds bounds = scene.bounds();
-    if (!bounds.empty())
-        for (int a = 0; a < 3; ++a)
-            if (!(grid.min[a] <= bounds.min[a] && bounds.max[a] <= grid.max[a]))
-                failAt(file, "grid: bounds do not contain the scene's triangles");
-    return cells;
-}
-
-// The grid's cell lists: cellStart from 0, never decreasing, no cell past the list, the last
-// ending at the list's end; every id a triangle, each cell's ids strictly ascending.
-void checkGridLists(const FileLoc& file, const Scene& scene, const UniformGrid& grid, uint64_t cells) {
-    const size_t n = scene.triangles.size();
-    if (grid.cellStart.size() != cells + 1)
-        failAt(file, "grid: " + std::to_string(grid.cellStart.size()) + " cell starts for " +
-                         std::to_string(cells) + " cells (expected cells + 1)");
-    if (grid.cellStart[0] != 0) failAt(file, "grid: the first cell does not start at 0");
-    for (size_t c = 0; c < cells; ++c) {
-        const uint32_t begin = grid.cellStart[c], end = grid.cellStart[c + 1];
-        if (end < begin) failAt(file, "grid: cell starts decrease at cell " + std::to_string(c + 1));
-        if (end > grid.cellTriangles.size())
-            failAt(file, "grid: cell " + std::to_string(c) + " ends at " + std::to_string(end) +
-                             ", past the " + std::to_string(grid.cellTriangles.size()) + " list entries");
-        for (uint32_t k = begin; k < end; ++k) {
-            const uint32_t id = grid.cellTriangles[k];
-            if (id >= n)
-                failAt(file, "grid: cell " + std::to_string(c) + " lists triangle " + std::to_string(id) +
-                                 " of " + std::to_string(n));
-            if (k > begin && !(grid.cellTriangles[k - 1] < id))
-                failAt(file, "grid: the list of cell " + std::to_string(c) + " is not strictly ascending");
-        }
-    }
-    if (grid.cellStart[cells] != grid.cellTriangles.size())
-        failAt(file, "grid: the last cell ends at " + std::to_string(grid.cellStart[cells]) +
-                         ", not at the " + std::to_string(grid.cellTriangles.size()) + " list entries");
-}
-
 // Everything about the contents that rendering relies on; `name` prefixes each message. Shared by
 // the writer (name = the source scene) and the reader (name = the packed file).
-void validateScene(const std::string& name, const LoadedScene& loaded, const PackedAccel& accel) {
+void validateScene(const std::string& name, const LoadedScene& loaded) {
     const FileLoc file{name};
     const Scene& scene = loaded.scene;
     checkTriangles(file, scene);
@@ -520,11 +367,6 @@ void validateScene(const std::string& name, const LoadedScene& loaded, const Pac
     checkLights(file, scene);
     checkCameras(file, scene);
     checkRenderSettings(file, loaded);
-    if (accel.grid) checkGridLists(file, scene, *accel.grid, checkGridShape(file, scene, *accel.grid));
-    if (accel.bvh) {
-        const std::string problem = checkBvh(*accel.bvh, scene.triangles.size(), &scene);
-        if (!problem.empty()) failAt(file, "bvh: " + problem);
-    }
 }
 
 struct Section {
@@ -540,29 +382,15 @@ class SectionDecoder {
 
     [[noreturn]] void fail(const std::string& what) const { failAt(FileLoc{name_}, what); }
 
-    ByteReader reader(const Section& s) const {
-        return ByteReader(file_.subspan(size_t(s.offset), size_t(s.size)), FileLoc{name_},
-                          "section " + s.tag);
+    // The section's bytes, as the accelerators read theirs.
+    PackedSection packed(const Section& s) const {
+        return PackedSection{s.tag, file_.subspan(size_t(s.offset), size_t(s.size)), FileLoc{name_}};
     }
-
-    // A section's leading u64 count of records of `recordBytes` each (at least, for records of
-    // varying size), checked against the section's size before anything is sized by it. A
-    // count above `limit` (the GL backend's) is refused first, naming `what` is counted.
-    uint64_t count(ByteReader& in, const Section& s, uint64_t recordBytes, bool exact,
-                   uint64_t limit, const char* what) const {
-        if (s.size < 8)
-            fail("section " + s.tag + ": " + std::to_string(s.size) +
-                 " bytes, too short for its count");
-        const uint64_t n = in.u64();
-        if (n > limit)
-            fail(std::to_string(n) + " " + what + "; at most " + std::to_string(limit) +
-                 " fit the GL backend (ids travel as float32, exact below 2^24)");
-        const uint64_t room = (s.size - 8) / recordBytes;
-        if (n > room || (exact && 8 + n * recordBytes != s.size))
-            fail("section " + s.tag + ": " + std::to_string(n) + " " + what + " of " +
-                 std::to_string(recordBytes) + " bytes do not fit its " + std::to_string(s.size) +
-                 " bytes");
-        return n;
+    ByteReader reader(const Section& s) const { return packed(s).reader(); }
+    // PackedSection::count of section s.
+    uint64_t count(ByteReader& in, const Section& s, uint64_t recordBytes, bool exact, uint64_t limit,
+                   const char* what) const {
+        return packed(s).count(in, recordBytes, exact, limit, what);
     }
 
     void triangles(const Section& s, Scene& scene) const {
@@ -869,11 +697,7 @@ class SectionDecoder {
         scene.environment = std::move(env);
     }
 
-    void fixedSize(const Section& s, uint64_t bytes) const {
-        if (s.size != bytes)
-            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
-                 std::to_string(bytes));
-    }
+    void fixedSize(const Section& s, uint64_t bytes) const { packed(s).fixedSize(bytes); }
 
     void camera(const Section& s, Scene& scene) const {
         fixedSize(s, kCameraBytes);
@@ -953,71 +777,6 @@ class SectionDecoder {
         }
     }
 
-    void grid(const Section& s, UniformGrid& grid) const {
-        fixedSize(s, kGridBytes);
-        ByteReader in = reader(s);
-        for (int a = 0; a < 3; ++a) grid.resolution[a] = static_cast<int32_t>(in.u32());
-        grid.min = in.vec3();
-        grid.max = in.vec3();
-        grid.cellSize = in.vec3();
-    }
-
-    // cellStart: one u32 per cell plus one. The resolution was checked against kMaxGridCells.
-    void cellStart(const Section& s, UniformGrid& grid) const {
-        const glm::ivec3 r = grid.resolution;
-        uint64_t cells = 1;
-        for (int a = 0; a < 3; ++a) {
-            if (r[a] < 1 || uint64_t(r[a]) > kMaxGridCells ||
-                cells * uint64_t(r[a]) > kMaxGridCells)
-                fail("grid: resolution " + std::to_string(r.x) + "x" + std::to_string(r.y) + "x" +
-                     std::to_string(r.z) + " is not 1.." + std::to_string(kMaxGridCells) +
-                     " cells");
-            cells *= uint64_t(r[a]);
-        }
-        if (s.size != (cells + 1) * 4)
-            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
-                 std::to_string((cells + 1) * 4) + " for the " + std::to_string(cells) +
-                 " cells of the grid");
-        ByteReader in = reader(s);
-        grid.cellStart.resize(size_t(cells) + 1);
-        for (uint32_t& v : grid.cellStart) v = in.u32();
-    }
-
-    void bvhNodes(const Section& s, Bvh& bvh, size_t triangles) const {
-        ByteReader in = reader(s);
-        // A tree over n triangles has fewer than n inner nodes (one root over nothing when n is 0).
-        const uint64_t n = count(in, s, kBvhNodeBytes, true, std::max<uint64_t>(1, triangles), "BVH nodes");
-        if (n == 0) fail("section " + s.tag + ": no root node");
-        bvh.nodes.resize(size_t(n));
-        for (Bvh::Node& node : bvh.nodes)
-            for (Bvh::Child& c : node.child) {
-                c.min = in.vec3();
-                c.max = in.vec3();
-                c.ref = static_cast<int32_t>(in.u32());
-                c.count = in.u32();
-                if (c.count > uint32_t(kBvhMaxLeafSize))
-                    fail("section " + s.tag + ": a leaf of " + std::to_string(c.count) + " triangles (at most " +
-                         std::to_string(kBvhMaxLeafSize) + ")");
-            }
-    }
-
-    void bvhList(const Section& s, Bvh& bvh, size_t triangles) const {
-        if (s.size != uint64_t(triangles) * 4)
-            fail("section " + s.tag + ": " + std::to_string(s.size) + " bytes, expected " +
-                 std::to_string(uint64_t(triangles) * 4) + " for the " + std::to_string(triangles) + " triangles");
-        ByteReader in = reader(s);
-        bvh.triangles.resize(triangles);
-        for (uint32_t& v : bvh.triangles) v = in.u32();
-    }
-
-    void cellList(const Section& s, UniformGrid& grid) const {
-        if (s.size % 4 != 0)
-            fail("section " + s.tag + ": " + std::to_string(s.size) +
-                 " bytes, not a whole number of ids");
-        ByteReader in = reader(s);
-        grid.cellTriangles.resize(size_t(s.size / 4));
-        for (uint32_t& v : grid.cellTriangles) v = in.u32();
-    }
 
   private:
     std::span<const unsigned char> file_;
@@ -1027,7 +786,7 @@ class SectionDecoder {
 // Writes the sections of one scene and its grid, in the layout docs/PACKED_FORMAT.md gives.
 class SectionEncoder {
   public:
-    SectionEncoder(ByteWriter& out, const LoadedScene& loaded, const PackedAccel& accel, const std::string& name)
+    SectionEncoder(ByteWriter& out, const LoadedScene& loaded, const AccelStructure& accel, const std::string& name)
         : out_(out), loaded_(loaded), scene_(loaded.scene), accel_(accel), name_(name) {}
 
     void section(std::string_view tag) {
@@ -1039,11 +798,6 @@ class SectionEncoder {
         else if (tag == kAnimation) animation();
         else if (tag == kBackground) out_.vec3(scene_.background);
         else if (tag == kRender) render();
-        else if (tag == kGrid) grid();
-        else if (tag == kCellStart) u32s(accel_.grid->cellStart);
-        else if (tag == kCellList) u32s(accel_.grid->cellTriangles);
-        else if (tag == kBvhNodes) bvhNodes();
-        else if (tag == kBvhList) u32s(accel_.bvh->triangles);
         else if (tag == kNormals) normals();
         else if (tag == kTexcoords) texcoords();
         else if (tag == kColors) colors();
@@ -1057,6 +811,7 @@ class SectionEncoder {
         else if (tag == kLightKinds) lightKinds();
         else if (tag == kTransmissionMaps) transmissionMaps();
         else if (tag == kEnvironment) environment();
+        else accel_.pack(tag, out_);  // one of the structure's
     }
 
   private:
@@ -1135,25 +890,6 @@ class SectionEncoder {
         out_.u32(size ? 1 : 0);
         out_.u32(size ? static_cast<uint32_t>(size->x) : 0);
         out_.u32(size ? static_cast<uint32_t>(size->y) : 0);
-    }
-
-    void bvhNodes() {
-        out_.u64(accel_.bvh->nodes.size());
-        for (const Bvh::Node& node : accel_.bvh->nodes)
-            for (const Bvh::Child& c : node.child) {
-                out_.vec3(c.min);
-                out_.vec3(c.max);
-                out_.u32(static_cast<uint32_t>(c.ref));
-                out_.u32(c.count);
-            }
-    }
-
-    void grid() {
-        const UniformGrid& grid_ = *accel_.grid;
-        for (int a = 0; a < 3; ++a) out_.u32(static_cast<uint32_t>(grid_.resolution[a]));
-        out_.vec3(grid_.min);
-        out_.vec3(grid_.max);
-        out_.vec3(grid_.cellSize);
     }
 
     void normals() {
@@ -1285,17 +1021,41 @@ class SectionEncoder {
     ByteWriter& out_;
     const LoadedScene& loaded_;
     const Scene& scene_;
-    PackedAccel accel_;
+    const AccelStructure& accel_;
     std::string name_;
 };
 
-// The section table: each known section's entry, by its place in kSectionOrder.
-using SectionTable = std::array<std::optional<Section>, std::size(kSectionOrder)>;
+// The section table: each known scene section's entry, by its place in kSectionOrder, and the
+// acceleration structure's, whole: its accelerator and its sections in that one's order.
+struct SectionTable {
+    std::array<std::optional<Section>, std::size(kSectionOrder)> scene;
+    const AcceleratorInfo* accelerator = nullptr;
+    std::vector<Section> structure;
+};
 
 size_t sectionIndex(std::string_view tag) {
     for (size_t k = 0; k < std::size(kSectionOrder); ++k)
         if (tag == kSectionOrder[k]) return k;
     return std::size(kSectionOrder);
+}
+
+// The accelerator a section tag is one of, or null.
+const AcceleratorInfo* acceleratorOf(std::string_view tag) {
+    for (const AcceleratorInfo* a : accelerators())
+        if (std::find(a->sections.begin(), a->sections.end(), tag) != a->sections.end()) return a;
+    return nullptr;
+}
+
+// "the grid's (GRID, CELL, LIST) or the bvh's (BVHN, BVHL)", from the registry.
+std::string structureSections() {
+    std::string text;
+    for (const AcceleratorInfo* a : accelerators()) {
+        if (!text.empty()) text += a == accelerators().back() ? " or " : ", ";
+        text += "the " + std::string(a->name) + "'s (";
+        for (size_t k = 0; k < a->sections.size(); ++k) text += (k ? ", " : "") + std::string(a->sections[k]);
+        text += ")";
+    }
+    return text;
 }
 
 // Magic and version first: a later version may lay out (and checksum) the rest differently. Then
@@ -1343,6 +1103,7 @@ SectionTable readSectionTable(std::span<const unsigned char> bytes, const FileLo
         failAt(file, "section table of " + std::to_string(sectionCount) + " entries does not fit the " +
                          std::to_string(size) + "-byte file");
     SectionTable sections;
+    bool mixed = false;  // sections of two accelerators
     uint64_t end = kPackedHeaderBytes + uint64_t(sectionCount) * kPackedSectionEntryBytes;
     for (uint32_t k = 0; k < sectionCount; ++k) {
         const unsigned char* entry =
@@ -1352,51 +1113,68 @@ SectionTable readSectionTable(std::span<const unsigned char> bytes, const FileLo
         s.offset = load64(entry + 8);
         s.size = load64(entry + 16);
         const size_t index = sectionIndex(s.tag);
-        if (index == sections.size()) failAt(file, "unknown section '" + printable(s.tag) + "'");
+        const AcceleratorInfo* accelerator = acceleratorOf(s.tag);
+        if (index == sections.scene.size() && !accelerator)
+            failAt(file, "unknown section '" + printable(s.tag) + "'");
         if (load32(entry + 4) != 0) failAt(file, "section " + s.tag + ": reserved field is not 0");
-        if (sections[index]) failAt(file, "section " + s.tag + " appears twice");
+        const bool twice = accelerator ? std::any_of(sections.structure.begin(), sections.structure.end(),
+                                                     [&](const Section& t) { return t.tag == s.tag; })
+                                       : bool(sections.scene[index]);
+        if (twice) failAt(file, "section " + s.tag + " appears twice");
         // Sections follow the table in table order, 8-byte aligned, without overlapping.
         if (s.offset % 8 != 0 || s.offset < end || s.offset > size || s.size > size - s.offset)
             failAt(file, "section " + s.tag + " (offset " + std::to_string(s.offset) + ", " +
                              std::to_string(s.size) + " bytes) does not fit the " + std::to_string(size) +
                              "-byte file");
         end = s.offset + s.size;
-        sections[index] = s;
+        if (!accelerator) {
+            sections.scene[index] = s;
+        } else {
+            mixed = mixed || (sections.accelerator && sections.accelerator != accelerator);
+            sections.accelerator = accelerator;
+            sections.structure.push_back(s);
+        }
     }
     for (size_t k = 0; k < std::size(kSectionOrder); ++k)
-        if (!sections[k] && !optionalSection(kSectionOrder[k]))
+        if (!sections.scene[k] && !optionalSection(kSectionOrder[k]))
             failAt(file, std::string("section ") + kSectionOrder[k] + " is missing");
-    // One acceleration structure, whole: the grid's three sections or the BVH's two.
-    int grid = 0, bvh = 0;
-    for (size_t k = 0; k < std::size(kSectionOrder); ++k) {
-        grid += sections[k] && gridSection(kSectionOrder[k]);
-        bvh += sections[k] && bvhSection(kSectionOrder[k]);
-    }
-    if (!((grid == 3 && bvh == 0) || (grid == 0 && bvh == 2)))
-        failAt(file, "the acceleration structure's sections are not the grid's three (GRID, CELL, LIST) or the "
-                     "BVH's two (BVHN, BVHL)");
+    // One acceleration structure, whole: one accelerator's sections, all of them; they are put in
+    // its order for its reader.
+    const AcceleratorInfo* a = sections.accelerator;
+    std::vector<Section> ordered;
+    if (a && !mixed)
+        for (std::string_view tag : a->sections)
+            for (const Section& s : sections.structure)
+                if (s.tag == tag) ordered.push_back(s);
+    if (!a || ordered.size() != a->sections.size())
+        failAt(file, "the acceleration structure's sections are not one accelerator's, whole: " + structureSections());
+    sections.structure = std::move(ordered);
     return sections;
 }
 
 }  // namespace
 
-namespace {
-std::vector<unsigned char> encode(const LoadedScene& loaded, const PackedAccel& accel, const std::string& name) {
-    validateScene(name, loaded, accel);
+std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const AccelStructure& accel,
+                                             const std::string& name) {
+    validateScene(name, loaded);
+    accel.validate(FileLoc{name}, loaded.scene);
 
     ByteWriter out;
     out.raw(kPackedSceneMagic, sizeof kPackedSceneMagic - 1);
     out.u32(kPackedSceneVersion);
     out.u32(0);  // CRC-32, patched last
     out.u64(0);  // file size, patched last
-    std::vector<const char*> tags;
-    for (const char* tag : kSectionOrder)
-        if (hasSection(loaded, accel, tag)) tags.push_back(tag);
+    std::vector<std::string_view> tags;
+    for (const char* tag : kSectionOrder) {
+        if (hasSection(loaded, tag)) tags.push_back(tag);
+        if (tag == kStructureAfter)
+            tags.insert(tags.end(), accel.accelerator().sections.begin(), accel.accelerator().sections.end());
+    }
     out.u32(static_cast<uint32_t>(tags.size()));
     out.u32(0);
     const size_t table = out.size();
     for (size_t k = 0; k < tags.size(); ++k) {
-        out.raw(tags[k], 4);
+        out.raw(tags[k].data(), 4);
         out.u32(0);
         out.u64(0);  // offset, patched below
         out.u64(0);  // size, patched below
@@ -1418,16 +1196,6 @@ std::vector<unsigned char> encode(const LoadedScene& loaded, const PackedAccel& 
     out.patch32(12, crc32Of(std::span(bytes).subspan(16)));
     return std::move(bytes);
 }
-}  // namespace
-
-std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const UniformGrid& grid,
-                                             const std::string& name) {
-    return encode(loaded, PackedAccel{&grid, nullptr}, name);
-}
-
-std::vector<unsigned char> encodePackedScene(const LoadedScene& loaded, const Bvh& bvh, const std::string& name) {
-    return encode(loaded, PackedAccel{nullptr, &bvh}, name);
-}
 
 void writePackedScene(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
     writeFileAtomically(path, [&](std::FILE* file) {
@@ -1436,21 +1204,16 @@ void writePackedScene(const std::filesystem::path& path, std::span<const unsigne
     });
 }
 
-void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene,
-                      const UniformGrid& grid, const std::string& name) {
-    writePackedScene(path, encodePackedScene(scene, grid, name));
-}
-
-void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene, const Bvh& bvh,
+void writePackedScene(const std::filesystem::path& path, const LoadedScene& scene, const AccelStructure& accel,
                       const std::string& name) {
-    writePackedScene(path, encodePackedScene(scene, bvh, name));
+    writePackedScene(path, encodePackedScene(scene, accel, name));
 }
 
 LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::string& name) {
     const FileLoc file{name};
     checkHeader(bytes, file);
     const SectionTable sections = readSectionTable(bytes, file);
-    auto section = [&](const char* tag) -> const std::optional<Section>& { return sections[sectionIndex(tag)]; };
+    auto section = [&](const char* tag) -> const std::optional<Section>& { return sections.scene[sectionIndex(tag)]; };
 
     // The sections, each sized by its counts before anything is allocated.
     const SectionDecoder decoder(bytes, name);
@@ -1476,26 +1239,12 @@ LoadedScene decodePackedScene(std::span<const unsigned char> bytes, const std::s
     if (section(kLightKinds)) decoder.lightKinds(*section(kLightKinds), loaded.scene);
     if (section(kTransmissionMaps)) decoder.transmissionMaps(*section(kTransmissionMaps), loaded.scene);
     if (section(kEnvironment)) decoder.environment(*section(kEnvironment), loaded.scene);
+    validateScene(name, loaded);
 
-    if (section(kGrid)) {
-        UniformGrid grid;
-        decoder.grid(*section(kGrid), grid);
-        decoder.cellStart(*section(kCellStart), grid);
-        decoder.cellList(*section(kCellList), grid);
-        validateScene(name, loaded, PackedAccel{&grid, nullptr});
-        // The skip distances are derived from cellStart (computeSkip) rather than stored.
-        computeSkip(grid);
-        loaded.grid = std::move(grid);
-    } else {
-        Bvh bvh;
-        decoder.bvhNodes(*section(kBvhNodes), bvh, loaded.scene.triangles.size());
-        decoder.bvhList(*section(kBvhList), bvh, loaded.scene.triangles.size());
-        validateScene(name, loaded, PackedAccel{nullptr, &bvh});
-        // The box is the scene's (sceneBox), the depth what checkBvh found: derived, not stored.
-        std::tie(bvh.min, bvh.max) = sceneBox(loaded.scene);
-        bvh.depth = bvhDepth(bvh);
-        loaded.bvh = std::move(bvh);
-    }
+    // The structure last: its accelerator reads and checks it against the checked scene.
+    std::vector<PackedSection> structure;
+    for (const Section& s : sections.structure) structure.push_back(decoder.packed(s));
+    loaded.accel = sections.accelerator->unpack(structure, loaded.scene);
     return loaded;
 }
 

@@ -75,23 +75,22 @@ LoadedScene loadScene(const std::filesystem::path& path) {
             return readPackedScene(path);
         case SceneFormat::Json: {
             JsonSceneFile file = loadJsonSceneFile(path);
-            return LoadedScene{std::move(file.scene), file.size, std::nullopt, std::nullopt};
+            return LoadedScene{std::move(file.scene), file.size, nullptr};
         }
         case SceneFormat::Ply:
-            return LoadedScene{loadPly(path), std::nullopt, std::nullopt, std::nullopt};
+            return LoadedScene{loadPly(path), std::nullopt, nullptr};
         case SceneFormat::Gltf:
-            return LoadedScene{loadGltf(path), std::nullopt, std::nullopt, std::nullopt};
+            return LoadedScene{loadGltf(path), std::nullopt, nullptr};
         case SceneFormat::Obj:
             break;
     }
-    return LoadedScene{loadObj(path), std::nullopt, std::nullopt, std::nullopt};
+    return LoadedScene{loadObj(path), std::nullopt, nullptr};
 }
 
 void turnSceneUp(LoadedScene& loaded, UpAxis axis) {
     if (axis == UpAxis::PosY) return;
     rotateUpToY(loaded.scene, axis);
-    loaded.grid.reset();  // built for the file's coordinates
-    if (loaded.bvh) loaded.bvh->turnUp(axis);
+    if (loaded.accel) loaded.accel = loaded.accel->turnedUp(axis);
 }
 
 LoadedScene prepareScene(const std::filesystem::path& path, std::optional<UpAxis> upAxis, float crease,
@@ -104,8 +103,7 @@ LoadedScene prepareScene(const std::filesystem::path& path, std::optional<UpAxis
         *normalsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - normalsStart).count();
     scaleExponent = renderScaleExponent(loaded.scene);
     rescaleScene(loaded.scene, scaleExponent);
-    if (loaded.grid) rescaleGrid(*loaded.grid, scaleExponent);
-    if (loaded.bvh) loaded.bvh->rescale(scaleExponent);
+    if (loaded.accel && scaleExponent != 0) loaded.accel = loaded.accel->rescaled(scaleExponent);
     return loaded;
 }
 

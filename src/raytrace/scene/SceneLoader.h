@@ -8,8 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/Scene.h"
-#include "raytrace/accel/bvh/Bvh.h"
-#include "raytrace/accel/grid/UniformGrid.h"
+#include "raytrace/accel/Accelerator.h"
 
 namespace gpurt {
 
@@ -19,11 +18,9 @@ inline constexpr char kPackedSceneMagic[] = "GPRTSCN1";  // 8 bytes, no terminat
 struct LoadedScene {
     Scene scene;
     std::optional<glm::ivec2> size;  // the image size the scene file asks for, if any
-    // A packed scene's prebuilt grid (readPackedScene); none for OBJ and JSON scenes, whose grid
-    // the renderer builds.
-    std::optional<UniformGrid> grid;
-    // Or its prebuilt BVH (a packed scene holds the one structure its packing chose).
-    std::optional<Bvh> bvh;
+    // A packed scene's prebuilt acceleration structure, the one its packing chose
+    // (readPackedScene); none for the other formats, whose structure the renderer builds.
+    std::shared_ptr<const AccelStructure> accel;
 };
 
 // Reads a scene file: the packed magic at byte 0 -> packed scene (readPackedScene, with its
@@ -36,9 +33,8 @@ struct LoadedScene {
 // (readPackedScene, loadJsonSceneFile, loadObj).
 LoadedScene loadScene(const std::filesystem::path& path);
 
-// Turns the loaded scene so that `axis` is up (rotateUpToY), with its accelerator: a packed BVH's
-// boxes turn with it (Bvh::turnUp, exact); a packed grid is dropped, to be built again for the
-// turned scene (its cells are laid out along the file's axes).
+// Turns the loaded scene so that `axis` is up (rotateUpToY), with its acceleration structure
+// (AccelStructure::turnedUp, exact: a packed BVH's boxes, a packed grid's box and cells).
 void turnSceneUp(LoadedScene& loaded, UpAxis axis);
 
 // The scene as the renderers take it (render, view): loaded (loadScene), turned up (`upAxis`, else

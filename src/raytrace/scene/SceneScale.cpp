@@ -64,12 +64,6 @@ void rescaleScene(Scene& scene, int exponent) {
         for (CameraKey& key : scene.animation->keys) rescaleCamera(key.camera, exponent);
 }
 
-void rescaleGrid(UniformGrid& grid, int exponent) {
-    grid.min = rescalePoint(grid.min, exponent);
-    grid.max = rescalePoint(grid.max, exponent);
-    grid.cellSize = rescalePoint(grid.cellSize, exponent);
-}
-
 void unscaleDepth(std::vector<float>& depth, int exponent) {
     if (exponent == 0) return;
     // A hit farther away than the largest float (in a scene that spans nearly the float range)

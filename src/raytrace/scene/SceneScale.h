@@ -13,7 +13,6 @@
 #include <glm/glm.hpp>
 
 #include "scene/Scene.h"
-#include "raytrace/accel/grid/UniformGrid.h"
 
 namespace gpurt {
 
@@ -33,9 +32,6 @@ void rescaleCamera(CameraSpec& camera, int exponent);
 // target) and light intensities by 2^-2*exponent, so that radiance, intensity / distance^2,
 // stays the same.
 void rescaleScene(Scene& scene, int exponent);
-
-// The same for a grid built over the unscaled scene (a packed scene's): its box and cell size.
-void rescaleGrid(UniformGrid& grid, int exponent);
 
 // Depths of the rescaled scene back in the original units: each times 2^exponent, at most the
 // largest float (+inf stays a miss).

@@ -1,4 +1,6 @@
 #include "raytrace/accel/bvh/BvhGl.h"
+#include "raytrace/accel/GlRegistry.h"
+#include "raytrace/accel/bvh/BvhAccelerator.h"
 
 #include <string>
 
@@ -91,6 +93,11 @@ size_t BvhGl::bytes() const {
 std::vector<GPUKernel*> BvhGl::kernels() {
     if (!passes_) return {};
     return passes_->all();
+}
+
+std::unique_ptr<GlAccelerator> makeBvhGl(const Scene& scene, const AccelStructure& structure,
+                                         const GpuTracerOptions& options) {
+    return std::make_unique<BvhGl>(scene, *bvhOf(&structure), options);
 }
 
 }  // namespace gpurt

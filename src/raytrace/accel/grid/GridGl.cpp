@@ -1,4 +1,6 @@
 #include "raytrace/accel/grid/GridGl.h"
+#include "raytrace/accel/GlRegistry.h"
+#include "raytrace/accel/grid/GridAccelerator.h"
 
 #include "raytrace/textures/SceneTextureLayout.h"
 #include "raytrace/accel/grid/GridTexels.h"
@@ -199,6 +201,11 @@ size_t GridGl::bytesPerRay() const { return onePass() ? 16 : 36; }
 std::vector<GPUKernel*> GridGl::kernels() {
     if (!passes_) return {};
     return passes_->all();
+}
+
+std::unique_ptr<GlAccelerator> makeGridGl(const Scene& scene, const AccelStructure& structure,
+                                          const GpuTracerOptions& options) {
+    return std::make_unique<GridGl>(scene, *gridOf(&structure), options);
 }
 
 }  // namespace gpurt
