@@ -19,6 +19,7 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   common/RenderTypes.cpp
   denoise/DenoiseCpu.cpp
   denoise/DenoiseFiles.cpp
+  integrators/CpuScene.cpp
   integrators/Registry.cpp
   integrators/ao/AoIntegrator.cpp
   integrators/path/PathCpu.cpp
@@ -32,6 +33,11 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   materials/SurfaceTexture.cpp
   render/CpuTracer.cpp
   scene/PackedScene.cpp
+  scene/packed/Geometry.cpp
+  scene/packed/Lights.cpp
+  scene/packed/Materials.cpp
+  scene/packed/Sections.cpp
+  scene/packed/View.cpp
   scene/SceneLoader.cpp
   scene/SceneScale.cpp
   textures/SceneTextureLayout.cpp)
@@ -41,13 +47,13 @@ set(GPURT_RAYTRACE_GL_SOURCES
   accel/grid/GridGl.cpp
   denoise/DenoiseGl.cpp
   integrators/GlRegistry.cpp
+  integrators/GpuPipeline.cpp
   integrators/Megakernel.cpp
   integrators/SharedPasses.cpp
   integrators/ao/AoGl.cpp
   integrators/path/PathGl.cpp
   integrators/path/PathMegakernelGl.cpp
   integrators/whitted/WhittedGl.cpp
-  render/GpuPipeline.cpp
   render/GpuTracer.cpp
   render/Renderer.cpp
   textures/SceneTextures.cpp)

@@ -5,7 +5,7 @@
 #include "raytrace/accel/bvh/BvhAccelerator.h"
 #include "raytrace/accel/grid/GridAccelerator.h"
 #include "raytrace/camera/Camera.h"
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/scene/PackedScene.h"
 #include "raytrace/common/RayMath.h"
 #include "raytrace/textures/SceneTextureLayout.h"

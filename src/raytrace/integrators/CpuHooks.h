@@ -13,14 +13,14 @@
 namespace gpurt::raymath {
 
 struct CpuHooks {
-    CpuHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
+    CpuHooks(const CpuScene& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
              RenderStats& stats)
         : tracer(tracer), px(px), lights(lights), aovs(aovs), stats(stats), rayOffset(tracer.rayOffset()),
           emitterArea(tracer.emitters().totalArea), background(tracer.scene().background),
           sceneHasEnvironment(!tracer.environment().empty()), environmentSampled(tracer.environment().sampled),
           sceneHasEmitters(!tracer.emitters().empty()), punctualLightCount(int(lights.size())) {}
 
-    const CpuTracer& tracer;
+    const CpuScene& tracer;
     const PixelSample& px;
     const PunctualLights& lights;  // the render's, converted once (punctualLights)
     PixelAovs aovs;       // where the camera ray's AOVs go
@@ -50,7 +50,7 @@ struct CpuHooks {
         const EmitterTable& table = tracer.emitters();
         const size_t k = table.pick(u.x);
         const uint32_t id = table.triangles[k];
-        const CpuTracer::PreparedTriangle& e = tracer.triangle(id);
+        const CpuScene::PreparedTriangle& e = tracer.triangle(id);
         q = emitterPoint(e.v0, e.e1, e.e2, vec2(remapToUnit(u.x, table.lower(k), table.cdf[k]), u.y));
         e1 = e.e1;
         e2 = e.e2;

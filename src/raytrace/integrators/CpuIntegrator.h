@@ -1,11 +1,11 @@
 // The integrator seam on the cpu backend: an integrator is one sample of one pixel, a function
-// over the tracer's access to the scene (CpuTracer: the accelerator, the triangles, material
+// over the scene as a sample sees it (CpuScene: the accelerator, the triangles, material
 // records, shadow rays, emitters); CpuTracer::render runs the pixels, their samples and sums.
 // Each has a gl twin (integrators/*/…Gl) that takes the same decisions from the same numbers.
 #pragma once
 
 #include "raytrace/lights/PunctualLights.h"
-#include "raytrace/render/CpuTracer.h"
+#include "raytrace/integrators/CpuScene.h"
 
 #include <cstddef>
 #include <cstdint>

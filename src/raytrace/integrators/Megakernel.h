@@ -3,7 +3,7 @@
 // the pass's counters (glsl/integrators/megakernel.glsl) read into RenderStats.
 #pragma once
 
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/common/RenderTypes.h"
 #include "raytrace/textures/SceneTextures.h"
 #include "raytrace/accel/GlAccelerator.h"

@@ -16,7 +16,7 @@ namespace gpurt {
 // One sample of pixel px through the camera ray eye + t d on the cpu; with `features`, the
 // sample's features there (integrators with IntegratorInfo::features). settings.integratorOptions
 // holds every option of the integrator (CpuTracer::render resolves them).
-using CpuSample = glm::vec3 (*)(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+using CpuSample = glm::vec3 (*)(const CpuScene& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                                 const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                                 RenderStats& stats, SampleFeatures* features);
 

@@ -3,7 +3,7 @@
 // says which passes it has and its stages say when they run.
 #pragma once
 
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 
 #include <string>
 #include <vector>

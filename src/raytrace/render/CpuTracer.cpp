@@ -23,23 +23,7 @@ namespace gpurt {
 using namespace raymath;
 
 CpuTracer::CpuTracer(const Scene& scene, const UniformGrid& grid)
-    : CpuTracer(scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset()) {}
-
-CpuTracer::CpuTracer(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset)
-    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)),
-      environment_(buildEnvironmentTable(scene)) {
-    triangles_.reserve(scene.triangles.size());
-    for (const Triangle& t : scene.triangles)
-        triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
-}
-
-TraceHit CpuTracer::trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
-    return accel_->closestHit(o, d, tLimit, coverageKey);
-}
-
-TraceHit CpuTracer::traceAny(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
-    return accel_->anyHit(o, d, tLimit, coverageKey);
-}
+    : CpuScene(scene, std::make_unique<GridCpu>(scene, grid), grid.rayOffset()) {}
 
 uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
                                std::vector<glm::vec4>& hits) const {
@@ -56,43 +40,6 @@ uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
         }
     });
     return rays.rays();
-}
-
-bool CpuTracer::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const {
-    const TraceHit blocker = traceAny(origin, dir, limit, coverageKey);
-    ++stats.shadowRays;
-    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
-    return blocker.prim < 0;
-}
-
-SurfaceHit CpuTracer::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
-    const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
-    SurfaceHit s;
-    s.front = frontFace(tri.e1, tri.e2, d);
-    s.m = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), s.front);
-    s.p = o + hit.t * d;
-    s.n = facingNormal(tri.e1, tri.e2, d);
-    s.ns = s.n;  // the shading normal (surface.frag)
-    if (!scene_.normals.empty()) {
-        const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
-        s.ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, s.n);
-    }
-    const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
-    if (m.normalTexture >= 0 && !scene_.texcoords.empty()) {  // shading.glsl fetchMappedNormal
-        const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
-        const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
-        const Texture& map = scene_.textures[size_t(m.normalTexture)];
-        const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
-        const bool front = frontFace(tri.e1, tri.e2, d);
-        if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
-            const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
-            s.ns = normalMappedTangent(s.ns, s.n, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1,
-                                       tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
-        } else {
-            s.ns = normalMapped(s.ns, s.n, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
-        }
-    }
-    return s;
 }
 
 // The pixel-centre ray for the AOVs when there are several samples, then the samples of the
@@ -122,7 +69,7 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     RenderSettings sampleSettings = settings;
     for (const IntegratorOption& option : info.options)
         sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
-    const PunctualLights lights = punctualLights(lightsOrHeadlight(scene_, camera.eye, info.pathStreams));
+    const PunctualLights lights = punctualLights(lightsOrHeadlight(scene(), camera.eye, info.pathStreams));
     const int bounces = std::max(0, settings.maxBounces);
     const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);

@@ -1,6 +1,6 @@
 #include "raytrace/render/GpuTracer.h"
 
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/common/RayMath.h"
 #include "raytrace/materials/MaterialRecord.h"
 #include "raytrace/accel/grid/GridGl.h"

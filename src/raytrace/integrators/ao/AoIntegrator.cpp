@@ -11,7 +11,7 @@ namespace raymath {
 namespace {
 
 struct AoHooks : CpuHooks {
-    AoHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
+    AoHooks(const CpuScene& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
             RenderStats& stats, float aoDistance)
         : CpuHooks(tracer, px, lights, aovs, stats), aoDistance(aoDistance) {}
 
@@ -27,7 +27,7 @@ struct AoHooks : CpuHooks {
 
 namespace {
 
-glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 cpuSample(const CpuScene& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                     const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures*) {
     raymath::AoHooks hooks(tracer, px, lights, aovs, stats, settings.integratorOptions.at("aoDistance"));

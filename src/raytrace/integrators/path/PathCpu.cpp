@@ -9,7 +9,7 @@ namespace {
 
 // One path sample on the cpu: glsl/common/integrators/path.h over the cpu's hooks.
 struct PathHooks : CpuHooks {
-    PathHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
+    PathHooks(const CpuScene& tracer, const PixelSample& px, const PunctualLights& lights, PixelAovs aovs,
               RenderStats& stats, int maxDepth, PathClamp clamp, SampleFeatures* features)
         : CpuHooks(tracer, px, lights, aovs, stats), maxDepth(maxDepth), clampDirect(clamp.direct),
           clampIndirect(clamp.indirect), features(features) {}
@@ -31,7 +31,7 @@ struct PathHooks : CpuHooks {
 }  // namespace
 }  // namespace raymath
 
-glm::vec3 pathSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 pathSample(const CpuScene& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                      const PunctualLights& lights, int maxDepth, PathClamp clamp, PixelAovs aovs,
                      RenderStats& stats, SampleFeatures* features) {
     raymath::PathHooks hooks(t, px, lights, aovs, stats, maxDepth, clamp, features);

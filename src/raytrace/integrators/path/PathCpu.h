@@ -18,7 +18,7 @@ struct PathClamp {
 
 // The colour of the path of the camera ray from eye along d, with hits up to maxDepth; with
 // `features`, the sample's features there.
-glm::vec3 pathSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 pathSample(const CpuScene& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                      const PunctualLights& lights, int maxDepth, PathClamp clamp, PixelAovs aovs,
                      RenderStats& stats, SampleFeatures* features = nullptr);
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "raytrace/common/GlOptions.h"
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/integrators/GlIntegrator.h"
 
 #include <optional>

@@ -5,7 +5,7 @@
 // al. 2002); their count ends the loop. Same samples and sums as the wavefront chain (PathGl).
 #pragma once
 
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/integrators/GlIntegrator.h"
 #include "raytrace/integrators/Megakernel.h"
 

@@ -9,7 +9,7 @@ namespace {
 
 // One pixel's ray tree on the cpu: glsl/common/integrators/whitted.h over the cpu's hooks.
 struct WhittedHooks : CpuHooks {
-    WhittedHooks(const CpuTracer& tracer, const PixelSample& px, const PunctualLights& lights,
+    WhittedHooks(const CpuScene& tracer, const PixelSample& px, const PunctualLights& lights,
                  PixelAovs aovs, RenderStats& stats, int maxBounces, int stackSlots)
         : CpuHooks(tracer, px, lights, aovs, stats), maxBounces(maxBounces), stackSlots(stackSlots) {}
 
@@ -24,7 +24,7 @@ struct WhittedHooks : CpuHooks {
 }  // namespace
 }  // namespace raymath
 
-glm::vec3 whittedSample(const CpuTracer& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 whittedSample(const CpuScene& t, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                         const PunctualLights& lights, int maxBounces, int stackSlots, PixelAovs aovs,
                         RenderStats& stats) {
     raymath::WhittedHooks hooks(t, px, lights, aovs, stats, maxBounces, stackSlots);

@@ -13,7 +13,7 @@ namespace gpurt {
 
 // The colour of the ray tree of the camera ray from eye along d, with up to maxBounces mirror and
 // glass levels (< 0: the primary hit only, for the AOVs) and `stackSlots` pending rays.
-glm::vec3 whittedSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 whittedSample(const CpuScene& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                         const PunctualLights& lights, int maxBounces, int stackSlots, PixelAovs aovs,
                         RenderStats& stats);
 

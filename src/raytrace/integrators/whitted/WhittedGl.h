@@ -4,7 +4,7 @@
 // that adds the local colour and spawns the mirror and glass rays. CPU twin: WhittedCpu.
 #pragma once
 
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 #include "raytrace/integrators/GlIntegrator.h"
 
 #include <optional>

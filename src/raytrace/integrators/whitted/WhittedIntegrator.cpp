@@ -8,7 +8,7 @@ namespace gpurt {
 
 namespace {
 
-glm::vec3 cpuSample(const CpuTracer& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
+glm::vec3 cpuSample(const CpuScene& tracer, const PixelSample& px, glm::vec3 eye, glm::vec3 d,
                     const PunctualLights& lights, const RenderSettings& settings, PixelAovs aovs,
                     RenderStats& stats, SampleFeatures*) {
     const int bounces = std::max(0, settings.maxBounces);

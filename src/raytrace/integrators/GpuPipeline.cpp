@@ -1,4 +1,4 @@
-#include "raytrace/render/GpuPipeline.h"
+#include "raytrace/integrators/GpuPipeline.h"
 
 #include "raytrace/integrators/SharedPasses.h"
 

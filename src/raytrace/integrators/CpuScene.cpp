@@ -1,0 +1,63 @@
+#include "raytrace/integrators/CpuScene.h"
+
+#include "raytrace/materials/MaterialRecord.h"
+#include "raytrace/materials/SurfaceTexture.h"
+
+namespace gpurt {
+
+using namespace raymath;
+
+CpuScene::CpuScene(const Scene& scene, std::unique_ptr<CpuAccelerator> accel, float rayOffset)
+    : scene_(scene), accel_(std::move(accel)), rayOffset_(rayOffset), emitters_(buildEmitterTable(scene)),
+      environment_(buildEnvironmentTable(scene)) {
+    triangles_.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles)
+        triangles_.push_back({t.v0, t.v1 - t.v0, t.v2 - t.v0});
+}
+
+TraceHit CpuScene::trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->closestHit(o, d, tLimit, coverageKey);
+}
+
+TraceHit CpuScene::traceAny(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
+    return accel_->anyHit(o, d, tLimit, coverageKey);
+}
+
+bool CpuScene::unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const {
+    const TraceHit blocker = traceAny(origin, dir, limit, coverageKey);
+    ++stats.shadowRays;
+    if (blocker.state == RAY_OVERFLOW) ++stats.overflowRays;
+    return blocker.prim < 0;
+}
+
+SurfaceHit CpuScene::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const {
+    const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
+    SurfaceHit s;
+    s.front = frontFace(tri.e1, tri.e2, d);
+    s.m = materialFacing(materialRecord(scene_, uint32_t(hit.prim), hit.u, hit.v), s.front);
+    s.p = o + hit.t * d;
+    s.n = facingNormal(tri.e1, tri.e2, d);
+    s.ns = s.n;  // the shading normal (surface.frag)
+    if (!scene_.normals.empty()) {
+        const TriangleNormals& vn = scene_.normals[size_t(hit.prim)];
+        s.ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, s.n);
+    }
+    const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
+    if (m.normalTexture >= 0 && !scene_.texcoords.empty()) {  // shading.glsl fetchMappedNormal
+        const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
+        const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
+        const Texture& map = scene_.textures[size_t(m.normalTexture)];
+        const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
+        const bool front = frontFace(tri.e1, tri.e2, d);
+        if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
+            const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
+            s.ns = normalMappedTangent(s.ns, s.n, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1,
+                                       tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        } else {
+            s.ns = normalMapped(s.ns, s.n, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
+        }
+    }
+    return s;
+}
+
+}  // namespace gpurt

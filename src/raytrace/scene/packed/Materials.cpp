@@ -1,0 +1,390 @@
+// Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
+// models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW) and
+// transmission maps (TRNS).
+#include "raytrace/scene/packed/Sections.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "image/EnvironmentImage.h"
+#include "raytrace/common/RayMath.h"
+#include "raytrace/textures/SceneTextureLayout.h"
+
+namespace gpurt::packed {
+
+namespace {
+
+constexpr size_t kTextureMinBytes = 5 * 4;  // width, height, wrapS, wrapT, the name's length
+constexpr uint64_t kMaxTextures = 1 << 16;
+constexpr size_t kModelBytes = 4;
+// PBRM per material: metallic, roughness, normal scale, occlusion strength (f32), then the
+// roughness, metallic and occlusion channels (texture, channel) and the normal and emissive
+// textures (i32, -1: none).
+constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
+// ALPH per material: alpha mode (u32), factor, cutoff (f32), the alpha channel (texture, channel).
+constexpr size_t kAlphaBytes = 5 * 4;
+// SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
+constexpr size_t kSidedBytes = 4;
+constexpr size_t kGlowBytes = 4;
+// TRNS per material: the transmission map's channel (texture, channel; -1: none).
+constexpr size_t kTransmissionMapBytes = 2 * 4;
+// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
+constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
+constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
+
+std::string unknownModel(size_t material, int64_t model) {
+    return "material " + std::to_string(material) + ": unknown material model " + std::to_string(model) +
+           " (this gpurt knows 0.." + std::to_string(kLastMaterialModel) + ")";
+}
+
+void readMaterials(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n =
+        s.count(in, kMaterialMinBytes, false, kMaxTextureMaterials, "materials");
+    scene.materials.resize(size_t(n));
+    for (uint64_t m = 0; m < n; ++m) {
+        Material& mat = scene.materials[size_t(m)];
+        mat.diffuse = in.vec3();
+        mat.specular = in.vec3();
+        mat.shininess = in.f32();
+        mat.reflectivity = in.vec3();
+        mat.emission = in.vec3();
+        mat.ior = in.f32();
+        mat.transmission = in.vec3();
+        const uint32_t length = in.u32();
+        const size_t padded = (size_t(length) + 3) / 4 * 4;
+        if (length > in.remaining() || padded > in.remaining())
+            s.fail("section " + s.tag + ": the name of material " + std::to_string(m) + " (" +
+                 std::to_string(length) + " bytes) runs past the section's end");
+        const unsigned char* text = in.take(padded);
+        mat.name.assign(reinterpret_cast<const char*>(text), length);
+    }
+    if (in.remaining() != 0)
+        s.fail("section " + s.tag + ": " + std::to_string(in.remaining()) +
+             " bytes after the last material");
+}
+
+void writeMaterials(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        out.vec3(m.diffuse);
+        out.vec3(m.specular);
+        out.f32(m.shininess);
+        out.vec3(m.reflectivity);
+        out.vec3(m.emission);
+        out.f32(m.ior);
+        out.vec3(m.transmission);
+        writeName(out, m.name, "material");
+    }
+}
+
+// The textures (count; then each: width, height, wrapS, wrapT, its name's length, the name
+// padded to 4 bytes, width x height texels), then each material's texture (count = the
+// materials', then an i32 each). Read after the materials.
+void readTextures(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = s.count(in, kTextureMinBytes, false, kMaxTextures, "textures");
+    scene.textures.resize(size_t(n));
+    for (uint64_t k = 0; k < n; ++k) {
+        Texture& t = scene.textures[size_t(k)];
+        const uint32_t width = in.u32(), height = in.u32();
+        t.wrapS = in.u32();
+        t.wrapT = in.u32();
+        if (width < 1 || height < 1 || width > uint32_t(kMaxTextureSide) || height > uint32_t(kMaxTextureSide) ||
+            uint64_t(width) * height > kMaxTextureTexels)
+            s.fail("texture " + std::to_string(k) + ": size " + std::to_string(width) + "x" + std::to_string(height) +
+                 " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
+        const uint32_t length = in.u32();
+        const uint64_t padded = (uint64_t(length) + 3) / 4 * 4;
+        const uint64_t texels = uint64_t(width) * height;
+        if (padded > in.remaining() || texels * 4 > in.remaining() - padded)
+            s.fail("section " + s.tag + ": texture " + std::to_string(k) + " (" + std::to_string(width) + "x" +
+                 std::to_string(height) + ") runs past the section's end");
+        const unsigned char* text = in.take(size_t(padded));
+        t.name.assign(reinterpret_cast<const char*>(text), length);
+        t.image.width = int(width);
+        t.image.height = int(height);
+        t.image.texels.resize(size_t(texels));
+        for (uint32_t& texel : t.image.texels) texel = in.u32();
+    }
+    if (in.remaining() < 8) s.fail("section " + s.tag + ": no material textures after the textures");
+    const uint64_t materials = in.u64();
+    if (materials != scene.materials.size() || in.remaining() != materials * 4)
+        s.fail("section " + s.tag + ": " + std::to_string(materials) + " material textures in " +
+             std::to_string(in.remaining()) + " bytes for " + std::to_string(scene.materials.size()) + " materials");
+    for (Material& m : scene.materials) m.diffuseTexture = int(int32_t(in.u32()));
+}
+
+void writeTextures(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.textures.size());
+    for (const Texture& t : scene.textures) {
+        out.u32(uint32_t(t.image.width));
+        out.u32(uint32_t(t.image.height));
+        out.u32(t.wrapS);
+        out.u32(t.wrapT);
+        writeName(out, t.name, "texture");
+        for (uint32_t texel : t.image.texels) out.u32(texel);
+    }
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) out.u32(uint32_t(int32_t(m.diffuseTexture)));
+}
+
+// Each material's model (count = the materials', then a u32 each). Read after the materials.
+void readModels(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kModelBytes, "material models", kMaxTextureMaterials,
+                               scene.materials.size(), "materials");
+    for (uint64_t m = 0; m < n; ++m) {
+        const uint32_t model = in.u32();
+        if (model > kLastMaterialModel) s.fail("section " + s.tag + ": " + unknownModel(size_t(m), model));
+        scene.materials[size_t(m)].model = int(model);
+    }
+}
+
+void writeModels(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) out.u32(uint32_t(m.model));
+}
+
+// Each material's glTF fields (count = the materials', then kPbrBytes each). Read after the
+// materials.
+void readPbr(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kPbrBytes, "materials' glTF fields", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.metallic = in.f32();
+        m.roughness = in.f32();
+        m.normalScale = in.f32();
+        m.occlusionStrength = in.f32();
+        for (TextureChannel* c : {&m.roughnessTexture, &m.metallicTexture, &m.occlusionTexture}) {
+            c->texture = int(int32_t(in.u32()));
+            c->channel = int(int32_t(in.u32()));
+        }
+        m.normalTexture = int(int32_t(in.u32()));
+        m.emissiveTexture = int(int32_t(in.u32()));
+    }
+}
+
+void writePbr(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        out.f32(m.metallic);
+        out.f32(m.roughness);
+        out.f32(m.normalScale);
+        out.f32(m.occlusionStrength);
+        for (TextureChannel c : {m.roughnessTexture, m.metallicTexture, m.occlusionTexture}) {
+            out.u32(uint32_t(int32_t(c.texture)));
+            out.u32(uint32_t(int32_t(c.channel)));
+        }
+        out.u32(uint32_t(int32_t(m.normalTexture)));
+        out.u32(uint32_t(int32_t(m.emissiveTexture)));
+    }
+}
+
+// Each material's alpha coverage (count = the materials', then kAlphaBytes each). Read after
+// the materials.
+void readAlpha(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kAlphaBytes, "materials' alpha", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.alphaMode = int(int32_t(in.u32()));
+        m.alphaFactor = in.f32();
+        m.alphaCutoff = in.f32();
+        m.alphaTexture.texture = int(int32_t(in.u32()));
+        m.alphaTexture.channel = int(int32_t(in.u32()));
+    }
+}
+
+void writeAlpha(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        out.u32(uint32_t(m.alphaMode));
+        out.f32(m.alphaFactor);
+        out.f32(m.alphaCutoff);
+        out.u32(uint32_t(int32_t(m.alphaTexture.texture)));
+        out.u32(uint32_t(int32_t(m.alphaTexture.channel)));
+    }
+}
+
+// Each material's sidedness (count = the materials', then kSidedBytes each: 1 double-sided, 0
+// single-sided, nothing else). Read after the materials.
+void readSided(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kSidedBytes, "materials' sides", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        const uint32_t doubleSided = in.u32();
+        if (doubleSided > 1)
+            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": double-sided " +
+                 std::to_string(doubleSided) + " (0 or 1)");
+        scene.materials[size_t(k)].doubleSided = doubleSided == 1;
+    }
+}
+
+void writeSided(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) out.u32(m.doubleSided ? 1u : 0u);
+}
+
+// Whether each material's emission is a light of the scene (count = the materials', then
+// kGlowBytes each: 1 a light, 0 it only glows).
+void readGlow(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kGlowBytes, "materials' emission", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        const uint32_t light = in.u32();
+        if (light > 1)
+            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": emission light " + std::to_string(light) +
+                 " (0 or 1)");
+        scene.materials[size_t(k)].emissionIsLight = light == 1;
+    }
+}
+
+void writeGlow(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) out.u32(m.emissionIsLight ? 1u : 0u);
+}
+
+// Each material's transmission map (count = the materials', then kTransmissionMapBytes each;
+// its texture and channel are checked with the other maps'). Read after the materials.
+void readTransmissionMaps(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kTransmissionMapBytes, "materials' transmission maps", kMaxTextureMaterials,
+                               scene.materials.size(), "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        TextureChannel& c = scene.materials[size_t(k)].transmissionTexture;
+        c.texture = int(int32_t(in.u32()));
+        c.channel = int(int32_t(in.u32()));
+    }
+}
+
+void writeTransmissionMaps(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        out.u32(uint32_t(int32_t(m.transmissionTexture.texture)));
+        out.u32(uint32_t(int32_t(m.transmissionTexture.channel)));
+    }
+}
+
+// Whether some material has `has`.
+template <class Has>
+bool anyMaterial(const LoadedScene& l, Has has) {
+    return std::any_of(l.scene.materials.begin(), l.scene.materials.end(), has);
+}
+
+}  // namespace
+
+const SceneSection kMaterialSection{"MATS", [](const LoadedScene&) { return true; }, true, writeMaterials,
+                                     [](const PackedSection& s, LoadedScene& l) { readMaterials(s, l.scene); }};
+const SceneSection kTextureSection{"TEXS", [](const LoadedScene& l) { return !l.scene.textures.empty(); }, false,
+                                    writeTextures, [](const PackedSection& s, LoadedScene& l) { readTextures(s, l.scene); }};
+// Only when some material is not of the classic model: files of classic scenes stay as they were
+// before the section existed.
+const SceneSection kModelSection{
+    "MODL", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.model != 0; }); }, false,
+    writeModels, [](const PackedSection& s, LoadedScene& l) { readModels(s, l.scene); }};
+// PBRM also carries the maps a classic material may have (MTL `norm`, `map_Ke`).
+const SceneSection kPbrSection{"PBRM",
+                                [](const LoadedScene& l) {
+                                    return anyMaterial(l, [](const Material& m) {
+                                        return m.model == GPURT_MODEL_GLTF || m.normalTexture >= 0 ||
+                                               m.emissiveTexture >= 0 || m.occlusionTexture.given() ||
+                                               m.roughnessTexture.given() || m.metallicTexture.given();
+                                    });
+                                },
+                                false, writePbr, [](const PackedSection& s, LoadedScene& l) { readPbr(s, l.scene); }};
+// Only when some material has alpha: other files stay as they were before the section existed.
+const SceneSection kAlphaSection{
+    "ALPH", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.hasAlpha(); }); }, false,
+    writeAlpha, [](const PackedSection& s, LoadedScene& l) { readAlpha(s, l.scene); }};
+// Only when some material is single-sided (glTF doubleSided false): likewise.
+const SceneSection kSideSection{
+    "SIDE", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.doubleSided; }); },
+    false, writeSided, [](const PackedSection& s, LoadedScene& l) { readSided(s, l.scene); }};
+// Only when some material's emission only glows (glTF's): likewise.
+const SceneSection kGlowSection{
+    "GLOW", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.emissionIsLight; }); },
+    false, writeGlow, [](const PackedSection& s, LoadedScene& l) { readGlow(s, l.scene); }};
+// Only when some material has a transmission map (glTF transmissionTexture): likewise.
+const SceneSection kTransmissionMapSection{
+    "TRNS",
+    [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.transmissionTexture.given(); }); },
+    false, writeTransmissionMaps, [](const PackedSection& s, LoadedScene& l) { readTransmissionMaps(s, l.scene); }};
+
+// Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
+// them) and model, then every material's texture.
+void checkMaterials(const FileLoc& file, const Scene& scene) {
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
+        if (!isFinite(mat.diffuse) || !isFinite(mat.specular) || !std::isfinite(mat.shininess) ||
+            !isFinite(mat.reflectivity) || !isFinite(mat.emission) || !std::isfinite(mat.ior) ||
+            !isFinite(mat.transmission))
+            failAt(file, "material " + std::to_string(m) + ": values are not finite");
+        if (!nonNegative(mat.diffuse) || !nonNegative(mat.specular) || !(mat.shininess >= 0.0f) ||
+            !nonNegative(mat.reflectivity) || glm::any(glm::greaterThan(mat.reflectivity, glm::vec3(1.0f))) ||
+            !nonNegative(mat.emission) || !(mat.ior >= 0.0f) || !nonNegative(mat.transmission) ||
+            glm::any(glm::greaterThan(mat.transmission, glm::vec3(1.0f))))
+            failAt(file, "material " + std::to_string(m) +
+                             ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
+        if (mat.model < 0 || uint32_t(mat.model) > kLastMaterialModel) failAt(file, unknownModel(m, mat.model));
+    }
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& mat = scene.materials[m];
+        for (int texture : {mat.diffuseTexture, mat.roughnessTexture.texture, mat.metallicTexture.texture, mat.normalTexture,
+                            mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture,
+                            mat.transmissionTexture.texture})
+            if (texture < -1 || texture >= int(scene.textures.size()))
+                failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
+                                 std::to_string(scene.textures.size()) + " textures)");
+        for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture,
+                                 mat.transmissionTexture})
+            if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
+        if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
+            !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
+            failAt(file, "material " + std::to_string(m) + ": metallic, roughness and occlusion strength must be in [0, 1], the normal scale finite");
+        if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
+            !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
+            failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +
+                             " (0 to 2), alpha factor and cutoff must be in [0, 1]");
+    }
+}
+
+// The texture coordinates' count, and each texture's size and wrap modes.
+void checkTextures(const FileLoc& file, const Scene& scene) {
+    const size_t n = scene.triangles.size();
+    if (!scene.texcoords.empty() && scene.texcoords.size() != n)
+        failAt(file, std::to_string(scene.texcoords.size()) + " texture coordinates for " + std::to_string(n) + " triangles");
+    uint64_t texels = 0;
+    for (size_t k = 0; k < scene.textures.size(); ++k) {
+        const Texture& t = scene.textures[k];
+        const Rgba8Image& image = t.image;
+        if (image.width < 1 || image.height < 1 || image.width > kMaxTextureSide || image.height > kMaxTextureSide ||
+            uint64_t(image.width) * uint64_t(image.height) > kMaxTextureTexels ||
+            image.texels.size() != size_t(image.width) * size_t(image.height))
+            failAt(file, "texture " + std::to_string(k) + ": size " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " is not 1.." + std::to_string(kMaxTextureSide) + " a side, " + std::to_string(kMaxTextureTexels) + " texels");
+        if (t.wrapS > kWrapMirror || t.wrapT > kWrapMirror)
+            failAt(file, "texture " + std::to_string(k) + ": wrap modes " + std::to_string(t.wrapS) + ", " +
+                             std::to_string(t.wrapT) + " are not 0 (repeat), 1 (clamp) or 2 (mirror)");
+        texels += image.texels.size();
+    }
+    if (texels > kMaxTextureTexels * 2)
+        failAt(file, std::to_string(texels) + " texels in all textures; at most " + std::to_string(2 * kMaxTextureTexels));
+}
+
+}  // namespace gpurt::packed
