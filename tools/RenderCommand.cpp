@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 
 namespace gpurt {
@@ -127,6 +128,57 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Millions of rays and pixel samples a second over `totalMs`.
+std::pair<double, double> ratesOf(const RenderStats& s, double totalMs) {
+    const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
+    return {totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0, totalMs > 0 ? double(s.samples) / (totalMs * 1e-3) : 0.0};
+}
+
+// --stats=json: one JSON object a frame (CONTRACT.md, "Statistics").
+void printJsonStats(const RenderOptions& o, const Scene& scene, const Acceleration& accel, const RenderOutput& out,
+                    double totalMs, std::span<const std::pair<const char*, double>> phases, std::optional<int> frame,
+                    uint32_t spp) {
+    const RenderStats& s = out.stats;
+    const auto [mrays, samplesPerS] = ratesOf(s, totalMs);
+    nlohmann::json j;
+    if (frame) j["frame"] = *frame;
+    j["width"] = out.width;
+    j["height"] = out.height;
+    j["triangles"] = scene.triangles.size();
+    const glm::ivec3 grid = accel.gridResolution;
+    j["grid"] = {grid.x, grid.y, grid.z};
+    j["grid_source"] = accel.source;
+    j["accel"] = accel.name();        // the structure traced; grid is the grid's (or would-be) size
+    j["accel_source"] = accel.source;  // built, packed, or auto (built and chosen)
+    addAccelJson(j, accel);
+    j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
+    j["passes"] = nlohmann::json::object();
+    for (const auto& [name, p] : KernelStats::global().passes())
+        j["passes"][name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
+    j["total_ms"] = totalMs;
+    j["mrays_per_s"] = mrays;
+    j["backend"] = o.backend;
+    j["overflow_rays"] = s.overflowRays;
+    j["integrator"] = o.picture.integrator;
+    j["samples"] = s.samples;  // pixel samples: width x height x spp
+    j["spp"] = spp;
+    if (s.denoised) j["denoise"] = {{"ms", s.denoiseMs}, {"refused", s.denoiseRefused}};
+    j["mean_spp"] = out.width * out.height > 0 ? double(s.samples) / (double(out.width) * out.height) : 0.0;
+    j["sampler"] = o.picture.sampler;
+    if (!s.adaptive.empty() || !out.spp.empty()) {
+        j["noise_threshold"] = std::stod(o.picture.noiseThreshold);
+        j["adaptive"] = nlohmann::json::array();
+        for (const AdaptiveRound& r : s.adaptive)
+            j["adaptive"].push_back({{"samples", r.samples}, {"active", r.active}, {"ms", r.ms}});
+    }
+    if (!o.timeLimit.empty()) j["time_limit_s"] = std::stod(o.timeLimit);
+    j["samples_per_s"] = samplesPerS;
+    if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
+    j["phases_ms"] = nlohmann::json::object();
+    for (const auto& [name, ms] : phases) j["phases_ms"][name] = ms;
+    std::printf("%s\n", j.dump().c_str());
+}
+
 // `frame`: the frame of an animation (--frames prints one line or block per frame).
 // `spp`: the samples a pixel the image has (--spp, or what --time-limit fitted).
 void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& accel,
@@ -137,47 +189,9 @@ void printStats(const RenderOptions& o, const Scene& scene, const Acceleration& 
         {"compile", ph.compile}, {"trace", ph.trace}, {"shade", ph.shade},     {"read_back", ph.readBack},
         {"other", ph.other},     {"write", ph.write}};
     const RenderStats& s = out.stats;
-    const uint64_t rays = s.primaryRays + s.shadowRays + s.secondaryRays;
-    const double mrays = totalMs > 0 ? double(rays) / (totalMs * 1e3) : 0.0;
-    const double samplesPerS = totalMs > 0 ? double(s.samples) / (totalMs * 1e-3) : 0.0;
+    const auto [mrays, samplesPerS] = ratesOf(s, totalMs);
     if (o.stats == "json") {
-        nlohmann::json j;
-        if (frame) j["frame"] = *frame;
-        j["width"] = out.width;
-        j["height"] = out.height;
-        j["triangles"] = scene.triangles.size();
-        const glm::ivec3 grid = accel.gridResolution;
-        j["grid"] = {grid.x, grid.y, grid.z};
-        j["grid_source"] = accel.source;
-        j["accel"] = accel.name();        // the structure traced; grid is the grid's (or would-be) size
-        j["accel_source"] = accel.source;  // built, packed, or auto (built and chosen)
-        addAccelJson(j, accel);
-        j["rays"] = {{"primary", s.primaryRays}, {"shadow", s.shadowRays}, {"secondary", s.secondaryRays}};
-        j["passes"] = nlohmann::json::object();
-        for (const auto& [name, p] : KernelStats::global().passes())
-            j["passes"][name] = {{"calls", p.calls}, {"fragments", p.fragments}, {"ms", p.gpuMs}};
-        j["total_ms"] = totalMs;
-        j["mrays_per_s"] = mrays;
-        j["backend"] = o.backend;
-        j["overflow_rays"] = s.overflowRays;
-        j["integrator"] = o.picture.integrator;
-        j["samples"] = s.samples;  // pixel samples: width x height x spp
-        j["spp"] = spp;
-        if (s.denoised) j["denoise"] = {{"ms", s.denoiseMs}, {"refused", s.denoiseRefused}};
-        j["mean_spp"] = out.width * out.height > 0 ? double(s.samples) / (double(out.width) * out.height) : 0.0;
-        j["sampler"] = o.picture.sampler;
-        if (!s.adaptive.empty() || !out.spp.empty()) {
-            j["noise_threshold"] = std::stod(o.picture.noiseThreshold);
-            j["adaptive"] = nlohmann::json::array();
-            for (const AdaptiveRound& r : s.adaptive)
-                j["adaptive"].push_back({{"samples", r.samples}, {"active", r.active}, {"ms", r.ms}});
-        }
-        if (!o.timeLimit.empty()) j["time_limit_s"] = std::stod(o.timeLimit);
-        j["samples_per_s"] = samplesPerS;
-        if (!s.livePaths.empty()) j["paths_per_bounce"] = s.livePaths;  // paths traced in each round
-        j["phases_ms"] = nlohmann::json::object();
-        for (const auto& [name, ms] : phases) j["phases_ms"][name] = ms;
-        std::printf("%s\n", j.dump().c_str());
+        printJsonStats(o, scene, accel, out, totalMs, phases, frame, spp);
         return;
     }
     if (frame) std::printf("frame      %d\n", *frame);
@@ -433,6 +447,43 @@ RenderOutput renderFrame(const RenderOptions& o, Renderer& renderer, const Camer
     return std::move(timed.output);
 }
 
+// The settings of every frame: the picture options', and what the --aov files and --denoise
+// need computed (the AOVs' rays, the squares summed, the path integrator's features); InputError
+// for an AOV or --denoise the integrator or --tile cannot give.
+RenderSettings frameSettings(const RenderOptions& o, const PictureCliOptions::Values& picture, const Frames& frames,
+                             glm::ivec2 size, const Scene& scene, int scaleExponent) {
+    RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene, scaleExponent);
+    settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
+    settings.variance = frames.names.aovs.count("variance") > 0;  // the squares summed only for that AOV
+    settings.features = frames.names.aovs.count("albedo") > 0 || frames.names.aovs.count("shading_normal") > 0;
+    const bool tiled = !o.tile.empty();
+    const bool features = integratorInfo(settings.integrator).features;
+    if (settings.features && !features)
+        throw InputError("--aov albedo, shading_normal: the path integrator's features (--integrator path)");
+    if (o.denoise) {  // the filter's guides: these AOVs, as gpurt denoise reads them from files
+        if (!features)
+            throw InputError("--denoise: needs --integrator path (its features guide the filter)");
+        if (tiled)
+            throw InputError("--denoise: not with --tile (the filter looks across tiles: stitch the color, albedo, "
+                             "shading_normal, depth and variance AOVs, then gpurt denoise; docs/FARM.md)");
+        settings.features = settings.variance = settings.aovs = true;
+    }
+    return settings;
+}
+
+// The frame's colour denoised (out's AOVs guide it), its counts in out's statistics.
+std::vector<glm::vec3> denoiseFrame(Backend backend, const RenderSettings& settings, RenderOutput& out) {
+    DenoiseStats ds;
+    std::vector<glm::vec3> denoised = denoise(backend, denoiseImages(out), settings.threads, &ds);
+    out.stats.denoised = true;
+    out.stats.denoiseRefused = ds.refused;
+    out.stats.denoiseMs = ds.ms;
+    if (ds.refused > 0)
+        std::fprintf(stderr, "gpurt: warning: the denoiser refused %llu pixels that are not finite\n",
+                     (unsigned long long)ds.refused);
+    return denoised;
+}
+
 int runRender(const RenderOptions& o) {
     // Everything that can be refused is checked before anything is rendered or written.
     const Frames frames = renderFrames(o);
@@ -456,21 +507,7 @@ int runRender(const RenderOptions& o) {
     TileInfo tile;
     const bool tiled = !o.tile.empty();
     const std::vector<CameraBasis> cameras = frameCameras(o, frames, loaded, size, scaleExponent, tiled ? &tile : nullptr);
-    RenderSettings settings = PictureCliOptions::settings(picture, size, o.bounces, scene, scaleExponent);
-    settings.aovs = !o.aovs.empty();  // the AOVs' rays and read-backs only when an --aov asks for them
-    settings.variance = frames.names.aovs.count("variance") > 0;  // the squares summed only for that AOV
-    settings.features = frames.names.aovs.count("albedo") > 0 || frames.names.aovs.count("shading_normal") > 0;
-    const bool features = integratorInfo(settings.integrator).features;
-    if (settings.features && !features)
-        throw InputError("--aov albedo, shading_normal: the path integrator's features (--integrator path)");
-    if (o.denoise) {  // the filter's guides: these AOVs, as gpurt denoise reads them from files
-        if (!features)
-            throw InputError("--denoise: needs --integrator path (its features guide the filter)");
-        if (tiled)
-            throw InputError("--denoise: not with --tile (the filter looks across tiles: stitch the color, albedo, "
-                             "shading_normal, depth and variance AOVs, then gpurt denoise; docs/FARM.md)");
-        settings.features = settings.variance = settings.aovs = true;
-    }
+    const RenderSettings settings = frameSettings(o, picture, frames, size, scene, scaleExponent);
 
     const auto start = std::chrono::steady_clock::now();
     const Acceleration accel = o.grid.accelerate(loaded, cameras.front());
@@ -511,17 +548,7 @@ int runRender(const RenderOptions& o) {
 
         const auto writeStart = std::chrono::steady_clock::now();
         if (tiled) tile.fingerprint = renderFingerprint(scene, camera, accel, settings, o.picture, o.backend);
-        std::vector<glm::vec3> denoised;
-        if (o.denoise) {
-            DenoiseStats ds;
-            denoised = denoise(backend, denoiseImages(out), settings.threads, &ds);
-            out.stats.denoised = true;
-            out.stats.denoiseRefused = ds.refused;
-            out.stats.denoiseMs = ds.ms;
-            if (ds.refused > 0)
-                std::fprintf(stderr, "gpurt: warning: the denoiser refused %llu pixels that are not finite\n",
-                             (unsigned long long)ds.refused);
-        }
+        const std::vector<glm::vec3> denoised = o.denoise ? denoiseFrame(backend, settings, out) : std::vector<glm::vec3>{};
         writeOutputs(frames.files(frame), out, picture.colour, tiled ? &tile : nullptr, spp, o.denoise ? &denoised : nullptr);
         phases.write = msSince(writeStart);
         if (o.statsGiven)

@@ -504,6 +504,61 @@ class GltfReader {
         return skinning;
     }
 
+    // Joint set `set` (JOINTS_set, WEIGHTS_set, VEC4 each, one per vertex) added into each
+    // vertex's blend of joint matrices and its sum of weights.
+    void blendJointSet(const tinygltf::Primitive& prim, int set, const std::string& at, const Skinning& skinning,
+                       std::vector<glm::dmat4>& blend, std::vector<double>& sums) {
+        const size_t vertices = blend.size();
+        const std::string jointsName = "JOINTS_" + std::to_string(set),
+                          weightsName = "WEIGHTS_" + std::to_string(set);
+        int jointComponents = 0, weightComponents = 0;
+        const std::vector<double> joints =
+            attributeValues(prim, jointsName, at, jointComponents);
+        const std::vector<double> weights =
+            attributeValues(prim, weightsName, at, weightComponents);
+        if (jointComponents != 4 || joints.size() != 4 * vertices)
+            fail(at + ": " + jointsName + " is not VEC4 of one per vertex");
+        if (weightComponents != 4 || weights.size() != 4 * vertices)
+            fail(at + ": " + weightsName + " is not VEC4 of one per vertex");
+        for (size_t v = 0; v < vertices; ++v)
+            for (size_t k = 0; k < 4; ++k) {
+                const double joint = joints[4 * v + k], weight = weights[4 * v + k];
+                if (!(joint >= 0.0 && joint < double(skinning.joints.size())) ||
+                    joint != std::floor(joint))
+                    fail(at + ": " + jointsName + " of vertex " + std::to_string(v) +
+                         " names joint " +
+                         (std::isfinite(joint)
+                              ? std::to_string(int64_t(std::clamp(joint, -1e18, 1e18)))
+                              : std::string("?")) +
+                         "; skin " + std::to_string(skinning.skin) + " has " +
+                         std::to_string(skinning.joints.size()) + " joints");
+                if (!(weight >= 0.0) || !std::isfinite(weight))
+                    fail(at + ": " + weightsName + " of vertex " + std::to_string(v) +
+                         " is negative or not a number");
+                if (weight == 0.0) continue;
+                blend[v] += weight * skinning.joints[size_t(joint)];
+                sums[v] += weight;
+            }
+    }
+
+    // Sets past the first incomplete one (JOINTS_n without WEIGHTS_n, or a gap) are not used: a
+    // warning each.
+    void warnUnusedJointSets(const tinygltf::Primitive& prim, int set, const std::string& at) {
+        for (const auto& attribute : prim.attributes) {
+            const std::string& name = attribute.first;
+            if (name.rfind("JOINTS_", 0) != 0 && name.rfind("WEIGHTS_", 0) != 0) continue;
+            bool used = false;
+            for (int k = 0; k < set; ++k)
+                used = used || name == "JOINTS_" + std::to_string(k) ||
+                       name == "WEIGHTS_" + std::to_string(k);
+            if (!used)
+                warnOnce("attribute " + name,
+                         at + ": " + name +
+                             " is not used (the complete sets of JOINTS_n and WEIGHTS_n are " +
+                             std::to_string(set) + ")");
+        }
+    }
+
     // Per vertex, the matrix that takes POSITION to the scene: the node's world transform, or on a
     // skinned node the blend of its joints' matrices by JOINTS_n / WEIGHTS_n (every set given).
     // Weights that do not sum to 1 are normalised (a warning when they are off by more than 1%);
@@ -523,54 +578,10 @@ class GltfReader {
         std::vector<glm::dmat4> blend(vertices, glm::dmat4(0.0));
         std::vector<double> sums(vertices, 0.0);
         int set = 0;
-        for (; prim.attributes.count("JOINTS_" + std::to_string(set)) &&
-               prim.attributes.count("WEIGHTS_" + std::to_string(set));
-             ++set) {
-            const std::string jointsName = "JOINTS_" + std::to_string(set),
-                              weightsName = "WEIGHTS_" + std::to_string(set);
-            int jointComponents = 0, weightComponents = 0;
-            const std::vector<double> joints =
-                attributeValues(prim, jointsName, at, jointComponents);
-            const std::vector<double> weights =
-                attributeValues(prim, weightsName, at, weightComponents);
-            if (jointComponents != 4 || joints.size() != 4 * vertices)
-                fail(at + ": " + jointsName + " is not VEC4 of one per vertex");
-            if (weightComponents != 4 || weights.size() != 4 * vertices)
-                fail(at + ": " + weightsName + " is not VEC4 of one per vertex");
-            for (size_t v = 0; v < vertices; ++v)
-                for (size_t k = 0; k < 4; ++k) {
-                    const double joint = joints[4 * v + k], weight = weights[4 * v + k];
-                    if (!(joint >= 0.0 && joint < double(skinning.joints.size())) ||
-                        joint != std::floor(joint))
-                        fail(at + ": " + jointsName + " of vertex " + std::to_string(v) +
-                             " names joint " +
-                             (std::isfinite(joint)
-                                  ? std::to_string(int64_t(std::clamp(joint, -1e18, 1e18)))
-                                  : std::string("?")) +
-                             "; skin " + std::to_string(skinning.skin) + " has " +
-                             std::to_string(skinning.joints.size()) + " joints");
-                    if (!(weight >= 0.0) || !std::isfinite(weight))
-                        fail(at + ": " + weightsName + " of vertex " + std::to_string(v) +
-                             " is negative or not a number");
-                    if (weight == 0.0) continue;
-                    blend[v] += weight * skinning.joints[size_t(joint)];
-                    sums[v] += weight;
-                }
-        }
-        // Sets past the first incomplete one (JOINTS_n without WEIGHTS_n, or a gap) are not used.
-        for (const auto& attribute : prim.attributes) {
-            const std::string& name = attribute.first;
-            if (name.rfind("JOINTS_", 0) != 0 && name.rfind("WEIGHTS_", 0) != 0) continue;
-            bool used = false;
-            for (int k = 0; k < set; ++k)
-                used = used || name == "JOINTS_" + std::to_string(k) ||
-                       name == "WEIGHTS_" + std::to_string(k);
-            if (!used)
-                warnOnce("attribute " + name,
-                         at + ": " + name +
-                             " is not used (the complete sets of JOINTS_n and WEIGHTS_n are " +
-                             std::to_string(set) + ")");
-        }
+        while (prim.attributes.count("JOINTS_" + std::to_string(set)) &&
+               prim.attributes.count("WEIGHTS_" + std::to_string(set)))
+            blendJointSet(prim, set++, at, skinning, blend, sums);
+        warnUnusedJointSets(prim, set, at);
         size_t unweighted = 0, renormalised = 0;
         for (size_t v = 0; v < vertices; ++v) {
             if (!(sums[v] > 0.0)) {
@@ -899,8 +910,33 @@ class GltfReader {
         if (strength != g.extensions.end()) emissive *= number(strength->second, "emissiveStrength", 1.0);
         m.emission = glm::vec3(emissive);
         if (g.extensions.count("KHR_materials_unlit") > 0) return readUnlit(g, at, m, scene, index);
-        // KHR_materials_ior: the dielectric's F0; KHR_materials_transmission: a rough dielectric
-        // solid (glsl/common/materials/gltf.h; record ior > 0 with transmission t in all channels).
+        readIorAndTransmission(g, at, m);
+        if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
+            m.ior < 0.0f || (m.ior > 0.0f && m.ior < 1.0f))
+            fail(at + ": emission must be finite and >= 0, ior >= 1");
+        // The texture slots; all share the texture coordinates of the first one used (its
+        // TEXCOORD_n and KHR_texture_transform), a slot that asks for others is warned about.
+        MaterialUv uv;
+        const std::string named = at + " ('" + m.name + "')";
+        const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
+        if (baseTexture.index >= 0 && (m.diffuse != glm::vec3(0.0f) || m.model == 2))
+            m.diffuseTexture = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
+        readMaps(g, at, named, m, uv, scene);
+        // Material extensions gpurt does not read are warned about once per file with the
+        // other unread extensions (kExtensionsRead).
+        readAlpha(g, baseTexture, named, m, uv, scene);
+        m.doubleSided = g.doubleSided;  // glTF's default: single-sided (back faces culled)
+        uvs_.resize(scene.materials.size() + 1);
+        uvs_.back() = uv;
+        scene.materials.push_back(m);
+        materialIds_[size_t(index)] = int(scene.materials.size() - 1);
+        return uint32_t(scene.materials.size() - 1);
+    }
+
+    // KHR_materials_ior: the dielectric's F0; KHR_materials_transmission: a rough dielectric
+    // solid (glsl/common/materials/gltf.h; record ior > 0 with transmission t in all channels).
+    void readIorAndTransmission(const tinygltf::Material& g, const std::string& at, Material& m) {
+        auto inUnit = [](double v) { return v >= 0.0 && v <= 1.0; };
         m.transmission = glm::vec3(0.0f);
         const auto ior = g.extensions.find("KHR_materials_ior");
         if (ior != g.extensions.end()) {
@@ -925,58 +961,6 @@ class GltfReader {
                 }
             }
         }
-        if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || !std::isfinite(m.ior) ||
-            m.ior < 0.0f || (m.ior > 0.0f && m.ior < 1.0f))
-            fail(at + ": emission must be finite and >= 0, ior >= 1");
-        // The texture slots; all share the texture coordinates of the first one used (its
-        // TEXCOORD_n and KHR_texture_transform), a slot that asks for others is warned about.
-        MaterialUv uv;
-        const std::string named = at + " ('" + m.name + "')";
-        const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
-        if (baseTexture.index >= 0 && (m.diffuse != glm::vec3(0.0f) || m.model == 2))
-            m.diffuseTexture = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
-        if (m.model == 2) {
-            const tinygltf::TextureInfo& mr = g.pbrMetallicRoughness.metallicRoughnessTexture;
-            if (mr.index >= 0) {
-                const int tex = slot(mr.index, mr.texCoord, mr.extensions, "metallicRoughnessTexture", named, uv, scene);
-                if (tex >= 0) {
-                    m.roughnessTexture = {tex, 1};  // G
-                    m.metallicTexture = {tex, 2};   // B
-                }
-            }
-            const tinygltf::NormalTextureInfo& normal = g.normalTexture;
-            if (normal.index >= 0) {
-                m.normalTexture = slot(normal.index, normal.texCoord, normal.extensions, "normalTexture", named, uv, scene);
-                m.normalScale = float(normal.scale);
-                if (!std::isfinite(m.normalScale)) fail(at + ": normalTexture scale must be finite");
-            }
-            const tinygltf::TextureInfo& glow = g.emissiveTexture;
-            if (glow.index >= 0 && m.emits())
-                m.emissiveTexture = slot(glow.index, glow.texCoord, glow.extensions, "emissiveTexture", named, uv, scene);
-            const tinygltf::OcclusionTextureInfo& occlusion = g.occlusionTexture;
-            if (occlusion.index >= 0) {
-                const int tex = slot(occlusion.index, occlusion.texCoord, occlusion.extensions, "occlusionTexture", named, uv, scene);
-                if (tex >= 0) m.occlusionTexture = {tex, 0};  // R
-                m.occlusionStrength = float(occlusion.strength);
-                if (!inUnit(occlusion.strength)) fail(at + ": occlusionTexture strength must be in [0, 1]");
-            }
-            if (m.transmits()) readTransmissionTexture(g, named, m, uv, scene);
-        } else {
-            for (const char* unused : {"normalTexture", "occlusionTexture", "emissiveTexture"})
-                if ((std::strcmp(unused, "normalTexture") == 0 && g.normalTexture.index >= 0) ||
-                    (std::strcmp(unused, "occlusionTexture") == 0 && g.occlusionTexture.index >= 0) ||
-                    (std::strcmp(unused, "emissiveTexture") == 0 && g.emissiveTexture.index >= 0))
-                    warn(named + ": " + unused + " of a transmissive material is not used");
-        }
-        // Material extensions gpurt does not read are warned about once per file with the
-        // other unread extensions (kExtensionsRead).
-        readAlpha(g, baseTexture, named, m, uv, scene);
-        m.doubleSided = g.doubleSided;  // glTF's default: single-sided (back faces culled)
-        uvs_.resize(scene.materials.size() + 1);
-        uvs_.back() = uv;
-        scene.materials.push_back(m);
-        materialIds_[size_t(index)] = int(scene.materials.size() - 1);
-        return uint32_t(scene.materials.size() - 1);
     }
 
     // KHR_materials_unlit (glsl/common/material.h GPURT_MODEL_UNLIT): the base colour, its texture
@@ -1011,6 +995,38 @@ class GltfReader {
         glm::dmat3 transform{1.0};
         std::string slot;  // the slot that chose them
     };
+
+    // The metallic-roughness, normal, emissive, occlusion and transmission maps (the base colour's
+    // and alpha's are read apart), each through `uv`, the material's shared coordinates.
+    void readMaps(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                  MaterialUv& uv, Scene& scene) {
+        auto inUnit = [](double v) { return v >= 0.0 && v <= 1.0; };
+        const tinygltf::TextureInfo& mr = g.pbrMetallicRoughness.metallicRoughnessTexture;
+        if (mr.index >= 0) {
+            const int tex = slot(mr.index, mr.texCoord, mr.extensions, "metallicRoughnessTexture", named, uv, scene);
+            if (tex >= 0) {
+                m.roughnessTexture = {tex, 1};  // G
+                m.metallicTexture = {tex, 2};   // B
+            }
+        }
+        const tinygltf::NormalTextureInfo& normal = g.normalTexture;
+        if (normal.index >= 0) {
+            m.normalTexture = slot(normal.index, normal.texCoord, normal.extensions, "normalTexture", named, uv, scene);
+            m.normalScale = float(normal.scale);
+            if (!std::isfinite(m.normalScale)) fail(at + ": normalTexture scale must be finite");
+        }
+        const tinygltf::TextureInfo& glow = g.emissiveTexture;
+        if (glow.index >= 0 && m.emits())
+            m.emissiveTexture = slot(glow.index, glow.texCoord, glow.extensions, "emissiveTexture", named, uv, scene);
+        const tinygltf::OcclusionTextureInfo& occlusion = g.occlusionTexture;
+        if (occlusion.index >= 0) {
+            const int tex = slot(occlusion.index, occlusion.texCoord, occlusion.extensions, "occlusionTexture", named, uv, scene);
+            if (tex >= 0) m.occlusionTexture = {tex, 0};  // R
+            m.occlusionStrength = float(occlusion.strength);
+            if (!inUnit(occlusion.strength)) fail(at + ": occlusionTexture strength must be in [0, 1]");
+        }
+        if (m.transmits()) readTransmissionTexture(g, named, m, uv, scene);
+    }
 
     // KHR_materials_transmission's transmissionTexture (a textureInfo inside the extension, which
     // tinygltf leaves as JSON): its R channel times the factor, with its texCoord and

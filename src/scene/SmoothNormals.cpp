@@ -93,15 +93,11 @@ class PositionTable {
 
 }  // namespace
 
-void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
+namespace {
+
+// Keeps the file's usable normals (fromFile[t]), clears the others; whether any is missing.
+bool keepFileNormals(Scene& scene, int threads, std::vector<uint8_t>& fromFile) {
     const size_t n = scene.triangles.size();
-    if (creaseDegrees < 0.0f) {
-        scene.normals.clear();
-        return;
-    }
-    scene.normals.resize(n);
-    const int threads = resolveThreads(threadOption);
-    std::vector<uint8_t> fromFile(n);
     std::atomic<bool> anyMissing{false};
     parallelChunks(n, kChunk, threads, [&](size_t begin, size_t end, size_t) {
         bool missing = false;
@@ -114,11 +110,12 @@ void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
         }
         if (missing) anyMissing = true;
     });
-    if (!anyMissing) return;
+    return anyMissing;
+}
 
-    // Unit face normals and corner angles in double (zero for degenerate triangles).
-    LargeArray<glm::dvec3> face(n), angle(n);
-    parallelChunks(n, kChunk, threads, [&](size_t begin, size_t end, size_t) {
+// Unit face normals and corner angles in double (zero for degenerate triangles).
+void faceNormalsAndAngles(const Scene& scene, int threads, LargeArray<glm::dvec3>& face, LargeArray<glm::dvec3>& angle) {
+    parallelChunks(scene.triangles.size(), kChunk, threads, [&](size_t begin, size_t end, size_t) {
         for (size_t t = begin; t < end; ++t) {
             face[t] = angle[t] = glm::dvec3(0.0);
             const Triangle& tri = scene.triangles[t];
@@ -134,26 +131,36 @@ void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
             }
         }
     });
-    auto degenerate = [&](size_t t) { return face[t] == glm::dvec3(0.0); };
+}
 
-    // Each corner's position id: part p of the ids is thread p's (the hash's top bits), numbered
-    // from its own base; the bases follow once every part is counted.
+// The corners that share each position: vertexOf[c], corner c's position id (kNone for a
+// degenerate triangle's), and the corners of position v, ascending: corners[start[v] ..
+// start[v + 1]).
+struct SharedCorners {
+    LargeArray<uint32_t> vertexOf, start, corners;
+};
+
+// Each corner's position id: part p of the ids is thread p's (the hash's top bits), numbered
+// from its own base; the bases follow once every part is counted. Then the corners at each
+// position: counts, offsets, then a fill in corner order (so each list stays ascending).
+SharedCorners shareCorners(const Scene& scene, int threads, const LargeArray<glm::dvec3>& face) {
+    const size_t n = scene.triangles.size();
     const size_t parts = size_t(threads);
-    LargeArray<uint32_t> vertexOf(3 * n);
+    SharedCorners s{LargeArray<uint32_t>(3 * n), {}, LargeArray<uint32_t>(3 * n)};
     std::vector<uint32_t> partCount(parts, 0);
     auto partOf = [&](uint64_t hash) { return size_t((hash >> 40) % parts); };
     parallelChunks(parts, 1, threads, [&](size_t part, size_t, size_t) {
         PositionTable table(3 * n / parts / 4 + 16);  // a mesh shares a position among ~6 corners; a soup grows it
         uint32_t next = 0;
         for (size_t t = 0; t < n; ++t) {
-            if (degenerate(t)) {
-                if (part == 0) vertexOf[3 * t] = vertexOf[3 * t + 1] = vertexOf[3 * t + 2] = kNone;
+            if (face[t] == glm::dvec3(0.0)) {  // degenerate
+                if (part == 0) s.vertexOf[3 * t] = s.vertexOf[3 * t + 1] = s.vertexOf[3 * t + 2] = kNone;
                 continue;
             }
             for (uint32_t k = 0; k < 3; ++k) {
                 const glm::vec3& p = corner(scene.triangles[t], k);
                 const uint64_t hash = positionHash(p);
-                if (partOf(hash) == part) vertexOf[3 * t + k] = table.id(p, hash, next);
+                if (partOf(hash) == part) s.vertexOf[3 * t + k] = table.id(p, hash, next);
             }
         }
         partCount[part] = next;
@@ -162,33 +169,47 @@ void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
     for (size_t p = 0; p < parts; ++p) partBase[p + 1] = partBase[p] + partCount[p];
     const size_t vertices = partBase[parts];
 
-    // The corners at each position, ascending: counts, offsets, then a fill in which each thread
-    // takes the positions of its part (in corner order, so each list stays ascending).
-    LargeArray<uint32_t> start(vertices + 1), corners(3 * n);
-    std::fill(start.begin(), start.end(), 0u);
+    s.start = LargeArray<uint32_t>(vertices + 1);
+    std::fill(s.start.begin(), s.start.end(), 0u);
     for (size_t c = 0; c < 3 * n; ++c) {
-        if (vertexOf[c] == kNone) continue;
+        if (s.vertexOf[c] == kNone) continue;
         const size_t part = partOf(positionHash(corner(scene.triangles[c / 3], uint32_t(c % 3))));
-        vertexOf[c] += partBase[part];
-        ++start[vertexOf[c] + 1];
+        s.vertexOf[c] += partBase[part];
+        ++s.start[s.vertexOf[c] + 1];
     }
-    for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-    {
-        LargeArray<uint32_t> cursor(start.begin(), start.end() - 1);
-        for (size_t c = 0; c < 3 * n; ++c)
-            if (vertexOf[c] != kNone) corners[cursor[vertexOf[c]]++] = uint32_t(c);
+    for (size_t v = 0; v < vertices; ++v) s.start[v + 1] += s.start[v];
+    LargeArray<uint32_t> cursor(s.start.begin(), s.start.end() - 1);
+    for (size_t c = 0; c < 3 * n; ++c)
+        if (s.vertexOf[c] != kNone) s.corners[cursor[s.vertexOf[c]]++] = uint32_t(c);
+    return s;
+}
+
+}  // namespace
+
+void smoothNormals(Scene& scene, float creaseDegrees, int threadOption) {
+    const size_t n = scene.triangles.size();
+    if (creaseDegrees < 0.0f) {
+        scene.normals.clear();
+        return;
     }
+    scene.normals.resize(n);
+    const int threads = resolveThreads(threadOption);
+    std::vector<uint8_t> fromFile(n);
+    if (!keepFileNormals(scene, threads, fromFile)) return;
+    LargeArray<glm::dvec3> face(n), angle(n);
+    faceNormalsAndAngles(scene, threads, face, angle);
+    const SharedCorners shared = shareCorners(scene, threads, face);
 
     const double cosCrease = std::cos(double(creaseDegrees) * M_PI / 180.0);
     parallelChunks(n, kChunk, threads, [&](size_t begin, size_t end, size_t) {
         for (size_t t = begin; t < end; ++t) {
-            if (fromFile[t] || degenerate(t)) continue;  // degenerate: no normals, faceted
+            if (fromFile[t] || face[t] == glm::dvec3(0.0)) continue;  // degenerate: no normals, faceted
             glm::vec3 out[3];
             for (int k = 0; k < 3; ++k) {
-                const uint32_t v = vertexOf[3 * t + size_t(k)];
+                const uint32_t v = shared.vertexOf[3 * t + size_t(k)];
                 glm::dvec3 sum(0.0);
-                for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
-                    const uint32_t c = corners[i];
+                for (uint32_t i = shared.start[v]; i < shared.start[v + 1]; ++i) {
+                    const uint32_t c = shared.corners[i];
                     const size_t other = c / 3;
                     // Faces within the crease angle, either winding (meshes are not always consistent).
                     const double d = glm::dot(face[other], face[t]);

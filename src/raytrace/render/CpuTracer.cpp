@@ -42,14 +42,10 @@ uint64_t CpuTracer::traceStream(const RayStream& rays, bool anyHit, int threads,
     return rays.rays();
 }
 
-// The pixel-centre ray for the AOVs when there are several samples, then the samples of the
-// integrator (integrators/whitted/WhittedCpu, integrators/path/PathCpu), summed in order and
-// divided by their number (as the GL accumulate pass sums). Rows are handed out one at a time:
-// cost varies strongly across the image. Adaptive sampling (settings.adaptive()) takes the samples
-// in rounds over the whole image, as the gl backend's passes do, with a convergence pass between
-// them (common/adaptive.h) that stops pixels; the rounds and decisions are the gl backend's.
-RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
-    const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// The output image (the camera's width x its rows) with its AOVs cleared to a miss.
+RenderOutput emptyOutput(const CameraBasis& camera, const RenderSettings& settings) {
     RenderOutput out;
     out.width = camera.width;
     out.height = camera.rows();  // image rows camera.rowBegin on (pixel (i, j) of the camera is
@@ -62,7 +58,86 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         out.normal.assign(pixels, glm::vec3(0.0f));
         out.steps.assign(pixels, 0.0f);
     }
+    return out;
+}
 
+// Each pixel's sums as the gl backend's accumulate pass keeps them: of all its samples (and
+// their count), of its odd-numbered ones (adaptive), of their squares (the variance AOV), of
+// their features (the denoiser's albedo and normal); and whether it is still active.
+struct PixelSums {
+    PixelSums(size_t pixels, bool adaptive, bool variance, bool features)
+        : sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f)), counts(pixels, 0.0f),
+          squares(variance ? pixels : 0, glm::vec3(0.0f)), albedo(features ? pixels : 0, glm::vec3(0.0f)),
+          normal(albedo), active(pixels, 1) {}
+
+    void add(size_t pixel, uint32_t sample, glm::vec3 c, const SampleFeatures* f) {
+        if (f) {
+            albedo[pixel] += f->albedo;
+            normal[pixel] += f->normal;
+        }
+        sums[pixel] += c;
+        counts[pixel] += 1.0f;
+        if (!oddSums.empty() && (sample & 1u) != 0u) oddSums[pixel] += c;
+        if (!squares.empty()) squares[pixel] += c * c;
+    }
+
+    // The means into the output: colour, samples taken (adaptive), features, variance.
+    void finish(RenderOutput& out) const {
+        const size_t pixels = sums.size();
+        for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
+        if (!oddSums.empty()) out.spp = counts;
+        if (!albedo.empty()) {
+            out.albedo.resize(pixels);
+            out.shadingNormal.resize(pixels);
+            for (size_t p = 0; p < pixels; ++p) {
+                out.albedo[p] = albedo[p] / counts[p];
+                out.shadingNormal[p] = normal[p] / counts[p];
+            }
+        }
+        if (!squares.empty()) {
+            out.variance.resize(pixels);
+            for (size_t p = 0; p < pixels; ++p) out.variance[p] = gpurt::varianceOfMean(sums[p], squares[p], counts[p]);
+        }
+        for (float c : counts) out.stats.samples += uint64_t(c);
+    }
+
+    std::vector<glm::vec3> sums, oddSums;
+    std::vector<float> counts;
+    std::vector<glm::vec3> squares, albedo, normal;
+    std::vector<uint8_t> active;
+};
+
+// The workers' counts into the output's.
+void addStats(const std::vector<RenderStats>& threadStats, RenderStats& total) {
+    for (const RenderStats& s : threadStats) {
+        total.primaryRays += s.primaryRays;
+        total.shadowRays += s.shadowRays;
+        total.secondaryRays += s.secondaryRays;
+        total.overflowRays += s.overflowRays;
+        for (size_t b = 0; b < s.livePaths.size(); ++b) total.addLivePaths(b, s.livePaths[b]);
+    }
+}
+
+// The last sample of the round that starts at `taken`: up to the next convergence pass, or the
+// last sample.
+uint32_t roundEnd(uint32_t taken, uint32_t samples, bool adaptive, const RenderSettings& settings) {
+    if (!adaptive) return samples;
+    uint32_t next = taken + 1;
+    while (next < samples && !adaptiveCheckAfter(next, settings)) ++next;
+    return next;
+}
+
+}  // namespace
+
+// The pixel-centre ray for the AOVs when there are several samples, then the samples of the
+// integrator (integrators/whitted/WhittedCpu, integrators/path/PathCpu), summed in order and
+// divided by their number (as the GL accumulate pass sums). Rows are handed out one at a time:
+// cost varies strongly across the image. Adaptive sampling (settings.adaptive()) takes the samples
+// in rounds over the whole image, as the gl backend's passes do, with a convergence pass between
+// them (common/adaptive.h) that stops pixels; the rounds and decisions are the gl backend's.
+RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& settings) const {
+    const auto start = std::chrono::steady_clock::now();
+    RenderOutput out = emptyOutput(camera, settings);
     const IntegratorInfo& info = integratorInfo(settings.integrator);
     // The integrator's own options, each resolved once (its default where none is given; an
     // unlimited one as GPURT_FAR, as the kernels' uniforms hold it), not once a sample.
@@ -70,40 +145,26 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     for (const IntegratorOption& option : info.options)
         sampleSettings.integratorOptions[option.uniform] = std::min(integratorOption(settings, option.uniform), GPURT_FAR);
     const PunctualLights lights = punctualLights(lightsOrHeadlight(scene(), camera.eye, info.pathStreams));
-    const int bounces = std::max(0, settings.maxBounces);
-    const int stackSlots = std::min(bounces, GPURT_STACK_SLOTS);
+    const int stackSlots = std::min(std::max(0, settings.maxBounces), GPURT_STACK_SLOTS);
     const uint32_t samples = std::max(1u, settings.samples);
     const bool adaptive = settings.adaptive() && samples > 1;
-    // Each pixel's sums: of all its samples (and their count), of its odd-numbered ones.
-    std::vector<glm::vec3> sums(pixels, glm::vec3(0.0f)), oddSums(adaptive ? pixels : 0, glm::vec3(0.0f));
-    std::vector<float> counts(pixels, 0.0f);
-    std::vector<glm::vec3> squares(settings.variance ? pixels : 0, glm::vec3(0.0f));
     const bool features = settings.features && info.features;
-    std::vector<glm::vec3> albedoSums(features ? pixels : 0, glm::vec3(0.0f)), normalSums(albedoSums);
-    std::vector<uint8_t> active(pixels, 1);
-    auto pixelIndex = [&](int i, int j) { return size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i); };
+    PixelSums pixels(out.color.size(), adaptive, settings.variance, features);
     // Samples [first, last) of pixel (i, j), and its AOVs with the first.
     auto shadePixel = [&](int i, int j, uint32_t first, uint32_t last, RenderStats& stats) {
-        const size_t pixel = pixelIndex(i, j);
-        if (!active[pixel]) return;
+        const size_t pixel = size_t(j - camera.rowBegin) * size_t(camera.width) + size_t(i);
+        if (!pixels.active[pixel]) return;
         if (first == 0 && samples > 1 && settings.aovs)
             whittedSample(*this, {i, j, 0, 1, settings.seed, settings.sampler}, camera.eye,
                           primaryDirection(camera, i, j), lights, -1, stackSlots, {&out, pixel}, stats);
         const PixelAovs aovs = samples == 1 && settings.aovs ? PixelAovs{&out, pixel} : PixelAovs{};
         for (uint32_t s = first; s < last; ++s) {
-            const PixelSample px{i, j, s, samples, settings.seed, settings.sampler};
             const CameraRay ray = sampleRay(camera, i, j, s, samples, settings.seed, settings.sampler);
             SampleFeatures f;
-            const glm::vec3 c = info.cpuSample(*this, px, ray.origin, ray.direction, lights, sampleSettings, aovs,
-                                               stats, features ? &f : nullptr);
-            if (features) {
-                albedoSums[pixel] += f.albedo;
-                normalSums[pixel] += f.normal;
-            }
-            sums[pixel] += c;
-            counts[pixel] += 1.0f;
-            if (adaptive && (s & 1u) != 0u) oddSums[pixel] += c;
-            if (settings.variance) squares[pixel] += c * c;
+            const glm::vec3 c = info.cpuSample(*this, {i, j, s, samples, settings.seed, settings.sampler}, ray.origin,
+                                               ray.direction, lights, sampleSettings, aovs, stats,
+                                               features ? &f : nullptr);
+            pixels.add(pixel, s, c, features ? &f : nullptr);
         }
     };
 
@@ -111,14 +172,9 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
     std::vector<RenderStats> threadStats(static_cast<size_t>(threads));
     std::mutex progressMutex;
     size_t rowsDone = 0;
-    uint32_t taken = 0;
-    while (taken < samples) {
+    for (uint32_t taken = 0; taken < samples;) {
         const auto roundStart = std::chrono::steady_clock::now();
-        uint32_t next = taken + 1;  // the round: up to the next convergence pass, or the last sample
-        if (adaptive)
-            while (next < samples && !adaptiveCheckAfter(next, settings)) ++next;
-        else
-            next = samples;
+        const uint32_t next = roundEnd(taken, samples, adaptive, settings);
         parallelChunks(size_t(out.height), 1, threads, [&](size_t row, size_t, size_t worker) {
             for (int i = 0; i < camera.width; ++i)
                 shadePixel(i, camera.rowBegin + int(row), taken, next, threadStats[worker]);
@@ -130,39 +186,17 @@ RenderOutput CpuTracer::render(const CameraBasis& camera, const RenderSettings& 
         taken = next;
         if (!adaptive || taken >= samples) break;
         if (settings.progress) settings.progress(double(taken) / double(samples));
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - roundStart).count();
-        const uint64_t left = convergencePass(camera.width, out.height, sums, oddSums, counts, settings.noiseThreshold,
-                                              threads, active);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - roundStart).count();
+        const uint64_t left = convergencePass(camera.width, out.height, pixels.sums, pixels.oddSums, pixels.counts,
+                                              settings.noiseThreshold, threads, pixels.active);
         out.stats.adaptive.push_back({taken, left, ms});
         if (settings.adaptiveProgress) settings.adaptiveProgress(taken, left);
         if (left == 0) break;
     }
-    for (size_t p = 0; p < pixels; ++p) out.color[p] = sums[p] / counts[p];
-    if (adaptive) out.spp = counts;
-    if (features) {
-        out.albedo.resize(pixels);
-        out.shadingNormal.resize(pixels);
-        for (size_t p = 0; p < pixels; ++p) {
-            out.albedo[p] = albedoSums[p] / counts[p];
-            out.shadingNormal[p] = normalSums[p] / counts[p];
-        }
-    }
-    if (settings.variance) {
-        out.variance.resize(pixels);
-        for (size_t p = 0; p < pixels; ++p) out.variance[p] = gpurt::varianceOfMean(sums[p], squares[p], counts[p]);
-    }
+    pixels.finish(out);
     if (settings.progress) settings.progress(1.0);
-    for (const RenderStats& s : threadStats) {
-        out.stats.primaryRays += s.primaryRays;
-        out.stats.shadowRays += s.shadowRays;
-        out.stats.secondaryRays += s.secondaryRays;
-        out.stats.overflowRays += s.overflowRays;
-        for (size_t b = 0; b < s.livePaths.size(); ++b) out.stats.addLivePaths(b, s.livePaths[b]);
-    }
-    for (float c : counts) out.stats.samples += uint64_t(c);
-    out.stats.totalMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    addStats(threadStats, out.stats);
+    out.stats.totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
 

@@ -188,6 +188,73 @@ void GpuTracer::setSample(uint32_t s, uint32_t n, uint32_t seed) {
     if (whittedAovs_) whittedAovs_->setSample(s, n, seed);
 }
 
+void GpuTracer::sampleRounds(const std::vector<Light>& lights, const RenderSettings& settings, RenderOutput& out) {
+    GpuPipeline& p = *pipeline_;
+    const uint32_t samples = settings.samples;
+    const bool adaptive = p.needs.adaptive;
+    p.sampleSum.fill(0.0f);
+    if (p.needs.variance) p.squareSum.fill(0.0f);
+    if (p.needs.features) {
+        p.albedoSum.fill(0.0f);
+        p.normalSum.fill(0.0f);
+    }
+    if (adaptive) p.beginAdaptive();
+    const std::vector<GPUKernel*> kernels = integratorKernels();
+    auto roundStart = std::chrono::steady_clock::now();
+    for (uint32_t s = 0; s < samples; ++s) {
+        setSample(s, samples, settings.seed);
+        if (adaptive)  // the accumulate pass sums the odd samples apart (common/adaptive.h)
+            for (GPUKernel* k : kernels) k->setUniform("odd", float(s & 1u));
+        chosen_->sample(lights, std::max(0, settings.maxBounces), nullptr, out.stats);
+        chosen_->accumulate();
+        // Adaptive sampling's convergence pass (CpuTracer::render takes the same rounds): the
+        // render ends when its occlusion query counts no active pixel.
+        if (adaptiveCheckAfter(s + 1, settings)) {
+            glFinish();  // the round's passes, timed apart from the convergence pass
+            const auto now = std::chrono::steady_clock::now();
+            const double ms = std::chrono::duration<double, std::milli>(now - roundStart).count();
+            const uint64_t active = p.convergeRound(settings.noiseThreshold);
+            roundStart = std::chrono::steady_clock::now();
+            out.stats.adaptive.push_back({s + 1, active, ms});
+            if (settings.adaptiveProgress) settings.adaptiveProgress(s + 1, active);
+            if (active == 0) break;
+        }
+        // The rounds' occlusion counts already wait for the passes; glFinish makes the
+        // fraction a finished one (a few microseconds a sample, only when asked for).
+        if (settings.progress && s + 1 < samples) {
+            glFinish();
+            settings.progress(double(s + 1) / double(samples));
+        }
+    }
+}
+
+void GpuTracer::readSums(RenderOutput& out) {
+    GpuPipeline& p = *pipeline_;
+    const std::vector<glm::vec4> sums = downloadVectors<glm::vec4>(p.sampleSum);
+    out.color.resize(sums.size());
+    for (size_t i = 0; i < sums.size(); ++i) {  // CpuTracer::render divides alike
+        out.color[i] = glm::vec3(sums[i]) / sums[i].w;
+        out.stats.samples += uint64_t(sums[i].w);
+    }
+    if (p.needs.features) {  // the means, as CpuTracer::render divides them
+        out.albedo = downloadVectors<glm::vec3>(p.albedoSum);
+        out.shadingNormal = downloadVectors<glm::vec3>(p.normalSum);
+        for (size_t i = 0; i < sums.size(); ++i) {
+            out.albedo[i] = out.albedo[i] / sums[i].w;
+            out.shadingNormal[i] = out.shadingNormal[i] / sums[i].w;
+        }
+    }
+    if (p.needs.adaptive) {
+        out.spp.resize(sums.size());
+        for (size_t i = 0; i < sums.size(); ++i) out.spp[i] = sums[i].w;
+    }
+    if (p.needs.variance) {
+        const std::vector<glm::vec3> squares = downloadVectors<glm::vec3>(p.squareSum);
+        out.variance.resize(sums.size());
+        for (size_t i = 0; i < sums.size(); ++i) out.variance[i] = varianceOfMean(glm::vec3(sums[i]), squares[i], sums[i].w);
+    }
+}
+
 // The sample loop (--spp), each sample one of the integrator's (integrators/): its rounds of
 // passes from raygen's rays through the sample's point of each pixel; the accumulate pass adds
 // the sample's colour to the pixels' sums. The AOVs come from the pixel-centre rays: the first
@@ -222,64 +289,8 @@ RenderOutput GpuTracer::render(const CameraBasis& camera, const RenderSettings& 
             out.shadingNormal = downloadVectors<glm::vec3>(p.pixelNormal);
         }
     } else {
-        p.sampleSum.fill(0.0f);
-        if (variance) p.squareSum.fill(0.0f);
-        if (features) {
-            p.albedoSum.fill(0.0f);
-            p.normalSum.fill(0.0f);
-        }
-        if (adaptive) p.beginAdaptive();
-        const std::vector<GPUKernel*> kernels = integratorKernels();
-        auto roundStart = std::chrono::steady_clock::now();
-        for (uint32_t s = 0; s < samples; ++s) {
-            setSample(s, samples, settings.seed);
-            if (adaptive)  // the accumulate pass sums the odd samples apart (common/adaptive.h)
-                for (GPUKernel* k : kernels) k->setUniform("odd", float(s & 1u));
-            chosen.sample(lights, bounces, nullptr, out.stats);
-            chosen.accumulate();
-            // Adaptive sampling's convergence pass (CpuTracer::render takes the same rounds): the
-            // render ends when its occlusion query counts no active pixel.
-            if (adaptiveCheckAfter(s + 1, settings)) {
-                glFinish();  // the round's passes, timed apart from the convergence pass
-                const auto now = std::chrono::steady_clock::now();
-                const double ms = std::chrono::duration<double, std::milli>(now - roundStart).count();
-                const uint64_t active = p.convergeRound(settings.noiseThreshold);
-                roundStart = std::chrono::steady_clock::now();
-                out.stats.adaptive.push_back({s + 1, active, ms});
-                if (settings.adaptiveProgress) settings.adaptiveProgress(s + 1, active);
-                if (active == 0) break;
-            }
-            // The rounds' occlusion counts already wait for the passes; glFinish makes the
-            // fraction a finished one (a few microseconds a sample, only when asked for).
-            if (settings.progress && s + 1 < samples) {
-                glFinish();
-                settings.progress(double(s + 1) / double(samples));
-            }
-        }
-        const std::vector<glm::vec4> sums = downloadVectors<glm::vec4>(p.sampleSum);
-        out.color.resize(sums.size());
-        for (size_t i = 0; i < sums.size(); ++i) {  // CpuTracer::render divides alike
-            out.color[i] = glm::vec3(sums[i]) / sums[i].w;
-            out.stats.samples += uint64_t(sums[i].w);
-        }
-        if (features) {  // the means, as CpuTracer::render divides them
-            out.albedo = downloadVectors<glm::vec3>(p.albedoSum);
-            out.shadingNormal = downloadVectors<glm::vec3>(p.normalSum);
-            for (size_t i = 0; i < sums.size(); ++i) {
-                out.albedo[i] = out.albedo[i] / sums[i].w;
-                out.shadingNormal[i] = out.shadingNormal[i] / sums[i].w;
-            }
-        }
-        if (adaptive) {
-            out.spp.resize(sums.size());
-            for (size_t i = 0; i < sums.size(); ++i) out.spp[i] = sums[i].w;
-        }
-        if (variance) {
-            const std::vector<glm::vec3> squares = downloadVectors<glm::vec3>(p.squareSum);
-            out.variance.resize(sums.size());
-            for (size_t i = 0; i < sums.size(); ++i)
-                out.variance[i] = varianceOfMean(glm::vec3(sums[i]), squares[i], sums[i].w);
-        }
+        sampleRounds(lights, settings, out);
+        readSums(out);
     }
     if (settings.variance && samples == 1) out.variance.assign(out.color.size(), glm::vec3(0.0f));
     if (samples == 1) out.stats.samples = uint64_t(camera.width) * uint64_t(camera.rows());

@@ -91,6 +91,11 @@ class GpuTracer {
     // Sets the camera on the pipeline and every integrator's kernels (the tile's first row).
     void setCamera(const CameraBasis& camera);
     void setSample(uint32_t s, uint32_t n, uint32_t seed);
+    // render's samples of more than one: each sample's passes and its accumulate pass, and with
+    // adaptive sampling the convergence passes between rounds (until no pixel is active).
+    void sampleRounds(const std::vector<Light>& lights, const RenderSettings& settings, RenderOutput& out);
+    // The pixels' sums read back and divided into out's colour, features, samples and variance.
+    void readSums(RenderOutput& out);
     // The accelerators' coverage keys (scene/alpha.glsl): sample s of --seed `seed`.
     void setCoverageSample(uint32_t s, uint32_t seed);
     // Rays a pixel's stack holds for Whitted's ray tree (0 without glass, where nothing splits,
