@@ -2,7 +2,7 @@
 """Two gpurt binaries timed back to back, alternating, on the same workloads (a refactoring must
 not cost speed; docs/PERFORMANCE.md records the result):
 
-  scripts/compare-speed.py OLD_GPURT NEW_GPURT [--rounds 3]
+  scripts/compare-speed.py OLD_GPURT NEW_GPURT [--rounds 3] [--only TEXT ...]
 
 - `gpurt bench` (tracing alone): the bunny at 1024x1024, primary and shadow rays, gl and cpu:
   Mrays/s (gpurt bench's own median of its runs);
@@ -51,6 +51,8 @@ def main():
     parser.add_argument("old")
     parser.add_argument("new")
     parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--only", action="append", default=[],
+                        help="only the workloads whose label contains this text (repeatable)")
     args = parser.parse_args()
     binaries = [os.path.abspath(args.old), os.path.abspath(args.new)]
     rows = []
@@ -60,6 +62,8 @@ def main():
         for label, scene, extra in RENDERS:
             rows.append((f"{label}, {backend}", "samples/s",
                          lambda b, backend=backend, scene=scene, extra=extra: render(b, backend, scene, extra)))
+    if args.only:
+        rows = [row for row in rows if any(text in row[0] for text in args.only)]
     print("| workload | unit | old: median [range] | new: median [range] | new / old |")
     print("|---|---|---|---|---|")
     for label, unit, measure in rows:

@@ -70,7 +70,11 @@ GPURT_FN bool materialShowsItself(MaterialRecord m) {
 // rays and what mirrors and glass show, prevPdf 0; transparent to every other ray, so it lights
 // nothing; shadow rays pass it in the traversals, common/alpha.h GPURT_COVER_SHADOWLESS).
 GPURT_FN bool materialHiddenFrom(MaterialRecord m, float prevPdf) {
+#if defined(__cplusplus) || defined(SCENE_MODEL_3)
     return m.model == GPURT_MODEL_UNLIT && prevPdf > 0.0f;
+#else
+    return false;  // no unlit material in the scene (SceneTextures::bind)
+#endif
 }
 
 // The record as the ray meets the surface, on the front side (`entering`: frontFace) or the back:

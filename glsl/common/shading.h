@@ -170,7 +170,14 @@ GPURT_FN vec2 spotCone(float innerAngle, float outerAngle) {
 // intensity at p (a spot's dimmed by its cone; KHR_lights_punctual's range window
 // clamp(1 - (d / range)^4, 0, 1) for a point or spot light with a range). False where L does not
 // light p at all.
+// Without SCENE_LIGHT_KINDS (SceneTextures::bind: every light of the scene a point light without a
+// range) only that case is compiled: llvmpipe runs both sides of a branch.
 GPURT_FN bool punctualAsPoint(PunctualLight L, vec3 p, GPURT_OUT(vec3) position, GPURT_OUT(float) intensity) {
+#if !defined(__cplusplus) && !defined(SCENE_LIGHT_KINDS)
+    position = L.position;
+    intensity = L.intensity;
+    return intensity > 0.0f;
+#else
     if (L.kind == GPURT_LIGHT_DIRECTIONAL) {
         position = p - L.direction;
         intensity = L.intensity;
@@ -188,6 +195,7 @@ GPURT_FN bool punctualAsPoint(PunctualLight L, vec3 p, GPURT_OUT(vec3) position,
         intensity = intensity * clamp(1.0f - r * r, 0.0f, 1.0f);
     }
     return intensity > 0.0f;
+#endif
 }
 
 // The shadow ray from a hit towards a light: it is occluded if the traversal finds a hit with
@@ -205,10 +213,12 @@ GPURT_FN void shadowRay(vec3 p, vec3 n, float eps, vec3 lightPos, GPURT_OUT(vec3
 GPURT_FN void punctualShadowRay(PunctualLight L, vec3 p, vec3 n, float eps, vec3 position, GPURT_OUT(vec3) origin,
                                 GPURT_OUT(vec3) dir, GPURT_OUT(float) tLimit) {
     shadowRay(p, n, eps, position, origin, dir, tLimit);
+#if defined(__cplusplus) || defined(SCENE_LIGHT_KINDS)
     if (L.kind == GPURT_LIGHT_DIRECTIONAL) {
         dir = -L.direction;
         tLimit = GPURT_FAR;
     }
+#endif
 }
 
 // Direction of the mirror ray after a hit (normalised again, as the reflected vector drifts).

@@ -176,6 +176,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     hasAlpha_ = sceneUsesAlpha(scene);
     cullsBackFaces_ = sceneCullsBackFaces(scene);
     shadowless_ = sceneHasShadowless(scene);
+    lightKinds_ = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return !l.plainPoint(); });
 }
 
 void SceneTextures::bind(GPUKernel& kernel) const {
@@ -188,6 +189,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasTransmissionMaps_) kernel.addDefine("SCENE_TRANSMISSION_MAPS");  // shading.glsl fetchMaterialRecord
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
+    if (lightKinds_) kernel.addDefine("SCENE_LIGHT_KINDS");  // common/shading.h punctualAsPoint
     if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
     // The vertex tangents only where a normal map reads them (shading.glsl fetchMappedNormal): the
     // kernels of other scenes neither declare nor bind them.

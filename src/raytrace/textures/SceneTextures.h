@@ -84,6 +84,7 @@ class SceneTextures {
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
     bool shadowless_ = false;      // SCENE_SHADOWLESS in the accelerators' kernels
+    bool lightKinds_ = false;      // SCENE_LIGHT_KINDS: some light is a spot, directional or has a range
     GPUFloatArray textureTexels_;
     GPUFloatArray textureTable_;
     GPUFloatArray srgbTable_;
