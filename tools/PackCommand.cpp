@@ -194,7 +194,14 @@ Occupancy occupancyOf(const UniformGrid& grid) {
 void printScene(const std::string& name, const Scene& scene) {
     std::printf("scene        %s\n", name.c_str());
     std::printf("triangles    %zu\n", scene.triangles.size());
-    std::printf("materials    %zu\n", scene.materials.size());
+    // The materials by model (scene/MaterialModels.h): "materials    3 (2 classic, 1 gltf)".
+    std::string byModel;
+    for (const MaterialModelInfo& model : materialModels()) {
+        const auto n = std::count_if(scene.materials.begin(), scene.materials.end(),
+                                     [&](const Material& m) { return m.model == model.id; });
+        if (n > 0) byModel += (byModel.empty() ? "" : ", ") + std::to_string(n) + " " + std::string(model.name);
+    }
+    std::printf("materials    %zu%s\n", scene.materials.size(), byModel.empty() ? "" : (" (" + byModel + ")").c_str());
     std::printf("lights       %zu\n", scene.lights.size());
     static const char* const kWrapNames[] = {"repeat", "clamp", "mirror"};
     std::printf("textures     %zu%s\n", scene.textures.size(), scene.textures.empty() ? "" :

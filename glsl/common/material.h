@@ -21,12 +21,8 @@
 #error "include common/shading.h before common/material.h"
 #endif
 
-// Material models (the record's `model`; Material::model in the scene).
-#define GPURT_MODEL_CLASSIC 0       // Phong lobes, mirror, smooth glass (materials/classic.h)
-#define GPURT_MODEL_DEBUG_NORMAL 1  // the shading normal as a colour (materials/debug_normal.h)
-#define GPURT_MODEL_GLTF 2          // glTF 2.0 metallic-roughness (materials/gltf.h)
-#define GPURT_MODEL_UNLIT 3         // KHR_materials_unlit: its base colour, whatever lights it
-#define GPURT_MODEL_COUNT 4         // the models this gpurt knows (a packed file's are checked)
+// Material models (the record's `model`; Material::model in the scene): GPURT_MODEL_*.
+#include "material_models.h"
 
 // What the integrators know of a material at one hit.
 struct MaterialRecord {

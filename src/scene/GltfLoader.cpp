@@ -898,7 +898,7 @@ class GltfReader {
             fail(at + ": baseColorFactor, metallicFactor and roughnessFactor must be in [0, 1]");
         Material m;
         m.name = g.name.empty() ? at : g.name;
-        m.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF: Appendix B's BRDF
+        m.model = GPURT_MODEL_GLTF;  // Appendix B's BRDF
         m.emissionIsLight = false;  // it glows; the default light stays (CONTRACT.md, "Lights")
         m.diffuse = colour;
         m.metallic = float(metallic);
@@ -919,7 +919,7 @@ class GltfReader {
         MaterialUv uv;
         const std::string named = at + " ('" + m.name + "')";
         const tinygltf::TextureInfo& baseTexture = g.pbrMetallicRoughness.baseColorTexture;
-        if (baseTexture.index >= 0 && (m.diffuse != glm::vec3(0.0f) || m.model == 2))
+        if (baseTexture.index >= 0 && (m.diffuse != glm::vec3(0.0f) || m.model == GPURT_MODEL_GLTF))
             m.diffuseTexture = slot(baseTexture.index, baseTexture.texCoord, baseTexture.extensions, "baseColorTexture", named, uv, scene);
         readMaps(g, at, named, m, uv, scene);
         // Material extensions gpurt does not read are warned about once per file with the
@@ -966,7 +966,7 @@ class GltfReader {
     // KHR_materials_unlit (glsl/common/material.h GPURT_MODEL_UNLIT): the base colour, its texture
     // and alpha; what else the material holds is a warning.
     uint32_t readUnlit(const tinygltf::Material& g, const std::string& at, Material& m, Scene& scene, int index) {
-        m.model = 3;
+        m.model = GPURT_MODEL_UNLIT;
         const std::string named = at + " ('" + m.name + "')";
         if (m.emits()) warn(named + ": the emission of an unlit material is not used");
         m.emission = glm::vec3(0.0f);

@@ -534,9 +534,9 @@ class SceneReader {
             const double v = numberAtLeast(*given, at / key, 0.0);
             if (v > 1.0) fail(at / key, "must be <= 1, got " + formatNumber(v));
             (std::string(key) == "metallic" ? material.metallic : material.roughness) = static_cast<float>(v);
-            material.model = 2;  // glsl/common/material.h GPURT_MODEL_GLTF
+            material.model = GPURT_MODEL_GLTF;
         }
-        if (material.model == 2) {
+        if (material.model == GPURT_MODEL_GLTF) {
             // glTF's model: "ior" (KHR_materials_ior) and "transmission" a factor in [0, 1]
             // (KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h).
             if (find(value, "reflectivity") || find(value, "specular") || find(value, "shininess"))

@@ -557,7 +557,7 @@ Material sceneMaterial(const tinyobj::material_t& m, const std::filesystem::path
     // The MTL PBR extension (Pr roughness, Pm metallic, their maps' first channel, norm, map_Ke):
     // glTF's metallic-roughness model with Kd the base colour (glsl/common/materials/gltf.h).
     if (mtlReader.givenPbr.count(m.name) && material.ior == 0.0f) {
-        material.model = 2;
+        material.model = GPURT_MODEL_GLTF;
         material.roughness = std::clamp(static_cast<float>(m.roughness), 0.0f, 1.0f);
         material.metallic = std::clamp(static_cast<float>(m.metallic), 0.0f, 1.0f);
         if (!(material.roughness == static_cast<float>(m.roughness)) || !(material.metallic == static_cast<float>(m.metallic)))

@@ -13,6 +13,7 @@
 
 #include "image/EnvironmentImage.h"
 #include "image/TextureImage.h"
+#include "scene/MaterialModels.h"
 
 namespace gpurt {
 
@@ -45,7 +46,7 @@ struct Material {
     // Index into Scene::textures, or -1: the diffuse colour at a hit is diffuse times the
     // texture's linear colour at the hit's texture coordinates (glTF baseColorTexture, MTL map_Kd).
     int diffuseTexture = -1;
-    // The material model (glsl/common/material.h GPURT_MODEL_*): 0, the classic model of the
+    // The material model (scene/MaterialModels.h; GPURT_MODEL_*): 0, the classic model of the
     // fields above (glsl/common/materials/classic.h); 2, glTF's metallic-roughness
     // (glsl/common/materials/gltf.h: diffuse is the base colour, with the fields below).
     int model = 0;
@@ -88,13 +89,13 @@ struct Material {
     bool hasAlpha() const { return alphaMode != 0; }
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
     // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
-    bool transmits() const { return ior > 0.0f && (model != 2 || transmission.x > 0.0f); }
+    bool transmits() const { return ior > 0.0f && (model != GPURT_MODEL_GLTF || transmission.x > 0.0f); }
     // Whether the traversals cull the back faces: single-sided and not transmissive. A dielectric
     // is never culled, as the rays inside a solid meet its back faces.
     bool cullsBackFaces() const { return !doubleSided && !transmits(); }
     bool emits() const { return emission != glm::vec3(0.0f); }
     // Whether shadow rays pass it (glsl/common/alpha.h GPURT_COVER_SHADOWLESS): KHR_materials_unlit.
-    bool castsNoShadow() const { return model == 3; }  // glsl/common/material.h GPURT_MODEL_UNLIT
+    bool castsNoShadow() const { return model == GPURT_MODEL_UNLIT; }
 };
 
 // Wrap modes of a texture's coordinates (the values of glsl/common/texture.h).

@@ -6,6 +6,7 @@ set(GPURT_SCENE_SOURCES
   GltfLoader.cpp
   GltfMeshopt.cpp
   JsonScene.cpp
+  MaterialModels.cpp
   ObjLoader.cpp
   PlyLoader.cpp
   Scene.cpp

@@ -168,7 +168,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
         if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
-        if (m.model == 2 && m.transmits()) {  // GPURT_MODEL_GLTF
+        if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
             hasTransmission_ = true;
             if (m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
         }

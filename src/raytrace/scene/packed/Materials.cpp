@@ -11,6 +11,7 @@
 #include "image/EnvironmentImage.h"
 #include "raytrace/common/RayMath.h"
 #include "raytrace/textures/SceneTextureLayout.h"
+#include "scene/MaterialModels.h"
 
 namespace gpurt::packed {
 
@@ -30,13 +31,11 @@ constexpr size_t kSidedBytes = 4;
 constexpr size_t kGlowBytes = 4;
 // TRNS per material: the transmission map's channel (texture, channel; -1: none).
 constexpr size_t kTransmissionMapBytes = 2 * 4;
-// The last material model a packed file may give (glsl/common/material.h GPURT_MODEL_*).
-constexpr uint32_t kLastMaterialModel = GPURT_MODEL_COUNT - 1;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
     return "material " + std::to_string(material) + ": unknown material model " + std::to_string(model) +
-           " (this gpurt knows 0.." + std::to_string(kLastMaterialModel) + ")";
+           " (this gpurt knows " + materialModelList() + ")";
 }
 
 void readMaterials(const PackedSection& s, Scene& scene) {
@@ -140,7 +139,7 @@ void readModels(const PackedSection& s, Scene& scene) {
                                scene.materials.size(), "materials");
     for (uint64_t m = 0; m < n; ++m) {
         const uint32_t model = in.u32();
-        if (model > kLastMaterialModel) s.fail("section " + s.tag + ": " + unknownModel(size_t(m), model));
+        if (!findMaterialModel(int(std::min<uint32_t>(model, INT32_MAX)))) s.fail("section " + s.tag + ": " + unknownModel(size_t(m), model));
         scene.materials[size_t(m)].model = int(model);
     }
 }
@@ -341,7 +340,7 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             glm::any(glm::greaterThan(mat.transmission, glm::vec3(1.0f))))
             failAt(file, "material " + std::to_string(m) +
                              ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
-        if (mat.model < 0 || uint32_t(mat.model) > kLastMaterialModel) failAt(file, unknownModel(m, mat.model));
+        if (!findMaterialModel(mat.model)) failAt(file, unknownModel(m, mat.model));
     }
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
