@@ -23,6 +23,12 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// The shell command that runs xdotool with `arguments` on `display` (without the sanitizer build's
+// preloads, which are gpurt's).
+std::string xdotoolCommand(const std::string& display, const std::string& arguments) {
+    return "env -u LD_PRELOAD -u ASAN_OPTIONS -u LSAN_OPTIONS DISPLAY=" + display + " xdotool " + arguments;
+}
+
 // One X server for the test suite.
 class XServer {
   public:
@@ -69,9 +75,7 @@ class XServer {
         // just reported failed some runs of stop 42 and 43; xdotool opened it right after).
         while (failure_.empty() && std::chrono::steady_clock::now() < end) {
             ++probes_;
-            const std::string command = "env -u LD_PRELOAD -u ASAN_OPTIONS -u LSAN_OPTIONS DISPLAY=" + display_ +
-                                        " xdotool getdisplaygeometry >/dev/null 2>&1";
-            if (std::system(command.c_str()) == 0) break;
+            if (std::system((xdotoolCommand(display_, "getdisplaygeometry") + " >/dev/null 2>&1").c_str()) == 0) break;
             std::this_thread::sleep_for(20ms);
         }
     }
@@ -83,8 +87,7 @@ class XServer {
 
 // Runs `command` (an xdotool call) on the test's display; returns its stdout.
 std::string xdotool(const std::string& arguments) {
-    const std::string command = "env -u LD_PRELOAD -u ASAN_OPTIONS -u LSAN_OPTIONS DISPLAY=" +
-                                XServer::get().display() + " xdotool " + arguments + " 2>&1";
+    const std::string command = xdotoolCommand(XServer::get().display(), arguments) + " 2>&1";
     std::string out;
     if (FILE* pipe = popen(command.c_str(), "r")) {
         char buffer[256];

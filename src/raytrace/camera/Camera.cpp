@@ -10,13 +10,10 @@
 
 #include "image/InputError.h"
 #include "raytrace/common/RayMath.h"
+#include "raytrace/common/Vec3.h"
 
 namespace gpurt {
 namespace {
-
-bool isFinite(glm::vec3 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string format(glm::vec3 v) {
     std::ostringstream s;

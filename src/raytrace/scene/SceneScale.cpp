@@ -32,10 +32,6 @@ int renderScaleExponent(const Scene& scene) {
     return exponent - 1;             // the largest coordinate becomes m 2 in [1, 2)
 }
 
-glm::vec3 rescalePoint(glm::vec3 p, int exponent) {
-    return {std::ldexp(p.x, -exponent), std::ldexp(p.y, -exponent), std::ldexp(p.z, -exponent)};
-}
-
 void rescaleCamera(CameraSpec& camera, int exponent) {
     camera.eye = rescalePoint(camera.eye, exponent);
     camera.target = rescalePoint(camera.target, exponent);

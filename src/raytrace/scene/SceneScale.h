@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raytrace/common/Vec3.h"
 #include "scene/Scene.h"
 
 namespace gpurt {
@@ -21,8 +22,7 @@ namespace gpurt {
 // else the power of two that brings it into [1, 2). 0 for a scene without triangles.
 int renderScaleExponent(const Scene& scene);
 
-// p * 2^-exponent, component by component (exact unless it over- or underflows).
-glm::vec3 rescalePoint(glm::vec3 p, int exponent);
+// rescalePoint (p * 2^-exponent, exact): raytrace/common/Vec3.h.
 
 // A camera's positions and lengths times 2^-exponent (eye, target, lens radius, focus distance,
 // and its metre, so that an f-stop gives the same lens).

@@ -17,6 +17,7 @@
 #include "base/LargeArray.h"
 #include "base/Parallel.h"
 #include "raytrace/accel/SceneBox.h"
+#include "raytrace/common/Vec3.h"
 
 namespace gpurt {
 
@@ -301,9 +302,7 @@ void Bvh::turnUp(UpAxis axis) {
 
 void Bvh::rescale(int exponent) {
     if (exponent == 0) return;
-    mapBoxes(*this, [exponent](glm::vec3 v) {
-        return glm::vec3(std::ldexp(v.x, -exponent), std::ldexp(v.y, -exponent), std::ldexp(v.z, -exponent));
-    });
+    mapBoxes(*this, [exponent](glm::vec3 v) { return rescalePoint(v, exponent); });
 }
 
 double Bvh::sahCost() const {

@@ -7,6 +7,7 @@
 
 #include "raytrace/accel/grid/GridCpu.h"
 #include "raytrace/accel/grid/GridTexels.h"
+#include "raytrace/common/Vec3.h"
 
 namespace gpurt {
 
@@ -16,8 +17,6 @@ constexpr char kGrid[] = "GRID";
 constexpr char kCellStart[] = "CELL";
 constexpr char kCellList[] = "LIST";
 constexpr size_t kGridBytes = 3 * 4 + 9 * 4;
-
-bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string resolutionText(glm::ivec3 r) {
     return std::to_string(r.x) + "x" + std::to_string(r.y) + "x" + std::to_string(r.z);
@@ -172,12 +171,9 @@ class GridStructure final : public AccelStructure {
     }
     std::shared_ptr<const AccelStructure> rescaled(int exponent) const override {
         UniformGrid g = grid_;
-        auto scale = [exponent](glm::vec3 p) {
-            return glm::vec3(std::ldexp(p.x, -exponent), std::ldexp(p.y, -exponent), std::ldexp(p.z, -exponent));
-        };
-        g.min = scale(g.min);
-        g.max = scale(g.max);
-        g.cellSize = scale(g.cellSize);
+        g.min = rescalePoint(g.min, exponent);
+        g.max = rescalePoint(g.max, exponent);
+        g.cellSize = rescalePoint(g.cellSize, exponent);
         return std::make_shared<GridStructure>(std::move(g));
     }
     std::unique_ptr<CpuAccelerator> cpu(const Scene& scene) const override {

@@ -7,8 +7,6 @@
 
 namespace gpurt::packed {
 
-bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 bool nonNegative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 
 std::string formatFloat(float value) {

@@ -13,6 +13,7 @@
 
 #include "image/InputError.h"
 #include "raytrace/common/PackedBytes.h"
+#include "raytrace/common/Vec3.h"
 #include "raytrace/scene/SceneLoader.h"
 
 namespace gpurt::packed {
@@ -47,7 +48,6 @@ void checkCameras(const FileLoc& file, const Scene& scene);
 void checkRenderSettings(const FileLoc& file, const LoadedScene& loaded);
 
 // Shared by the groups.
-bool isFinite(glm::vec3 v);
 bool nonNegative(const glm::vec3& v);
 std::string formatFloat(float value);  // "%g"
 // The leading count of a section of one record per triangle, material or light (read after
