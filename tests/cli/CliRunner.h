@@ -134,7 +134,9 @@ class GpurtTest : public ::testing::Test {
   protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        const std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+        // A parameterised test's names hold '/': one folder, not a folder in a folder left behind.
+        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+        std::replace(name.begin(), name.end(), '/', '-');
         base_ = fs::temp_directory_path() / ("gpurt-" + std::to_string(::getpid()) + "-" + name);
         fs::remove_all(base_);
         dir = base_ / "files";
