@@ -38,6 +38,11 @@ struct MaterialRecord {
     float metallic;     // glTF: metallic and roughness, textured at the hit
     float roughness;
     float occlusion;    // glTF: the ambient terms' factor (occlusion map; 1 without)
+    vec3 specularColor;   // glTF, KHR_materials_specular: the F0 colour (1 without), textured
+    float specularWeight; // and the specular layer's weight (1 without), textured
+    float coat;           // glTF, KHR_materials_clearcoat: the coat's weight (0: none), textured
+    float coatRoughness;  // its roughness, textured
+    vec3 coatNormal;      // its normal facing the ray (the surface's: CpuScene::surfaceAt, fetchMaterialRecord)
 };
 
 #include "raytree.h"
@@ -99,12 +104,15 @@ GPURT_FN vec3 materialAlbedo(MaterialRecord m) {
     return clamp(m.kd + m.ks + m.reflectivity + glass, vec3(0.0f), vec3(1.0f));
 }
 
-// The radiance the surface sends along the ray by itself at shading normal ns (emission).
-GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns) {
+// The radiance the surface sends along the ray d by itself at shading normal ns (emission).
+GPURT_FN vec3 materialEmitted(MaterialRecord m, vec3 ns, vec3 d) {
 #ifdef GPURT_WITH_DEBUG_NORMAL
     if (m.model == GPURT_MODEL_DEBUG_NORMAL) return debugNormalEmitted(ns);
 #endif
     if (m.model == GPURT_MODEL_UNLIT) return m.kd;
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (m.model == GPURT_MODEL_GLTF) return gltfEmitted(m, d);
+#endif
     return m.emission;
 }
 

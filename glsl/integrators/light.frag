@@ -55,7 +55,7 @@ void main() {
     vec4 view = readStream(surfaceView);
     vec3 n = shading.xyz;
     vec3 d = view.xyz;
-    MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
+    MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w), view.xyz);
 #ifdef SCENE_TRANSMISSION  // a transmissive glTF material: its index as seen from the ray's side
     vec3 sv0, se1, se2;
     int surfaceMaterial;

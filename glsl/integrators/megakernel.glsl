@@ -99,7 +99,7 @@ SurfaceHit surfaceAt(vec4 h, vec3 o, vec3 d) {
     vec2 t = fetchTexcoord(id, h.y, h.z);
     SurfaceHit s;
     s.front = frontFace(e1, e2, d);
-    s.m = materialFacing(fetchMaterialRecord(material, id, h.yz), s.front);
+    s.m = materialFacing(fetchMaterialRecord(material, id, h.yz, d), s.front);
     s.p = o + h.x * d;
     s.n = facingNormal(e1, e2, d);
     s.ns = fetchMappedNormal(material, id, e1, e2, d, s.n, fetchShadingNormal(id, h.y, h.z, s.n), t, h.yz);

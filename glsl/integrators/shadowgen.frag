@@ -48,7 +48,8 @@ void main() {
     rayDir = vec4(0.0f, 0.0f, 0.0f, GPURT_NO_RAY);
 #ifdef PATH
     if (s.w >= 0.0f &&
-        !materialLit(fetchMaterialRecord(int(nm.w), int(s.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w))))
+        !materialLit(fetchMaterialRecord(int(nm.w), int(s.w), vec2(readStream(surfaceView).w, readStream(surfaceShading).w),
+                                         readStream(surfaceView).xyz)))
         s.w = -1.0f;  // nothing to light
 #endif
 #ifdef ENVIRONMENT

@@ -103,7 +103,7 @@ void main() {
     int material;
     fetchTriangle(int(h.w), v0, e1, e2, material);
     vec2 t = fetchTexcoord(int(h.w), h.y, h.z);
-    MaterialRecord m = fetchMaterialRecord(material, int(h.w), h.yz);
+    MaterialRecord m = fetchMaterialRecord(material, int(h.w), h.yz, d);
     surfacePoint = vec4(o + h.x * d, h.w);
     vec3 ng = facingNormal(e1, e2, d);
     vec3 ns = fetchMappedNormal(material, int(h.w), e1, e2, d, ng, fetchShadingNormal(int(h.w), h.y, h.z, ng), t, h.yz);
@@ -120,7 +120,7 @@ void main() {
     pathArrive(st, s, h.x, depth);
     color = vec4(st.color, 0.0f);
 #else
-    color = vec4(c.xyz + w.xyz * materialEmitted(m, ns), 0.0f);
+    color = vec4(c.xyz + w.xyz * materialEmitted(m, ns, d), 0.0f);
 #ifdef SCENE_ENVIRONMENT
     localColor = vec4(materialEnvironmentAmbient(m, environmentAmbient(ns)), 0.0f);
 #else

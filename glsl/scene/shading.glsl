@@ -102,12 +102,65 @@ vec3 textureLinear(int tex, vec2 t) {
     return vec3(textureChannel(4 * tex, t), textureChannel(4 * tex + 1, t), textureChannel(4 * tex + 2, t));
 }
 
+// The shading normal ns bent by normal map `map` (-1: none) of scale `scale` (fetchMappedNormal;
+// a clearcoat's normal map: fetchMaterialRecord).
+vec3 fetchNormalMapped(int map, float scale, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
+#ifdef SCENE_NORMAL_MAPS
+    if (map < 0) return ns;
+    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangleTexcoords, at, 0);
+    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+#ifdef SCENE_VERTEX_TANGENTS
+    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
+                                      texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
+    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), tangent, e1, e2, a.zw - a.xy, b.xy - a.xy,
+                               textureLinear(map, t), scale);
+#else
+    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, a.zw - a.xy, b.xy - a.xy, textureLinear(map, t), scale);
+#endif
+#else
+    return ns;
+#endif
+}
+
+// The shading normal ns of triangle `id` (edges e1, e2, seen along d, geometric normal ng) with
+// material m's normal map applied at image coordinates t (common/shading.h normalMapped): in the
+// frame of the triangle's vertex tangents at barycentrics uv where the scene has them
+// (SCENE_VERTEX_TANGENTS, normalMappedTangent, which falls back to the generated frame where they
+// are zero or degenerate), else in the frame generated from its texture coordinates.
+vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
+#ifdef SCENE_NORMAL_MAPS
+    vec4 f = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 5, 0), 0);
+    vec4 g = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 6, 0), 0);
+    return fetchNormalMapped(int(g.z), f.z, id, e1, e2, d, ng, ns, t, uv);
+#else
+    return ns;
+#endif
+}
+
+// The radiance an emitter's material m emits (the light a shadow ray towards it carries).
+vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
+
+// The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).
+vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
+#ifdef SCENE_VERTEX_NORMALS
+    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec3 n0 = texelFetch(vertexNormals, at, 0).xyz;
+    vec3 n1 = texelFetch(vertexNormals, at + ivec2(1, 0), 0).xyz;
+    vec3 n2 = texelFetch(vertexNormals, at + ivec2(2, 0), 0).xyz;
+    return shadingNormal(n0, n1, n2, u, v, ng);
+#else
+    return ng;
+#endif
+}
+
 // The material record (common/material.h) of material m at image coordinates t: every field of
 // its texels, the diffuse colour textured at t and times the vertex colour, t and the colour those
 // of triangle `id` at the hit's barycentrics uv (surface.frag writes uv; the later passes read it
-// from surfaceView.w and surfaceShading.w, id from surfacePoint.w). What a kernel does not use the
-// compiler drops.
-MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
+// from surfaceView.w and surfaceShading.w, id from surfacePoint.w), seen along d (a clearcoat's
+// normal faces the ray: CpuScene::surfaceAt). What a kernel does not use the compiler drops.
+MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     vec2 t = fetchTexcoord(id, uv.x, uv.y);
     ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);
     vec4 a = texelFetch(materials, at, 0);
@@ -129,6 +182,11 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
     r.metallic = 0.0f;
     r.roughness = 1.0f;
     r.occlusion = 1.0f;
+    r.specularColor = vec3(1.0f);
+    r.specularWeight = 1.0f;
+    r.coat = 0.0f;
+    r.coatRoughness = 0.0f;
+    r.coatNormal = vec3(0.0f, 0.0f, 1.0f);
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);
     vec4 g = texelFetch(materials, at + ivec2(6, 0), 0);
@@ -142,51 +200,26 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv) {
 #ifdef SCENE_TRANSMISSION_MAPS  // a transmissive glTF material with a transmissionTexture: its R scales the factor
     r.tf = r.tf * textureChannel(int(texelFetch(materials, at + ivec2(8, 0), 0).x), t);
 #endif
+#ifdef SCENE_SPECULAR_LAYER  // KHR_materials_specular
+    vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
+    r.specularWeight = sp.w * textureChannel(int(sp.y), t);
+    r.specularColor = texturedDiffuse(int(sp.z), texelFetch(materials, at + ivec2(9, 0), 0).xyz, t);
+#endif
+#ifdef SCENE_CLEARCOAT  // KHR_materials_clearcoat: the coat and its normal, the interpolated one or its own map's
+    vec4 cc = texelFetch(materials, at + ivec2(10, 0), 0);
+    r.coat = texelFetch(materials, at + ivec2(9, 0), 0).w * textureChannel(int(cc.y), t);
+    r.coatRoughness = cc.x * textureChannel(int(cc.z), t);
+    if (r.coat > 0.0f) {
+        vec3 v0, e1, e2;
+        int material;
+        fetchTriangle(id, v0, e1, e2, material);
+        vec3 ng = facingNormal(e1, e2, d);
+        r.coatNormal = fetchNormalMapped(int(cc.w), texelFetch(materials, at + ivec2(11, 0), 0).x, id, e1, e2, d, ng,
+                                         fetchShadingNormal(id, uv.x, uv.y, ng), t, uv);
+    }
+#endif
 #endif
     return r;
-}
-
-// The shading normal ns of triangle `id` (edges e1, e2, seen along d, geometric normal ng) with
-// material m's normal map applied at image coordinates t (common/shading.h normalMapped): in the
-// frame of the triangle's vertex tangents at barycentrics uv where the scene has them
-// (SCENE_VERTEX_TANGENTS, normalMappedTangent, which falls back to the generated frame where they
-// are zero or degenerate), else in the frame generated from its texture coordinates.
-vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
-#ifdef SCENE_NORMAL_MAPS
-    vec4 f = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 5, 0), 0);
-    vec4 g = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 6, 0), 0);
-    if (g.z < 0.0f) return ns;
-    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec4 a = texelFetch(triangleTexcoords, at, 0);
-    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
-#ifdef SCENE_VERTEX_TANGENTS
-    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec4 tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
-                                      texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
-    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), tangent, e1, e2, a.zw - a.xy, b.xy - a.xy,
-                               textureLinear(int(g.z), t), f.z);
-#else
-    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, a.zw - a.xy, b.xy - a.xy, textureLinear(int(g.z), t), f.z);
-#endif
-#else
-    return ns;
-#endif
-}
-
-// The radiance an emitter's material m emits (the light a shadow ray towards it carries).
-vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
-
-// The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).
-vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
-#ifdef SCENE_VERTEX_NORMALS
-    ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec3 n0 = texelFetch(vertexNormals, at, 0).xyz;
-    vec3 n1 = texelFetch(vertexNormals, at + ivec2(1, 0), 0).xyz;
-    vec3 n2 = texelFetch(vertexNormals, at + ivec2(2, 0), 0).xyz;
-    return shadingNormal(n0, n1, n2, u, v, ng);
-#else
-    return ng;
-#endif
 }
 
 // The pixel of the path in this element (path integrator): the element itself in round 0 (the

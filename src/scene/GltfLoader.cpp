@@ -68,7 +68,8 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 const std::set<std::string> kExtensionsRead = {
     "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
-    "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression"};
+    "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
+    "KHR_materials_clearcoat",    "KHR_materials_specular"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -970,7 +971,8 @@ class GltfReader {
         const std::string named = at + " ('" + m.name + "')";
         if (m.emits()) warn(named + ": the emission of an unlit material is not used");
         m.emission = glm::vec3(0.0f);
-        for (const char* other : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"})
+        for (const char* other : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
+                                  "KHR_materials_clearcoat", "KHR_materials_specular"})
             if (g.extensions.count(other) > 0) warn(named + ": " + other + " of an unlit material is not used");
         if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
             g.occlusionTexture.index >= 0 || g.emissiveTexture.index >= 0)
@@ -1026,29 +1028,87 @@ class GltfReader {
             if (!inUnit(occlusion.strength)) fail(at + ": occlusionTexture strength must be in [0, 1]");
         }
         if (m.transmits()) readTransmissionTexture(g, named, m, uv, scene);
+        readSpecular(g, at, named, m, uv, scene);
+        readClearcoat(g, at, named, m, uv, scene);
     }
 
-    // KHR_materials_transmission's transmissionTexture (a textureInfo inside the extension, which
-    // tinygltf leaves as JSON): its R channel times the factor, with its texCoord and
-    // KHR_texture_transform as every slot's. An index that is no whole number >= 0, or a texCoord
-    // that is no whole number, is refused naming the material.
+    // KHR_materials_specular (glsl/common/materials/gltf.h gltfDielectricLayer): the specular
+    // layer's weight (specularFactor times specularTexture's A) and F0 colour (specularColorFactor
+    // times specularColorTexture, sRGB).
+    void readSpecular(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                      MaterialUv& uv, Scene& scene) {
+        const auto found = g.extensions.find("KHR_materials_specular");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        const double factor = number(ext, "specularFactor", 1.0);
+        if (!(factor >= 0.0 && factor <= 1.0)) fail(at + ": specularFactor must be in [0, 1]");
+        m.specularFactor = float(factor);
+        if (ext.IsObject() && ext.Has("specularColorFactor")) {
+            const tinygltf::Value& c = ext.Get("specularColorFactor");
+            if (!c.IsArray() || c.ArrayLen() != 3) fail(at + ": specularColorFactor is not 3 numbers");
+            for (int k = 0; k < 3; ++k) {
+                const tinygltf::Value& v = c.Get(k);
+                const double x = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+                if (!(x >= 0.0 && x <= 1e3)) fail(at + ": specularColorFactor must be 3 numbers in [0, 1000]");
+                m.specularColor[k] = float(x);
+            }
+        }
+        const int weight = extensionTexture(ext, "specularTexture", named, uv, scene);
+        if (weight >= 0) m.specularTexture = {weight, 3};  // A
+        m.specularColorTexture = extensionTexture(ext, "specularColorTexture", named, uv, scene);
+    }
+
+    // KHR_materials_clearcoat (glsl/common/materials/gltf.h gltfCoatWeight): the coat's weight
+    // (clearcoatFactor times clearcoatTexture's R), roughness (clearcoatRoughnessFactor times
+    // clearcoatRoughnessTexture's G) and normal map; a factor of 0 is no coat, its maps unread.
+    void readClearcoat(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                       MaterialUv& uv, Scene& scene) {
+        const auto found = g.extensions.find("KHR_materials_clearcoat");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        const double factor = number(ext, "clearcoatFactor", 0.0), roughness = number(ext, "clearcoatRoughnessFactor", 0.0);
+        if (!(factor >= 0.0 && factor <= 1.0) || !(roughness >= 0.0 && roughness <= 1.0))
+            fail(at + ": clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]");
+        m.clearcoat = float(factor);
+        m.clearcoatRoughness = float(roughness);
+        if (!m.hasClearcoat()) return;
+        const int weight = extensionTexture(ext, "clearcoatTexture", named, uv, scene);
+        if (weight >= 0) m.clearcoatTexture = {weight, 0};  // R
+        const int rough = extensionTexture(ext, "clearcoatRoughnessTexture", named, uv, scene);
+        if (rough >= 0) m.clearcoatRoughnessTexture = {rough, 1};  // G
+        double scale = 1.0;
+        m.clearcoatNormalTexture = extensionTexture(ext, "clearcoatNormalTexture", named, uv, scene, &scale);
+        m.clearcoatNormalScale = float(scale);
+        if (!std::isfinite(m.clearcoatNormalScale)) fail(at + ": clearcoatNormalTexture scale must be finite");
+    }
+
+    // KHR_materials_transmission's transmissionTexture: its R channel times the factor.
     void readTransmissionTexture(const tinygltf::Material& g, const std::string& named, Material& m, MaterialUv& uv,
                                  Scene& scene) {
-        const tinygltf::Value& ext = g.extensions.at("KHR_materials_transmission");
-        if (!ext.IsObject() || !ext.Has("transmissionTexture")) return;
-        const tinygltf::Value& info = ext.Get("transmissionTexture");
+        const int tex = extensionTexture(g.extensions.at("KHR_materials_transmission"), "transmissionTexture", named, uv, scene);
+        if (tex >= 0) m.transmissionTexture = {tex, 0};  // R
+    }
+
+    // The texture of a textureInfo `key` inside a material extension (tinygltf leaves it as JSON),
+    // with its texCoord and KHR_texture_transform as every slot's; -1 when the extension has none.
+    // `scale`: a normalTextureInfo's scale (1 when absent). An index that is no whole number >= 0,
+    // or a texCoord that is no whole number, is refused naming the material.
+    int extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& named, MaterialUv& uv,
+                         Scene& scene, double* scale = nullptr) {
+        if (!ext.IsObject() || !ext.Has(key)) return -1;
+        const tinygltf::Value& info = ext.Get(key);
         int index = -1, texCoord = 0;
         if (!info.IsObject() || !info.Has("index") || !wholeNumber(info.Get("index"), index) || index < 0)
-            fail(named + ": transmissionTexture has no texture index");
+            fail(named + ": " + key + " has no texture index");
         if (info.Has("texCoord") && !wholeNumber(info.Get("texCoord"), texCoord))
-            fail(named + ": transmissionTexture texCoord is not a whole number");
+            fail(named + ": " + key + " texCoord is not a whole number");
+        if (scale) *scale = number(info, "scale", 1.0);
         tinygltf::ExtensionMap extensions;
         if (info.Has("extensions") && info.Get("extensions").IsObject()) {
             const tinygltf::Value& e = info.Get("extensions");
-            for (const std::string& key : e.Keys()) extensions[key] = e.Get(key);
+            for (const std::string& k : e.Keys()) extensions[k] = e.Get(k);
         }
-        const int tex = slot(index, texCoord, extensions, "transmissionTexture", named, uv, scene);
-        if (tex >= 0) m.transmissionTexture = {tex, 0};  // R
+        return slot(index, texCoord, extensions, key, named, uv, scene);
     }
 
     // alphaMode MASK / BLEND: alpha is baseColorFactor[3] times baseColorTexture's A (the base

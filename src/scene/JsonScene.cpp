@@ -508,7 +508,8 @@ class SceneReader {
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
-                                  "metallic", "roughness", "doubleSided"});
+                                  "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
+                                  "specular_color", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -527,13 +528,23 @@ class SceneReader {
             if (!(eta > 0.0)) fail(at / "ior", "must be > 0, got " + formatNumber(eta));
             material.ior = static_cast<float>(eta);
         }
-        // "metallic" or "roughness": glTF's metallic-roughness model, "diffuse" its base colour.
-        for (const char* key : {"metallic", "roughness"}) {
+        // "metallic", "roughness" or a layer of glTF's extensions: glTF's metallic-roughness
+        // model, "diffuse" its base colour; "clearcoat" and "clearcoat_roughness"
+        // (KHR_materials_clearcoat), "specular_factor" and "specular_color"
+        // (KHR_materials_specular), each a factor in [0, 1].
+        const std::pair<const char*, float*> factors[] = {
+            {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
+            {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor}};
+        for (const auto& [key, field] : factors) {
             const json* given = find(value, key);
             if (!given) continue;
             const double v = numberAtLeast(*given, at / key, 0.0);
             if (v > 1.0) fail(at / key, "must be <= 1, got " + formatNumber(v));
-            (std::string(key) == "metallic" ? material.metallic : material.roughness) = static_cast<float>(v);
+            *field = static_cast<float>(v);
+            material.model = GPURT_MODEL_GLTF;
+        }
+        if (const json* tint = find(value, "specular_color")) {
+            material.specularColor = color(*tint, at / "specular_color");
             material.model = GPURT_MODEL_GLTF;
         }
         if (material.model == GPURT_MODEL_GLTF) {

@@ -86,7 +86,30 @@ struct Material {
     // light off (CONTRACT.md, "Lights"); glTF's emissive materials only glow (false).
     bool emissionIsLight = true;
 
+    // glTF model, KHR_materials_specular: the dielectric's F0 colour is min(F0(ior) x
+    // specularColor, 1) and its specular layer weighs specularFactor (its F90); specularTexture's
+    // A times the factor, specularColorTexture's colour (sRGB) times the colour.
+    float specularFactor = 1.0f;
+    glm::vec3 specularColor{1.0f};
+    TextureChannel specularTexture;
+    int specularColorTexture = -1;
+    // glTF model, KHR_materials_clearcoat: a smooth or GGX dielectric coat (ior 1.5) of weight
+    // clearcoat (times clearcoatTexture's R) and roughness clearcoatRoughness (times
+    // clearcoatRoughnessTexture's G) over the rest, with its own normal map (none: the
+    // interpolated normal, not the base's map).
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f;
+    TextureChannel clearcoatTexture, clearcoatRoughnessTexture;
+    int clearcoatNormalTexture = -1;
+    float clearcoatNormalScale = 1.0f;
+
     bool hasAlpha() const { return alphaMode != 0; }
+    // Whether it uses KHR_materials_specular's values (the kernels compile them in then).
+    bool hasSpecularLayer() const {
+        return specularFactor != 1.0f || specularColor != glm::vec3(1.0f) || specularTexture.given() ||
+               specularColorTexture >= 0;
+    }
+    bool hasClearcoat() const { return clearcoat > 0.0f; }
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
     // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
     bool transmits() const { return ior > 0.0f && (model != GPURT_MODEL_GLTF || transmission.x > 0.0f); }

@@ -26,6 +26,11 @@ MaterialRecord record(const GltfParams& p) {
     m.roughness = float(p.roughness);
     m.occlusion = 1.0f;
     m.emitterLight = true;
+    m.specularColor = glm::vec3(p.specularColor);  // KHR_materials_specular
+    m.specularWeight = float(p.specularFactor);
+    m.coat = float(p.clearcoat);  // KHR_materials_clearcoat, its normal the tests' n
+    m.coatRoughness = float(p.clearcoatRoughness);
+    m.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);
     if (p.transmission > 0.0 || p.ior != 1.5) {  // the loader's KHR_materials_ior / _transmission
         m.ior = float(p.ior);
         m.tf = glm::vec3(float(p.transmission));
@@ -163,12 +168,11 @@ TEST(GltfBrdf, SampleFactorIsEvalCosOverPdf) {
 // The pdf over a grid of cells of equal solid angle (cos theta, phi): its integral is the share
 // of samples that are kept, and the histogram of 400000 samples follows it (chi-square with
 // cells of expected count 5 or more; the 0.001 critical value of the statistic).
-TEST(GltfBrdf, SamplesFollowThePdf) {
+void expectSamplesFollowThePdf(const std::vector<GltfParams>& cases, uint32_t seed) {
     const int cosCells = 24, phiCells = 48, samples = 400000;
-    std::mt19937 rng(5);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (const GltfParams& p : {GltfParams{glm::dvec3(0.8, 0.6, 0.2), 1.0, 0.3}, GltfParams{glm::dvec3(0.5), 0.0, 0.6},
-                                GltfParams{glm::dvec3(0.9), 0.3, 0.35}}) {
+    for (const GltfParams& p : cases) {
         SCOPED_TRACE("metallic " + std::to_string(p.metallic) + " roughness " + std::to_string(p.roughness));
         const MaterialRecord m = record(p);
         const glm::vec3 n(0.0f, 0.0f, 1.0f), v = glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f));
@@ -209,6 +213,110 @@ TEST(GltfBrdf, SamplesFollowThePdf) {
         ASSERT_GT(chi.cells, 100);
         EXPECT_LT(chi.statistic, chi.critical) << chi.cells << " cells";
     }
+}
+
+TEST(GltfBrdf, SamplesFollowThePdf) {
+    expectSamplesFollowThePdf({GltfParams{glm::dvec3(0.8, 0.6, 0.2), 1.0, 0.3}, GltfParams{glm::dvec3(0.5), 0.0, 0.6},
+                               GltfParams{glm::dvec3(0.9), 0.3, 0.35}},
+                              5);
+}
+
+// Random layers of KHR_materials_specular (factor, colour, beyond 1 too) and KHR_materials_clearcoat
+// (factor, roughness).
+GltfParams randomLayers(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    GltfParams p = randomParams(rng);
+    p.specularFactor = u(rng);
+    p.specularColor = glm::dvec3(1.5 * u(rng), 1.5 * u(rng), 1.5 * u(rng));
+    p.clearcoat = u(rng);
+    p.clearcoatRoughness = 0.1 + 0.9 * u(rng);
+    return p;
+}
+
+// The layers are the extensions' formulas (GltfReference.h, written from the specifications):
+// fresnel_mix's specular layer and the base under it, fresnel_coat's mix at the coat normal's n.v.
+TEST(GltfBrdf, LayersAreTheExtensionsFormulas) {
+    std::mt19937 rng(29);
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    for (int k = 0; k < 2000; ++k) {
+        const GltfParams p = randomLayers(rng);
+        const glm::dvec3 v = hemisphere(rng), l = hemisphere(rng);
+        const glm::vec3 f = raymath::gltfBrdf(record(p), n, glm::vec3(v), glm::vec3(l));
+        const glm::dvec3 expected = gltfReferenceBrdf(p, glm::dvec3(n), v, l);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], expected[c], 1e-4 + 1e-4 * expected[c]) << k;
+    }
+    // Head-on, a smooth coat over a base without a specular layer reflects 0.04 x clearcoat.
+    GltfParams coat;
+    coat.base = glm::dvec3(0.0);
+    coat.specularFactor = 0.0;
+    coat.clearcoat = 0.5;
+    EXPECT_FLOAT_EQ(raymath::gltfCoatWeight(record(coat), glm::vec3(0.0f, 0.0f, 1.0f)), 0.02f);
+}
+
+// With layers the sampler stays consistent: a sampled direction's factor is eval cos / (pi pdf)
+// (a smooth coat's mirror: its weight over its probability), the samples follow the pdf, and the
+// mean factor is the coated albedo (GltfReference.h gltfReferenceCoatedAlbedo).
+TEST(GltfBrdf, LayeredSamplingIsConsistent) {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    int taken = 0, deltas = 0;
+    for (int k = 0; k < 5000; ++k) {
+        GltfParams p = randomLayers(rng);
+        if (k % 3 == 0) p.clearcoatRoughness = 0.0;  // a smooth coat: a delta lobe
+        const MaterialRecord m = record(p);
+        const glm::vec3 v(hemisphere(rng, 0.1));
+        glm::vec3 dir, factor;
+        float pdf, side;
+        if (!raymath::materialSample(m, -v, n, n, true, glm::vec2(float(u(rng)), float(u(rng))), float(u(rng)), dir, factor, pdf, side))
+            continue;
+        ++taken;
+        if (pdf == 0.0f) {  // the coat's mirror
+            ++deltas;
+            EXPECT_EQ(p.clearcoatRoughness, 0.0);
+            EXPECT_NEAR(dir.z, v.z, 1e-5f);
+            continue;
+        }
+        EXPECT_NEAR(pdf, raymath::materialPdf(m, n, -v, dir), 1e-3f * pdf);
+        const glm::vec3 expected = raymath::materialEval(m, n, -v, dir) * float(glm::dot(n, dir) / (gltfref::kPi * pdf));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(factor[c], expected[c], 1e-3f * (1.0f + expected[c]));
+    }
+    EXPECT_GT(taken, 4000);
+    EXPECT_GT(deltas, 100);
+
+    GltfParams coated{glm::dvec3(0.8, 0.6, 0.2), 0.0, 0.5};
+    coated.clearcoat = 0.8;
+    coated.clearcoatRoughness = 0.25;
+    GltfParams tinted{glm::dvec3(0.5), 0.2, 0.4};
+    tinted.specularFactor = 0.6;
+    tinted.specularColor = glm::dvec3(1.2, 0.5, 0.1);
+    tinted.clearcoat = 0.4;
+    tinted.clearcoatRoughness = 0.6;
+    expectSamplesFollowThePdf({coated, tinted}, 37);
+
+    GltfParams smoothCoat{glm::dvec3(0.9, 0.3, 0.3), 0.0, 0.7};
+    smoothCoat.clearcoat = 1.0;
+    for (const GltfParams& p : {coated, tinted, smoothCoat})
+        for (double mu : {0.2, 0.7, 1.0}) {
+            const glm::dvec3 e = gltfReferenceCoatedAlbedo(p, mu, 300);
+            const MaterialRecord m = record(p);
+            const glm::vec3 v(float(std::sqrt(1.0 - mu * mu)), 0.0f, float(mu));
+            const int samples = 100000;
+            glm::dvec3 sum(0.0), sum2(0.0);
+            for (int s = 0; s < samples; ++s) {
+                glm::vec3 dir, factor;
+                float pdf, side;
+                if (!raymath::materialSample(m, -v, n, n, true, glm::vec2(float(u(rng)), float(u(rng))), float(u(rng)), dir,
+                                             factor, pdf, side))
+                    continue;
+                sum += glm::dvec3(factor);
+                sum2 += glm::dvec3(factor) * glm::dvec3(factor);
+            }
+            for (int c = 0; c < 3; ++c) {
+                const double mean = sum[c] / samples, var = std::max(0.0, sum2[c] / samples - mean * mean);
+                EXPECT_NEAR(mean, e[c], 5.0 * std::sqrt(var / samples) + 2e-3) << "mu " << mu << " channel " << c;
+            }
+        }
 }
 
 // A transmissive material (KHR_materials_transmission, KHR_materials_ior), seen from outside
@@ -333,7 +441,7 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
                             const double z = -1.0 + 2.0 * (i + (a + 0.5) / 12.0) / cosCells;
                             const double phi = 2.0 * gltfref::kPi * (j + (b + 0.5) / 12.0) / phiCells, r = std::sqrt(1.0 - z * z);
                             const glm::vec3 l(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
-                            pdfSum += raymath::gltfPdf(m, pSpecular, n, v, l);
+                            pdfSum += raymath::gltfPdf(m, 0.0f, pSpecular, n, v, l);
                         }
                     const double mass = pdfSum / 144.0 * cellArea;
                     expected[size_t(i * phiCells + j)] = mass * samples;

@@ -20,6 +20,11 @@ struct GltfParams {
     // KHR_materials_transmission's factor and KHR_materials_ior's index, relative across the
     // boundary in the view's direction (below 1: the view is inside the solid).
     double transmission = 0.0, ior = 1.5;
+    // KHR_materials_specular: the specular layer's weight and F0 colour.
+    double specularFactor = 1.0;
+    glm::dvec3 specularColor{1.0};
+    // KHR_materials_clearcoat: the coat's weight and roughness (its normal is n).
+    double clearcoat = 0.0, clearcoatRoughness = 0.0;
 };
 
 namespace gltfref {
@@ -41,21 +46,45 @@ inline double dielectric(const GltfParams& p, double vh) {
     return f0 + (1.0 - f0) * schlick(vh);
 }
 
+// KHR_materials_specular's fresnel_mix: the dielectric's layer, weight x fr with fr Schlick's from
+// F0 = min(F0(ior) x colour, 1) to 1 (at the angle outside, as dielectric(); 1 past the critical
+// angle); the base under it keeps 1 - weight x max(fr). Without the extension (weight 1, colour 1):
+// Fd and 1 - Fd.
+inline glm::dvec3 dielectricLayer(const GltfParams& p, double vh) {
+    const double r = (p.ior - 1.0) / (p.ior + 1.0);
+    const glm::dvec3 f0 = glm::min(r * r * p.specularColor, glm::dvec3(1.0));
+    double w = 1.0;
+    if (p.transmission > 0.0 && p.ior < 1.0) {
+        const double sinOut2 = (1.0 - vh * vh) / (p.ior * p.ior);
+        if (sinOut2 < 1.0) w = schlick(std::sqrt(1.0 - sinOut2));
+    } else {
+        w = schlick(vh);
+    }
+    return p.specularFactor * (f0 + (1.0 - f0) * w);
+}
+inline double dielectricBase(const GltfParams& p, double vh) {
+    const glm::dvec3 layer = dielectricLayer(p, vh);
+    return 1.0 - std::max(layer.x, std::max(layer.y, layer.z));
+}
+
 // (1 - m) Fd + m Fm, the specular lobe's Fresnel weight at v.h.
 inline glm::dvec3 specularWeight(const GltfParams& p, double vh) {
     const double w = schlick(vh);
-    return (1.0 - p.metallic) * glm::dvec3(dielectric(p, vh)) + p.metallic * (p.base + (1.0 - p.base) * w);
+    return (1.0 - p.metallic) * dielectricLayer(p, vh) + p.metallic * (p.base + (1.0 - p.base) * w);
 }
 
 // (1 - m)(1 - t)(1 - Fd) c, pi times the diffuse part.
 inline glm::dvec3 diffuseWeight(const GltfParams& p, double vh) {
-    return (1.0 - p.metallic) * (1.0 - p.transmission) * (1.0 - dielectric(p, vh)) * p.base;
+    return (1.0 - p.metallic) * (1.0 - p.transmission) * dielectricBase(p, vh) * p.base;
 }
 
 // (1 - m) t (1 - Fd) c, the transmission's weight.
 inline glm::dvec3 transmissionWeight(const GltfParams& p, double vh) {
-    return (1.0 - p.metallic) * p.transmission * (1.0 - dielectric(p, vh)) * p.base;
+    return (1.0 - p.metallic) * p.transmission * dielectricBase(p, vh) * p.base;
 }
+
+// KHR_materials_clearcoat's fresnel_coat weight at n.v: clearcoat x Schlick's with F0 0.04.
+inline double coatWeight(const GltfParams& p, double nv) { return p.clearcoat * (0.04 + 0.96 * schlick(std::abs(nv))); }
 
 // Smith's Lambda of GGX at cosine mu (Heitz 2014): G2 = 1 / (1 + Lambda(v) + Lambda(l)).
 inline double lambda(double a2, double mu) {
@@ -87,6 +116,14 @@ inline glm::dvec3 gltfReferenceBrdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     if (p.roughness > 0.0) {
         const double a2 = std::pow(p.roughness, 4.0);
         f += specularWeight(p, vh) * (ggx(a2, glm::dot(n, h)) * visibility(a2, nl, nv));
+    }
+    if (p.clearcoat > 0.0) {  // mix(base, coat's D V, coat weight at n.v)
+        const double w = coatWeight(p, nv);
+        f *= 1.0 - w;
+        if (p.clearcoatRoughness > 0.0) {
+            const double a2 = std::pow(p.clearcoatRoughness, 4.0);
+            f += glm::dvec3(w * ggx(a2, glm::dot(n, h)) * visibility(a2, nl, nv));
+        }
     }
     return f;
 }
@@ -141,6 +178,22 @@ inline glm::dvec3 gltfReferenceAlbedo(const GltfParams& p, double mu, int grid =
     glm::dvec3 e = (diffuse + specular) / count;
     if (p.roughness <= 0.0) e += specularWeight(p, mu);
     return e;
+}
+
+// The directional albedo under a clearcoat (its normal n): mix(base, coat lobe, w(mu)) integrates to
+// (1 - w) E_base + w E_lobe, E_lobe the albedo of the coat's D V alone (a white metal's of the
+// coat's roughness: its Fresnel is 1; 1 for a smooth coat's mirror). Without a coat: E_base.
+inline glm::dvec3 gltfReferenceCoatedAlbedo(const GltfParams& p, double mu, int grid = 400) {
+    GltfParams base = p;
+    base.clearcoat = 0.0;
+    const glm::dvec3 e = gltfReferenceAlbedo(base, mu, grid);
+    if (p.clearcoat <= 0.0) return e;
+    GltfParams lobe;
+    lobe.base = glm::dvec3(1.0);
+    lobe.metallic = 1.0;
+    lobe.roughness = p.clearcoatRoughness;
+    const double w = gltfref::coatWeight(p, mu);
+    return (1.0 - w) * e + w * gltfReferenceAlbedo(lobe, mu, grid);
 }
 
 }  // namespace gpurt::test

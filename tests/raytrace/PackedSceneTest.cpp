@@ -225,6 +225,18 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_EQ(x.materials[m].alphaTexture.channel, y.materials[m].alphaTexture.channel) << m;
         EXPECT_EQ(x.materials[m].transmissionTexture.texture, y.materials[m].transmissionTexture.texture) << m;
         EXPECT_EQ(x.materials[m].transmissionTexture.channel, y.materials[m].transmissionTexture.channel) << m;
+        const Material &a = x.materials[m], &b = y.materials[m];  // LAYR
+        EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
+                    sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
+                    sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
+            << m;
+        EXPECT_TRUE(a.specularTexture.texture == b.specularTexture.texture && a.specularTexture.channel == b.specularTexture.channel &&
+                    a.specularColorTexture == b.specularColorTexture && a.clearcoatTexture.texture == b.clearcoatTexture.texture &&
+                    a.clearcoatTexture.channel == b.clearcoatTexture.channel &&
+                    a.clearcoatRoughnessTexture.texture == b.clearcoatRoughnessTexture.texture &&
+                    a.clearcoatRoughnessTexture.channel == b.clearcoatRoughnessTexture.channel &&
+                    a.clearcoatNormalTexture == b.clearcoatNormalTexture)
+            << m;
     }
     ASSERT_EQ(x.textures.size(), y.textures.size());
     for (size_t k = 0; k < x.textures.size(); ++k) {
@@ -791,6 +803,53 @@ TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, trns.offset, materials + 1); }), "section TRNS");
     LoadedScene bad = mapped;
     bad.scene.materials[2].transmissionTexture.channel = -1;
+    EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
+}
+
+// The layers of glTF's extensions (LAYR: KHR_materials_specular, KHR_materials_clearcoat, 60 bytes
+// a material): written only when some material has one, so that other files stay as they were;
+// kept through the round trip; factors outside [0, 1], a colour below 0, a map's texture or
+// channel out of range and a count other than the materials' are refused.
+TEST_F(PackedSceneTest, LayersTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "LAYR")) << "a scene without layers";
+    LoadedScene layered = source_;
+    ASSERT_GE(layered.scene.textures.size(), 2u);
+    Material& m = layered.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.specularFactor = 0.5f;
+    m.specularColor = glm::vec3(1.0f, 0.25f, 2.0f);
+    m.specularTexture = {1, 3};
+    m.specularColorTexture = 0;
+    m.clearcoat = 0.75f;
+    m.clearcoatRoughness = 0.125f;
+    m.clearcoatTexture = {1, 0};
+    m.clearcoatRoughnessTexture = {0, 1};
+    m.clearcoatNormalTexture = 1;
+    m.clearcoatNormalScale = -0.5f;
+    const size_t materials = layered.scene.materials.size();
+    const Bytes b = encodePackedScene(layered, *makeStructure(grid_), "layered");
+    const Entry layr = section(b, "LAYR");
+    EXPECT_EQ(layr.size, 8 + 60 * materials);
+    EXPECT_EQ(get64(b, layr.offset), materials);
+    const size_t at = layr.offset + 8 + 60 * 2;  // material 2's record
+    EXPECT_EQ(get32(b, at), 0x3f000000u);        // 0.5f
+    EXPECT_EQ(get32(b, at + 16), 1u);            // specularTexture: texture 1,
+    EXPECT_EQ(get32(b, at + 20), 3u);            // channel A
+    const LoadedScene packed = decodePackedScene(b, "layered.gpscene");
+    expectSameScene(layered, packed);
+    EXPECT_EQ(packed.scene.materials[2].clearcoat, 0.75f);
+    EXPECT_FALSE(packed.scene.materials[1].hasClearcoat());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    const uint32_t textures = uint32_t(layered.scene.textures.size());
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 0x40000000u); }), "material 2: specular factor, clearcoat");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 28, 0x3fc00000u); }), "material 2: specular factor, clearcoat");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 8, 0xbf800000u); }), "the specular colour finite and >= 0");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 52, textures); }),
+                   "material 2: texture " + std::to_string(textures) + " out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 40, 4); }), "material 2: texture channel 4");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, layr.offset, materials + 1); }), "section LAYR");
+    LoadedScene bad = layered;
+    bad.scene.materials[2].clearcoat = 2.0f;
     EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
 }
 

@@ -575,6 +575,69 @@ TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
               std::string::npos);
 }
 
+// KHR_materials_clearcoat and KHR_materials_specular (TransmissionQuad.h's window with the two
+// extensions added): their factors, colour and maps as given (each map's channel as the
+// extensions say: clearcoat R, its roughness G, specular A, the colour a texture), the coat's
+// normal map with its scale, through the window's shared texture coordinates, and no warning
+// about them; values outside their ranges are refused naming the material.
+TEST(GltfLoaderMaterials, ClearcoatAndSpecularAreRead) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-layers-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    auto withLayers = [](const std::string& layers) {
+        std::string text = test::TransmissionQuad::gltf(0.75, "bands.bmp");
+        const std::string at = "\"KHR_materials_transmission\": {";
+        text.replace(text.find(at), at.size(), layers + ", " + at);
+        return text;
+    };
+    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
+                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    const std::string layers =
+        "\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 0.75, \"clearcoatRoughnessFactor\": 0.25, "
+        "\"clearcoatTexture\": " + info + ", \"clearcoatRoughnessTexture\": " + info +
+        ", \"clearcoatNormalTexture\": {\"index\": 0, \"texCoord\": 1, \"scale\": 0.5, \"extensions\": "
+        "{\"KHR_texture_transform\": {\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}}, "
+        "\"KHR_materials_specular\": {\"specularFactor\": 0.5, \"specularColorFactor\": [1, 0.5, 2], "
+        "\"specularTexture\": " + info + ", \"specularColorTexture\": " + info + "}";
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(withLayers(layers), "window.gltf", dir);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    for (const char* name : {"clearcoat", "specular", "not used", "not read"}) EXPECT_EQ(warnings.find(name), std::string::npos) << warnings;
+    ASSERT_EQ(scene.materials.size(), 2u);
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.clearcoat, 0.75f);
+    EXPECT_EQ(m.clearcoatRoughness, 0.25f);
+    EXPECT_EQ(m.clearcoatTexture.texture, 0);
+    EXPECT_EQ(m.clearcoatTexture.channel, 0);  // R
+    EXPECT_EQ(m.clearcoatRoughnessTexture.texture, 0);
+    EXPECT_EQ(m.clearcoatRoughnessTexture.channel, 1);  // G
+    EXPECT_EQ(m.clearcoatNormalTexture, 0);
+    EXPECT_EQ(m.clearcoatNormalScale, 0.5f);
+    EXPECT_EQ(m.specularFactor, 0.5f);
+    EXPECT_EQ(m.specularColor, glm::vec3(1.0f, 0.5f, 2.0f));
+    EXPECT_EQ(m.specularTexture.texture, 0);
+    EXPECT_EQ(m.specularTexture.channel, 3);  // A
+    EXPECT_EQ(m.specularColorTexture, 0);
+    EXPECT_TRUE(m.hasClearcoat());
+    EXPECT_TRUE(m.hasSpecularLayer());
+    EXPECT_EQ(scene.textures.size(), 1u);  // one image, one texture, every slot
+    // Without the extensions: no layer.
+    const Scene plain = parseGltf(test::TransmissionQuad::gltf(0.75, "bands.bmp"), "window.gltf", dir);
+    EXPECT_FALSE(plain.materials[1].hasClearcoat());
+    EXPECT_FALSE(plain.materials[1].hasSpecularLayer());
+    for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1.5}", "material 0: clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]"},
+             {"\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1, \"clearcoatRoughnessFactor\": -1}", "clearcoatRoughnessFactor must be in [0, 1]"},
+             {"\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1, \"clearcoatTexture\": {\"texCoord\": 1}}", "material 0 ('window'): clearcoatTexture has no texture index"},
+             {"\"KHR_materials_specular\": {\"specularFactor\": 2}", "material 0: specularFactor must be in [0, 1]"},
+             {"\"KHR_materials_specular\": {\"specularColorFactor\": [1, 1]}", "material 0: specularColorFactor is not 3 numbers"},
+             {"\"KHR_materials_specular\": {\"specularColorFactor\": [1, -1, 1]}", "specularColorFactor must be 3 numbers in [0, 1000]"}}) {
+        const std::string message = test::refusalOf([&] { parseGltf(withLayers(bad), "window.gltf", dir); }, "window.gltf: ");
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+}
+
 // KHR_materials_transmission's transmissionTexture (TransmissionQuad.h): the slot is the texture's
 // R channel, read through its texCoord (1) and its KHR_texture_transform (rotation pi/2, offset
 // (0, 1): u' = v, v' = 1 - u by the extension's matrix), with no warning about the slot; the

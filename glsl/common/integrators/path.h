@@ -67,7 +67,7 @@ GPURT_FN void pathArrive(GPURT_INOUT(PathState) st, SurfaceHit s, float t, int b
     if (materialHiddenFrom(s.m, st.prevPdf)) return;  // not there for this ray (pathScatter passes it)
     if (st.open) recordFeatures(materialAlbedo(s.m), s.ns);
     float mis = s.m.emitterLight ? emissionWeight(st.prevPdf, t, s.n, st.d, emitterArea) : 1.0f;
-    pathAdd(st, materialEmitted(s.m, s.ns) * mis, b);
+    pathAdd(st, materialEmitted(s.m, s.ns, st.d) * mis, b);
 }
 
 // The path's next ray from its hit s at depth b: a direction the material samples from the

@@ -68,7 +68,7 @@ GPURT_FN vec3 whittedTrace(vec3 o, vec3 d, GPURT_OUT(int) rounds) {
             if (round == 0) recordPrimary(h, s.n);
             p = s.p;
             n = s.n;
-            color = color + weight * materialEmitted(s.m, s.ns);
+            color = color + weight * materialEmitted(s.m, s.ns, d);
             if (maxBounces < 0) break;
             color = color + weight * whittedLocal(s, d, round);
             if (rayTreeMaySpawn(depth, rays, maxBounces) && materialSpawns(s.m))

@@ -59,38 +59,74 @@ GPURT_FN float smithVisibility(float a2, float nl, float nv) {
 // Smith's masking G1 of the view at n.v for alpha^2 = a2.
 GPURT_FN float smithMasking(float a2, float nv) { return 2.0f * nv / (nv + sqrt(a2 + (1.0f - a2) * nv * nv)); }
 
-// The dielectric's Schlick reflectance Fd at microfacet cosine c = |v.h| for the record's
-// (relative) ior and transmission factor t: Appendix B's 0.04 + 0.96 (1 - c)^5 for the default
-// index; F0 from the index (symmetric in ior and 1 / ior); leaving a transmissive solid (relative
-// index below 1) Schlick's at the transmitted angle, 1 past the critical angle.
-GPURT_FN float gltfDielectricFresnel(float ior, float t, float c) {
+// The dielectric's F0 for the record's (relative) ior: Appendix B's 0.04 for the default index,
+// else ((ior - 1) / (ior + 1))^2 (symmetric in ior and 1 / ior).
+GPURT_FN float gltfDielectricF0(float ior) {
     float f0 = GPURT_GLTF_DIELECTRIC;
     if (ior > 0.0f && ior != GPURT_GLTF_IOR) {
         float r = (ior - 1.0f) / (ior + 1.0f);
         f0 = r * r;
     }
+    return f0;
+}
+
+// The cosine Schlick's weight is taken at for microfacet cosine c = |v.h|: c itself, or leaving a
+// transmissive solid (transmission factor t > 0, relative index below 1) the transmitted angle's;
+// -1 past the critical angle (all is reflected).
+GPURT_FN float gltfFresnelCosine(float ior, float t, float c) {
     if (t > 0.0f && ior > 0.0f && ior < 1.0f) {
         float sin2T = (1.0f - c * c) / (ior * ior);
-        if (sin2T >= 1.0f) return 1.0f;
+        if (sin2T >= 1.0f) return -1.0f;
         c = sqrt(1.0f - sin2T);
     }
+    return c;
+}
+
+// The dielectric's Schlick reflectance Fd at microfacet cosine c = |v.h| for the record's
+// (relative) ior and transmission factor t: Appendix B's 0.04 + 0.96 (1 - c)^5 for the default
+// index, F0 from the index otherwise, 1 past the critical angle.
+GPURT_FN float gltfDielectricFresnel(float ior, float t, float c) {
+    float f0 = gltfDielectricF0(ior);
+    c = gltfFresnelCosine(ior, t, c);
+    if (c < 0.0f) return 1.0f;
     return f0 + (1.0f - f0) * schlickWeight(c);
 }
 
 // The transmission factor t of a record (0 without KHR_materials_transmission).
 GPURT_FN float gltfTransmission(MaterialRecord m) { return m.ior > 0.0f ? m.tf.x : 0.0f; }
 
+// The dielectric's specular layer at microfacet cosine c = |v.h|: Fd in every channel; with
+// KHR_materials_specular its fresnel_mix, weight x Schlick's from F0 = min(F0(ior) x specular
+// colour, 1) to 1 (F90 = the weight, the base below it scaled by 1 - max(layer):
+// gltfDielectricBase).
+GPURT_FN vec3 gltfDielectricLayer(MaterialRecord m, float c) {
+    float t = gltfTransmission(m);
+#if defined(__cplusplus) || defined(SCENE_SPECULAR_LAYER)  // SceneTextures::bind
+    if (m.specularWeight != 1.0f || m.specularColor != vec3(1.0f)) {
+        vec3 f0 = min(vec3(gltfDielectricF0(m.ior)) * m.specularColor, vec3(1.0f));
+        float k = gltfFresnelCosine(m.ior, t, c);
+        vec3 fr = k < 0.0f ? vec3(1.0f) : f0 + (vec3(1.0f) - f0) * schlickWeight(k);
+        return fr * m.specularWeight;
+    }
+#endif
+    return vec3(gltfDielectricFresnel(m.ior, t, c));
+}
+
+// What of the dielectric's base (diffuse, transmission) the specular layer leaves at c: 1 - Fd,
+// 1 - max(layer) with KHR_materials_specular.
+GPURT_FN float gltfDielectricBase(MaterialRecord m, float c) { return 1.0f - maxChannel(gltfDielectricLayer(m, c)); }
+
 // The specular lobe's Fresnel weight (1 - m) Fd + m Fm at v.h = vh.
 GPURT_FN vec3 gltfSpecularFresnel(MaterialRecord m, float vh) {
     float w = schlickWeight(vh);
     vec3 conductor = m.kd + (vec3(1.0f) - m.kd) * w;
-    return vec3(gltfDielectricFresnel(m.ior, gltfTransmission(m), vh) * (1.0f - m.metallic)) + conductor * m.metallic;
+    return gltfDielectricLayer(m, vh) * (1.0f - m.metallic) + conductor * m.metallic;
 }
 
 // The diffuse term's weight (1 - m)(1 - t)(1 - Fd) c at v.h = vh (the BRDF's diffuse part times pi).
 GPURT_FN vec3 gltfDiffuseWeight(MaterialRecord m, float vh) {
     float t = gltfTransmission(m);
-    return m.kd * ((1.0f - m.metallic) * (1.0f - t) * (1.0f - gltfDielectricFresnel(m.ior, t, vh)));
+    return m.kd * ((1.0f - m.metallic) * (1.0f - t) * gltfDielectricBase(m, vh));
 }
 
 // The transmission's weight (1 - m) t (1 - Fd) c at v.h = vh (the BTDF's factor before its
@@ -98,8 +134,21 @@ GPURT_FN vec3 gltfDiffuseWeight(MaterialRecord m, float vh) {
 GPURT_FN vec3 gltfTransmissionWeight(MaterialRecord m, float vh) {
     float t = gltfTransmission(m);
     if (!(t > 0.0f)) return vec3(0.0f);
-    return m.kd * ((1.0f - m.metallic) * t * (1.0f - gltfDielectricFresnel(m.ior, t, vh)));
+    return m.kd * ((1.0f - m.metallic) * t * gltfDielectricBase(m, vh));
 }
+
+// KHR_materials_clearcoat's fresnel_coat: the coat's weight seen from v, the clearcoat factor
+// times Schlick's reflectance of a dielectric of index 1.5 (F0 0.04) at the coat normal's n.v;
+// what lies under the coat (the rest of the BRDF, the BTDF, the emission) is scaled by 1 - it.
+GPURT_FN float gltfCoatWeight(MaterialRecord m, vec3 v) {
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)  // SceneTextures::bind
+    if (m.coat > 0.0f) return m.coat * (GPURT_GLTF_DIELECTRIC + (1.0f - GPURT_GLTF_DIELECTRIC) * schlickWeight(abs(dot(m.coatNormal, v))));
+#endif
+    return 0.0f;
+}
+
+// Whether the coat is a perfect mirror (its roughness below GPURT_GLTF_SMOOTH; the default).
+GPURT_FN bool gltfCoatSmooth(MaterialRecord m) { return gltfSmooth(m.coatRoughness); }
 
 // The probability that the specular lobe's microfacet at v.h = vh reflects (else it refracts):
 // the reflection's share of the two weights (largest channels).
@@ -109,9 +158,9 @@ GPURT_FN float gltfReflectProbability(MaterialRecord m, float vh) {
     return r + t > 0.0f ? r / (r + t) : 1.0f;
 }
 
-// The BRDF f(l, v) at shading normal n facing v (0 below the surface); a smooth surface's mirror
-// is not in it.
-GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
+// The BRDF under the coat, f(l, v) at shading normal n facing v (0 below the surface); a smooth
+// surface's mirror is not in it.
+GPURT_FN vec3 gltfBaseBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     if (!(nl > 0.0f)) return vec3(0.0f);
     float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
@@ -126,6 +175,35 @@ GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     float a2 = alpha * alpha;
     float nh = max(dot(n, h), 0.0f);
     return f + gltfSpecularFresnel(m, vh) * (ggxDistribution(a2, nh) * smithVisibility(a2, nl, nv));
+}
+
+// The rough coat's microfacet lobe D V about the coat normal (its Fresnel is the weight
+// gltfCoatWeight); 0 for a smooth coat (a delta) or below the coat.
+GPURT_FN float gltfCoatLobe(MaterialRecord m, vec3 v, vec3 l) {
+    vec3 n = m.coatNormal;
+    float nl = dot(n, l);
+    if (gltfCoatSmooth(m) || !(nl > 0.0f)) return 0.0f;
+    float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
+    vec3 h = l + v;
+    float hh = dot(h, h);
+    if (!(hh > 0.0f)) return 0.0f;
+    h = h / sqrt(hh);
+    float alpha = m.coatRoughness * m.coatRoughness;
+    float a2 = alpha * alpha;
+    return ggxDistribution(a2, max(dot(n, h), 0.0f)) * smithVisibility(a2, nl, nv);
+}
+
+// The BRDF f(l, v): the base's, under the coat where there is one (KHR_materials_clearcoat:
+// mix(base, coat lobe, coat weight)).
+GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
+    vec3 f = gltfBaseBrdf(m, n, v, l);
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (m.coat > 0.0f) {
+        float w = gltfCoatWeight(m, v);
+        f = f * (1.0f - w) + vec3(w * gltfCoatLobe(m, v, l));
+    }
+#endif
+    return f;
 }
 
 // The refraction's generalized half vector of v and l below the surface (relative index ior) on
@@ -160,7 +238,7 @@ GPURT_FN vec3 gltfBtdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     // G2 / (|n.l| n.v) = 4 V
     float k = ggxDistribution(a2, max(dot(n, h), 0.0f)) * 4.0f * smithVisibility(a2, anl, nv) * (-lh) * vh /
               (denom * denom * m.ior * m.ior);
-    return gltfTransmissionWeight(m, vh) * k;
+    return gltfTransmissionWeight(m, vh) * (k * (1.0f - gltfCoatWeight(m, v)));
 }
 
 // The probability of sampling the specular lobe (reflection or refraction at a visible normal) at
@@ -169,6 +247,19 @@ GPURT_FN float gltfSpecularProbability(MaterialRecord m, float nv) {
     float s = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv));
     float d = maxChannel(gltfDiffuseWeight(m, nv));
     return s + d > 0.0f ? s / (s + d) : 0.0f;
+}
+
+// The probability of sampling the coat (coat weight w seen from v, shading n.v = nv): its weight's
+// share beside the base's lobes under it (largest channels at h = n); 0 without a coat.
+GPURT_FN float gltfCoatProbability(MaterialRecord m, float w, float nv) {
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (w > 0.0f) {
+        float base = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv)) +
+                     maxChannel(gltfDiffuseWeight(m, nv));
+        return w / (w + (1.0f - w) * base);
+    }
+#endif
+    return 0.0f;
 }
 
 // GGX's pdf of the visible normal h seen from v: D(h) G1(v) v.h / n.v.
@@ -181,7 +272,7 @@ GPURT_FN float ggxVisiblePdf(float a2, vec3 n, vec3 v, vec3 h) {
 // the visible normal's pdf / (4 v.h) times the share that reflects (0 for a smooth surface's
 // mirror: a delta) plus the cosine lobe's; below it, the visible normal's pdf times the
 // refraction's Jacobian |l.h| / (l.h + v.h / ior)^2 and the share that refracts.
-GPURT_FN float gltfPdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l) {
+GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     bool rough = !gltfSmooth(m.roughness) && pSpecular > 0.0f;
     float alpha = m.roughness * m.roughness;
@@ -205,6 +296,27 @@ GPURT_FN float gltfPdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l
     return pdf + pSpecular * gltfReflectProbability(m, vh) * ggxVisiblePdf(a2, n, v, h) / (4.0f * vh);
 }
 
+// The solid-angle pdf of sampling l: the coat's visible normal with probability pCoat (0 for a
+// smooth coat: a delta), else the base's lobes (gltfBasePdf).
+GPURT_FN float gltfPdf(MaterialRecord m, float pCoat, float pSpecular, vec3 n, vec3 v, vec3 l) {
+    float pdf = gltfBasePdf(m, pSpecular, n, v, l);
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (pCoat > 0.0f) {
+        pdf = pdf * (1.0f - pCoat);
+        vec3 nc = m.coatNormal;
+        vec3 h = l + v;
+        float hh = dot(h, h);
+        if (!gltfCoatSmooth(m) && dot(nc, l) > 0.0f && hh > 0.0f) {
+            h = h / sqrt(hh);
+            float vh = dot(v, h);
+            float alpha = m.coatRoughness * m.coatRoughness;
+            if (vh > 0.0f) pdf = pdf + pCoat * ggxVisiblePdf(alpha * alpha, nc, v, h) / (4.0f * vh);
+        }
+    }
+#endif
+    return pdf;
+}
+
 // A microfacet normal of GGX (alpha) visible from v, for u in [0, 1)^2 (Heitz 2018, listing 1,
 // isotropic), about the shading normal n.
 GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
@@ -226,11 +338,18 @@ GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
 }
 
 // The ambient albedo: the directional albedo at normal incidence, (1 - m)(1 - t) 0.96 c + F0 with
-// F0 = mix(0.04, c, m), without F0 for a smooth coat (its mirror ray brings it), times the
-// occlusion.
+// F0 = mix(0.04, c, m), without F0 for a smooth coat (its mirror ray brings it), under a coat's
+// (1 - its weight) with a rough coat's own weight added (a smooth one's comes by the mirror ray),
+// times the occlusion.
 GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
     vec3 albedo = gltfDiffuseWeight(m, 1.0f);
     if (!gltfSmooth(m.roughness)) albedo = albedo + gltfSpecularFresnel(m, 1.0f);
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (m.coat > 0.0f) {
+        float w = m.coat * GPURT_GLTF_DIELECTRIC;
+        albedo = albedo * (1.0f - w) + vec3(gltfCoatSmooth(m) ? 0.0f : w);
+    }
+#endif
     return albedo * m.occlusion;
 }
 
@@ -247,6 +366,9 @@ GPURT_FN vec3 gltfEnvironmentAmbient(MaterialRecord m, vec3 irradiance) {
     return gltfAmbientAlbedo(m) * irradiance * GPURT_INV_PI;
 }
 
+// The emission seen along d: under a coat, times 1 - its weight (KHR_materials_clearcoat).
+GPURT_FN vec3 gltfEmitted(MaterialRecord m, vec3 d) { return m.emission * (1.0f - gltfCoatWeight(m, -d)); }
+
 GPURT_FN vec3 gltfLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor, float intensity) {
     vec3 toLight = lightPos - p;
     float dist2 = dot(toLight, toLight);
@@ -255,18 +377,34 @@ GPURT_FN vec3 gltfLight(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos,
     return min(f * (GPURT_PI * max(0.0f, dot(n, l))) * lightColor * intensity / dist2, vec3(1e30f));
 }
 
-GPURT_FN bool gltfSpawns(MaterialRecord m) { return gltfSmooth(m.roughness) || gltfTransmission(m) > 0.0f; }
+// Whether a smooth coat mirrors (KHR_materials_clearcoat with a roughness below GPURT_GLTF_SMOOTH).
+GPURT_FN bool gltfCoatMirrors(MaterialRecord m) {
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    return m.coat > 0.0f && gltfCoatSmooth(m);
+#else
+    return false;
+#endif
+}
+
+GPURT_FN bool gltfSpawns(MaterialRecord m) {
+    return gltfSmooth(m.roughness) || gltfTransmission(m) > 0.0f || gltfCoatMirrors(m);
+}
 
 GPURT_FN bool gltfSplits(MaterialRecord m) { return gltfTransmission(m) > 0.0f; }
 
 // Whitted's rays: the refracted ray (as through a smooth surface) where the material transmits,
-// continuing the pixel's ray, and the mirror ray of a smooth surface.
+// continuing the pixel's ray, and the mirror ray of a smooth surface and of a smooth coat (one ray:
+// about the coat's normal where the coat mirrors, a smooth base's mirror taken along it; the two
+// normals differ only under a normal map), the base's weights under the coat's 1 - weight.
 GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GPURT_OUT(vec3) dirA,
                           GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA, GPURT_OUT(vec3) dirB,
                           GPURT_OUT(vec3) weightB) {
     float nv = clamp(-dot(d, ns), 0.0f, 1.0f);
-    dirA = shadingReflection(d, ns, ng);
-    weightA = gltfSmooth(m.roughness) ? w * gltfSpecularFresnel(m, nv) : vec3(0.0f);
+    float coat = gltfCoatWeight(m, -d);
+    vec3 under = w * (1.0f - coat);
+    dirA = shadingReflection(d, gltfCoatMirrors(m) ? m.coatNormal : ns, ng);
+    weightA = gltfSmooth(m.roughness) ? under * gltfSpecularFresnel(m, nv) : vec3(0.0f);
+    if (gltfCoatMirrors(m)) weightA = weightA + w * coat;
     sideA = 1.0f;
     dirB = dirA;
     weightB = vec3(0.0f);
@@ -276,7 +414,7 @@ GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GP
         if (dot(t, ng) < 0.0f) {
             weightB = weightA;
             dirA = t;
-            weightA = w * tw / (m.ior * m.ior);
+            weightA = under * tw / (m.ior * m.ior);
             sideA = -1.0f;
         }
     }
@@ -284,7 +422,11 @@ GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GP
 }
 
 GPURT_FN bool gltfLit(MaterialRecord m) {
-    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f;
+    bool roughCoat = false;
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    roughCoat = m.coat > 0.0f && !gltfCoatSmooth(m);
+#endif
+    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f || roughCoat;
 }
 
 // pi times the BRDF (light sampling reaches only directions above the surface).
@@ -292,29 +434,48 @@ GPURT_FN vec3 gltfEval(MaterialRecord m, vec3 n, vec3 d, vec3 wi) { return GPURT
 
 GPURT_FN float gltfMaterialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
     if (!(dot(n, wi) > 0.0f)) return 0.0f;
-    float p = gltfSpecularProbability(m, max(-dot(d, n), GPURT_GLTF_MIN_COS));
-    return gltfPdf(m, p, n, -d, wi);
+    float nv = max(-dot(d, n), GPURT_GLTF_MIN_COS);
+    float p = gltfSpecularProbability(m, nv);
+    return gltfPdf(m, gltfCoatProbability(m, gltfCoatWeight(m, -d), nv), p, n, -d, wi);
 }
 
-// A direction by the lobes' probabilities. A refracted direction reports pdf 0: light sampling
-// never draws below the surface, so the emission it finds counts in full (common/path.h).
+// A direction by the lobes' probabilities: the coat's (its weight's share), else the base's lobes
+// (the lobe number rescaled). A refracted direction reports pdf 0: light sampling never draws
+// below the surface, so the emission it finds counts in full (common/path.h).
 GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, float lobe, GPURT_OUT(vec3) dir,
                          GPURT_OUT(vec3) factor, GPURT_OUT(float) pdf, GPURT_OUT(float) side) {
     vec3 v = -d;
     float nv = max(dot(ns, v), GPURT_GLTF_MIN_COS);
     float p = gltfSpecularProbability(m, nv);
+    float coat = gltfCoatWeight(m, v);
+    float pc = gltfCoatProbability(m, coat, nv);
     dir = shadingReflection(d, ns, ng);
     factor = vec3(0.0f);
     pdf = 0.0f;
     side = 1.0f;
     bool mirror = gltfSmooth(m.roughness);
+    vec3 under = vec3(1.0f);  // the base's delta lobes' share under the coat over their probability's
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (lobe < pc) {
+        if (gltfCoatSmooth(m)) {  // a delta lobe
+            dir = shadingReflection(d, m.coatNormal, ng);
+            factor = vec3(coat / pc);
+            return true;
+        }
+        dir = mirrorDirection(d, ggxVisibleNormal(m.coatNormal, v, m.coatRoughness * m.coatRoughness, u));
+        lobe = 2.0f;  // past the base's lobes: evaluated below as the mixture
+    } else if (pc > 0.0f) {
+        lobe = (lobe - pc) / (1.0f - pc);
+        under = vec3((1.0f - coat) / (1.0f - pc));
+    }
+#endif
     if (lobe < p) {
         vec3 h = mirror ? ns : ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
         float vh = mirror ? nv : max(dot(v, h), 0.0f);
         float pr = gltfReflectProbability(m, vh);
         if (lobe < p * pr) {
             if (mirror) {  // a delta lobe
-                factor = gltfSpecularFresnel(m, nv) / (p * pr);
+                factor = gltfSpecularFresnel(m, nv) / (p * pr) * under;
                 return true;
             }
             dir = mirrorDirection(d, h);
@@ -325,20 +486,20 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
             if (!(dot(dir, ng) < 0.0f) || !(cosT > 0.0f)) return false;
             side = -1.0f;
             if (mirror) {  // a delta lobe
-                factor = gltfTransmissionWeight(m, nv) / (m.ior * m.ior * p * (1.0f - pr));
+                factor = gltfTransmissionWeight(m, nv) / (m.ior * m.ior * p * (1.0f - pr)) * under;
                 return true;
             }
-            float tpdf = gltfPdf(m, p, ns, v, dir);
+            float tpdf = gltfPdf(m, pc, p, ns, v, dir);
             if (!(tpdf > 0.0f)) return false;
             factor = gltfBtdf(m, ns, v, dir) * (cosT / tpdf);
             return true;
         }
-    } else {
+    } else if (lobe <= 1.0f) {
         dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
     }
     float cosI = dot(ns, dir);
     if (!(dot(dir, ng) > 0.0f) || !(cosI > 0.0f)) return false;
-    pdf = gltfPdf(m, p, ns, v, dir);
+    pdf = gltfPdf(m, pc, p, ns, v, dir);
     if (!(pdf > 0.0f)) return false;
     factor = gltfBrdf(m, ns, v, dir) * (cosI / pdf);
     return true;

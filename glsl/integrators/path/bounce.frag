@@ -65,7 +65,7 @@ bool nextRay(vec4 s, inout PathState st) {
     hit.n = nm.xyz;
     hit.ns = shading.xyz;
     hit.front = frontFace(e1, e2, view.xyz);
-    hit.m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w)), hit.front);
+    hit.m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w), view.xyz), hit.front);
     st.d = view.xyz;
     vec3 local = readStream(localColor).xyz;
 #ifdef SCENE_EMITTERS  // SceneTextures::bind: compiled out without emitters

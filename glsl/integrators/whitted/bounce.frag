@@ -59,7 +59,7 @@ void main() {
             vec4 nm = readStream(surfaceNormal);
             vec4 view = readStream(surfaceView);
             vec4 shading = readStream(surfaceShading);
-            MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w));
+            MaterialRecord m = fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w), view.xyz);
             if (materialSpawns(m)) {  // only mirrors and glass have children
                 vec3 d = view.xyz;
                 vec3 v0, e1, e2;

@@ -43,21 +43,29 @@ SurfaceHit CpuScene::surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) co
         s.ns = shadingNormal(vn.n0, vn.n1, vn.n2, hit.u, hit.v, s.n);
     }
     const Material& m = scene_.materials[scene_.materialIds[size_t(hit.prim)]];
-    if (m.normalTexture >= 0 && !scene_.texcoords.empty()) {  // shading.glsl fetchMappedNormal
-        const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
-        const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
-        const Texture& map = scene_.textures[size_t(m.normalTexture)];
-        const glm::vec3 texel(sampleChannel(map, t, 0), sampleChannel(map, t, 1), sampleChannel(map, t, 2));
-        const bool front = frontFace(tri.e1, tri.e2, d);
-        if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
-            const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
-            s.ns = normalMappedTangent(s.ns, s.n, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1,
-                                       tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
-        } else {
-            s.ns = normalMapped(s.ns, s.n, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, m.normalScale);
-        }
-    }
+    if (s.m.coat > 0.0f)  // shading.glsl fetchMaterialRecord: not the base's normal map
+        s.m.coatNormal = normalMappedAt(hit, d, s.n, s.ns, m.clearcoatNormalTexture, m.clearcoatNormalScale);
+    s.ns = normalMappedAt(hit, d, s.n, s.ns, m.normalTexture, m.normalScale);
     return s;
+}
+
+// The shading normal ns at the hit bent by normal map `map` (-1: none) of scale `scale`
+// (shading.glsl fetchNormalMapped).
+glm::vec3 CpuScene::normalMappedAt(const TraceHit& hit, glm::vec3 d, glm::vec3 ng, glm::vec3 ns, int map,
+                                   float scale) const {
+    if (map < 0 || scene_.texcoords.empty()) return ns;
+    const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
+    const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
+    const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
+    const Texture& image = scene_.textures[size_t(map)];
+    const glm::vec3 texel(sampleChannel(image, t, 0), sampleChannel(image, t, 1), sampleChannel(image, t, 2));
+    const bool front = frontFace(tri.e1, tri.e2, d);
+    if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
+        const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
+        return normalMappedTangent(ns, ng, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1, tri.e2,
+                                   c.t1 - c.t0, c.t2 - c.t0, texel, scale);
+    }
+    return normalMapped(ns, ng, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, scale);
 }
 
 }  // namespace gpurt

@@ -26,6 +26,11 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
         r.roughness = m.roughness * channelAt(scene, m.roughnessTexture, t);
         r.occlusion = 1.0f + m.occlusionStrength * (channelAt(scene, m.occlusionTexture, t) - 1.0f);
         r.tf = m.transmission * channelAt(scene, m.transmissionTexture, t);  // shading.glsl: SCENE_TRANSMISSION_MAPS
+        r.specularWeight = m.specularFactor * channelAt(scene, m.specularTexture, t);  // SCENE_SPECULAR_LAYER
+        if (m.specularColorTexture >= 0 && !scene.texcoords.empty())
+            r.specularColor = m.specularColor * sampleTexture(scene.textures[size_t(m.specularColorTexture)], t);
+        r.coat = m.clearcoat * channelAt(scene, m.clearcoatTexture, t);  // SCENE_CLEARCOAT
+        r.coatRoughness = m.clearcoatRoughness * channelAt(scene, m.clearcoatRoughnessTexture, t);
         if (m.emissiveTexture >= 0) {
             r.emitterLight = false;
             if (!scene.texcoords.empty()) r.emission = m.emission * sampleTexture(scene.textures[size_t(m.emissiveTexture)], t);
@@ -48,6 +53,12 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.metallic = m.model == GPURT_MODEL_GLTF ? m.metallic : 0.0f;
     r.roughness = m.model == GPURT_MODEL_GLTF ? m.roughness : 1.0f;
     r.occlusion = 1.0f;
+    const bool gltf = m.model == GPURT_MODEL_GLTF;
+    r.specularColor = gltf ? m.specularColor : glm::vec3(1.0f);
+    r.specularWeight = gltf ? m.specularFactor : 1.0f;
+    r.coat = gltf ? m.clearcoat : 0.0f;
+    r.coatRoughness = gltf ? m.clearcoatRoughness : 0.0f;
+    r.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);  // CpuScene::surfaceAt: the surface's
     return r;
 }
 

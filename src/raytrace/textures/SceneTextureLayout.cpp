@@ -104,7 +104,12 @@ TextureTexels materialTexels(const Scene& scene) {
                  float(mat.emissiveTexture)),
             vec4(float(mat.alphaMode), mat.alphaFactor, mat.alphaCutoff,
                  channel(mat.alphaTexture)),
-            vec4(channel(mat.transmissionTexture), 0.0f, 0.0f, 0.0f)};
+            vec4(channel(mat.transmissionTexture), channel(mat.specularTexture), float(mat.specularColorTexture),
+                 mat.specularFactor),
+            vec4(mat.specularColor, mat.clearcoat),
+            vec4(mat.clearcoatRoughness, channel(mat.clearcoatTexture), channel(mat.clearcoatRoughnessTexture),
+                 float(mat.clearcoatNormalTexture)),
+            vec4(mat.clearcoatNormalScale, 0.0f, 0.0f, 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

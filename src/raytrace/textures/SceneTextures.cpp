@@ -167,7 +167,10 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
       environmentHarmonics_(makeEnvironmentArray(environmentTable_, 3)) {
     for (const Material& m : scene.materials) {
         if (m.model != 0) models_.insert(m.model);
-        if (m.normalTexture >= 0 && hasTexcoords_) hasNormalMaps_ = true;
+        if ((m.normalTexture >= 0 || (m.hasClearcoat() && m.clearcoatNormalTexture >= 0)) && hasTexcoords_)
+            hasNormalMaps_ = true;
+        if (m.model == GPURT_MODEL_GLTF && m.hasSpecularLayer()) hasSpecularLayer_ = true;
+        if (m.model == GPURT_MODEL_GLTF && m.hasClearcoat()) hasClearcoat_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
             hasTransmission_ = true;
             if (m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
@@ -187,6 +190,8 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasNormalMaps_) kernel.addDefine("SCENE_NORMAL_MAPS");
     if (hasTransmission_) kernel.addDefine("SCENE_TRANSMISSION");  // integrators/light.frag
     if (hasTransmissionMaps_) kernel.addDefine("SCENE_TRANSMISSION_MAPS");  // shading.glsl fetchMaterialRecord
+    if (hasSpecularLayer_) kernel.addDefine("SCENE_SPECULAR_LAYER");  // common/materials/gltf.h
+    if (hasClearcoat_) kernel.addDefine("SCENE_CLEARCOAT");
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (lightKinds_) kernel.addDefine("SCENE_LIGHT_KINDS");  // common/shading.h punctualAsPoint

@@ -81,6 +81,8 @@ class SceneTextures {
     bool hasNormalMaps_ = false;
     bool hasTransmission_ = false;  // a glTF material with KHR_materials_transmission
     bool hasTransmissionMaps_ = false;  // one of them with a transmissionTexture (SCENE_TRANSMISSION_MAPS)
+    bool hasSpecularLayer_ = false;  // a glTF material with KHR_materials_specular (SCENE_SPECULAR_LAYER)
+    bool hasClearcoat_ = false;      // a glTF material with a clearcoat (SCENE_CLEARCOAT)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
     bool shadowless_ = false;      // SCENE_SHADOWLESS in the accelerators' kernels

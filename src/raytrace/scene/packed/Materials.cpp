@@ -1,6 +1,6 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
-// models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW) and
-// transmission maps (TRNS).
+// models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
+// transmission maps (TRNS) and the layers of glTF's extensions (LAYR).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -31,6 +31,10 @@ constexpr size_t kSidedBytes = 4;
 constexpr size_t kGlowBytes = 4;
 // TRNS per material: the transmission map's channel (texture, channel; -1: none).
 constexpr size_t kTransmissionMapBytes = 2 * 4;
+// LAYR per material: KHR_materials_specular's factor, colour (f32) and maps (the factor's channel:
+// texture, channel; the colour's texture), KHR_materials_clearcoat's factor, roughness (f32), maps
+// (two channels, the normal texture) and normal scale (f32).
+constexpr size_t kLayerBytes = 4 * 4 + 3 * 4 + 2 * 4 + 5 * 4 + 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -280,6 +284,52 @@ void writeTransmissionMaps(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
+// Each material's layers of glTF's extensions (count = the materials', then kLayerBytes each).
+void readLayers(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kLayerBytes, "materials' layers", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    auto channel = [&in] {
+        TextureChannel c;
+        c.texture = int(int32_t(in.u32()));
+        c.channel = int(int32_t(in.u32()));
+        return c;
+    };
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.specularFactor = in.f32();
+        m.specularColor = in.vec3();
+        m.specularTexture = channel();
+        m.specularColorTexture = int(int32_t(in.u32()));
+        m.clearcoat = in.f32();
+        m.clearcoatRoughness = in.f32();
+        m.clearcoatTexture = channel();
+        m.clearcoatRoughnessTexture = channel();
+        m.clearcoatNormalTexture = int(int32_t(in.u32()));
+        m.clearcoatNormalScale = in.f32();
+    }
+}
+void writeLayers(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    auto channel = [&out](TextureChannel c) {
+        out.u32(uint32_t(int32_t(c.texture)));
+        out.u32(uint32_t(int32_t(c.channel)));
+    };
+    for (const Material& m : scene.materials) {
+        out.f32(m.specularFactor);
+        out.vec3(m.specularColor);
+        channel(m.specularTexture);
+        out.u32(uint32_t(int32_t(m.specularColorTexture)));
+        out.f32(m.clearcoat);
+        out.f32(m.clearcoatRoughness);
+        channel(m.clearcoatTexture);
+        channel(m.clearcoatRoughnessTexture);
+        out.u32(uint32_t(int32_t(m.clearcoatNormalTexture)));
+        out.f32(m.clearcoatNormalScale);
+    }
+}
+
 // Whether some material has `has`.
 template <class Has>
 bool anyMaterial(const LoadedScene& l, Has has) {
@@ -325,6 +375,15 @@ const SceneSection kTransmissionMapSection{
     [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.transmissionTexture.given(); }); },
     false, writeTransmissionMaps, [](const PackedSection& s, LoadedScene& l) { readTransmissionMaps(s, l.scene); }};
 
+// Only when some material has a layer of glTF's extensions (KHR_materials_specular, _clearcoat):
+// likewise.
+const SceneSection kLayerSection{
+    "LAYR",
+    [](const LoadedScene& l) {
+        return anyMaterial(l, [](const Material& m) { return m.hasSpecularLayer() || m.hasClearcoat(); });
+    },
+    false, writeLayers, [](const PackedSection& s, LoadedScene& l) { readLayers(s, l.scene); }};
+
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
 // them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
@@ -346,16 +405,25 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
         const Material& mat = scene.materials[m];
         for (int texture : {mat.diffuseTexture, mat.roughnessTexture.texture, mat.metallicTexture.texture, mat.normalTexture,
                             mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture,
-                            mat.transmissionTexture.texture})
+                            mat.transmissionTexture.texture, mat.specularTexture.texture, mat.specularColorTexture,
+                            mat.clearcoatTexture.texture, mat.clearcoatRoughnessTexture.texture,
+                            mat.clearcoatNormalTexture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
         for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture,
-                                 mat.transmissionTexture})
+                                 mat.transmissionTexture, mat.specularTexture, mat.clearcoatTexture,
+                                 mat.clearcoatRoughnessTexture})
             if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
         if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
             !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": metallic, roughness and occlusion strength must be in [0, 1], the normal scale finite");
+        auto unit = [](float v) { return v >= 0.0f && v <= 1.0f; };
+        if (!unit(mat.specularFactor) || !isFinite(mat.specularColor) || !nonNegative(mat.specularColor) ||
+            !unit(mat.clearcoat) || !unit(mat.clearcoatRoughness) || !std::isfinite(mat.clearcoatNormalScale))
+            failAt(file, "material " + std::to_string(m) +
+                             ": specular factor, clearcoat and its roughness must be in [0, 1], the specular colour "
+                             "finite and >= 0, the clearcoat normal scale finite");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +
