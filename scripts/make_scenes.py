@@ -14,9 +14,10 @@ from geometry generated here, so that every shipped asset can be regenerated and
                    under the sky of sky.json
   G  rough_glass.json  KHR_materials_transmission's rough dielectric (JSON transmission, ior):
                    five glass spheres, roughness 0..0.5, one tinted, on a slab under the sky
-  H  clearcoat.json  KHR_materials_clearcoat and KHR_materials_specular (JSON clearcoat,
-                   clearcoat_roughness, specular_factor, specular_color): a rough red plastic
-                   bare, under a smooth and a rough coat, a coated black, a tinted reflection
+  H  layers.json   KHR_materials_clearcoat, _specular and _sheen (JSON clearcoat,
+                   clearcoat_roughness, specular_factor, specular_color, sheen_color,
+                   sheen_roughness): a rough red plastic bare, under a smooth and a rough coat, a
+                   coated black, a tinted reflection, a velvet
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -504,10 +505,10 @@ def scene_g():
 
 def scene_h():
     """The layers of glTF's extensions (JSON clearcoat, clearcoat_roughness, specular_factor,
-    specular_color): sphere.obj five times on slab.obj (scenes F and G write them), left to right a
-    rough red plastic bare, under a smooth coat, under a rough coat, a black base without a
-    specular layer under a smooth coat (the coat alone), and a white one whose reflection is tinted
-    blue."""
+    specular_color, sheen_color, sheen_roughness): sphere.obj six times on slab.obj (scenes F and G
+    write them), left to right a rough red plastic bare, under a smooth coat, under a rough coat, a
+    black base without a specular layer under a smooth coat (the coat alone), a white one whose
+    reflection is tinted blue, and a dark red velvet with a pale pink sheen."""
     red = {"diffuse": [0.5, 0.02, 0.01], "metallic": 0, "roughness": 0.45}
     spheres = [
         dict(red, name="red plastic"),
@@ -517,15 +518,17 @@ def scene_h():
          "clearcoat": 1},
         {"name": "blue reflection", "diffuse": [0.8, 0.8, 0.8], "metallic": 0, "roughness": 0.2,
          "specular_factor": 1, "specular_color": [0.3, 0.8, 2.5]},
+        {"name": "velvet", "diffuse": [0.25, 0.01, 0.03], "metallic": 0, "roughness": 0.9,
+         "sheen_color": [1.0, 0.7, 0.75], "sheen_roughness": 0.4},
     ]
     meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
     for k, material in enumerate(spheres):
-        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2), 0.0, 0.0]}, "material": material})
-    write("clearcoat.json", to_json({
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2.5), 0.0, 0.0]}, "material": material})
+    write("layers.json", to_json({
         "meshes": meshes,
         "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
-        "camera": {"eye": [0.0, 2.2, 9.5], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 45.0},
-        "render": {"size": [640, 320], "max_bounces": 8},
+        "camera": {"eye": [0.0, 2.2, 11.0], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 40.0},
+        "render": {"size": [720, 300], "max_bounces": 8},
     }) + "\n")
     return 0
 
@@ -537,7 +540,7 @@ def main():
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
-                       ("H clearcoat", scene_h)):
+                       ("H layers", scene_h)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

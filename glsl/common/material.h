@@ -43,6 +43,8 @@ struct MaterialRecord {
     float coat;           // glTF, KHR_materials_clearcoat: the coat's weight (0: none), textured
     float coatRoughness;  // its roughness, textured
     vec3 coatNormal;      // its normal facing the ray (the surface's: CpuScene::surfaceAt, fetchMaterialRecord)
+    vec3 sheenColor;      // glTF, KHR_materials_sheen: the sheen's colour (0: none), textured
+    float sheenRoughness; // and roughness, textured
 };
 
 #include "raytree.h"

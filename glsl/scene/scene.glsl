@@ -9,6 +9,11 @@ uniform sampler2D triangleTexcoords;  // per triangle (t0, t1), (t2, 0, 0)
 uniform usamplerBuffer textureTexels; // every texture image's sRGB RGBA8 texels
 uniform usamplerBuffer textureTable;  // per texture (first texel, width, height, wrapS | wrapT << 8)
 uniform samplerBuffer srgbTable;      // the linear value of each sRGB code
+#ifdef SCENE_SHEEN
+uniform samplerBuffer sheenTable;  // the sheen's albedo E(n.v, roughness) (scene_layout.h GPURT_SHEEN_TABLE)
+// Entry (i, j) of it (common/materials/gltf.h sheenAlbedo; C++: materials/SheenTable.cpp).
+float sheenAlbedoTexel(int i, int j) { return texelFetch(sheenTable, j * GPURT_SHEEN_TABLE + i).x; }
+#endif
 uniform sampler2D vertexColors;       // per triangle c0, c1, c2 as the triangles' texels
 #ifdef SCENE_VERTEX_TANGENTS
 uniform sampler2D vertexTangents;     // per triangle t0, t1, t2 (tangent, handedness) as the triangles' texels

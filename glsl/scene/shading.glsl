@@ -187,6 +187,8 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.coat = 0.0f;
     r.coatRoughness = 0.0f;
     r.coatNormal = vec3(0.0f, 0.0f, 1.0f);
+    r.sheenColor = vec3(0.0f);
+    r.sheenRoughness = 0.0f;
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);
     vec4 g = texelFetch(materials, at + ivec2(6, 0), 0);
@@ -204,6 +206,11 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
     r.specularWeight = sp.w * textureChannel(int(sp.y), t);
     r.specularColor = texturedDiffuse(int(sp.z), texelFetch(materials, at + ivec2(9, 0), 0).xyz, t);
+#endif
+#ifdef SCENE_SHEEN  // KHR_materials_sheen: its colour (sRGB map) and roughness (A of its map)
+    vec4 sh = texelFetch(materials, at + ivec2(11, 0), 0);
+    r.sheenColor = texturedDiffuse(int(sh.z), texelFetch(materials, at + ivec2(12, 0), 0).xyz, t);
+    r.sheenRoughness = sh.y * textureChannel(int(sh.w), t);
 #endif
 #ifdef SCENE_CLEARCOAT  // KHR_materials_clearcoat: the coat and its normal, the interpolated one or its own map's
     vec4 cc = texelFetch(materials, at + ivec2(10, 0), 0);

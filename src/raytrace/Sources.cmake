@@ -30,6 +30,7 @@ set(GPURT_RAYTRACE_CPU_SOURCES
   lights/EnvironmentTable.cpp
   materials/AlphaCoverage.cpp
   materials/MaterialRecord.cpp
+  materials/SheenTable.cpp
   materials/SurfaceTexture.cpp
   render/CpuTracer.cpp
   scene/PackedScene.cpp

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <cstring>
 #include <fstream>
@@ -69,7 +70,7 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
-    "KHR_materials_clearcoat",    "KHR_materials_specular"};
+    "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -972,7 +973,7 @@ class GltfReader {
         if (m.emits()) warn(named + ": the emission of an unlit material is not used");
         m.emission = glm::vec3(0.0f);
         for (const char* other : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
-                                  "KHR_materials_clearcoat", "KHR_materials_specular"})
+                                  "KHR_materials_clearcoat", "KHR_materials_specular", "KHR_materials_sheen"})
             if (g.extensions.count(other) > 0) warn(named + ": " + other + " of an unlit material is not used");
         if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
             g.occlusionTexture.index >= 0 || g.emissiveTexture.index >= 0)
@@ -1030,6 +1031,46 @@ class GltfReader {
         if (m.transmits()) readTransmissionTexture(g, named, m, uv, scene);
         readSpecular(g, at, named, m, uv, scene);
         readClearcoat(g, at, named, m, uv, scene);
+        readSheen(g, at, named, m, uv, scene);
+    }
+
+    // KHR_materials_sheen (glsl/common/materials/gltf.h sheenLobe): the sheen's colour
+    // (sheenColorFactor times sheenColorTexture, sRGB) and roughness (sheenRoughnessFactor times
+    // sheenRoughnessTexture's A); a black colour is no sheen, its maps unread.
+    void readSheen(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                   MaterialUv& uv, Scene& scene) {
+        const auto found = g.extensions.find("KHR_materials_sheen");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        m.sheenColor = colourFactor(ext, "sheenColorFactor", m.sheenColor, 1.0, at);
+        const double roughness = number(ext, "sheenRoughnessFactor", 0.0);
+        if (!(roughness >= 0.0 && roughness <= 1.0)) fail(at + ": sheenRoughnessFactor must be in [0, 1]");
+        m.sheenRoughness = float(roughness);
+        if (!m.hasSheen()) return;
+        m.sheenColorTexture = extensionTexture(ext, "sheenColorTexture", named, uv, scene);
+        const int rough = extensionTexture(ext, "sheenRoughnessTexture", named, uv, scene);
+        if (rough >= 0) m.sheenRoughnessTexture = {rough, 3};  // A
+    }
+
+    // A material extension's colour factor `key` (3 numbers in [0, max]; `fallback` without it),
+    // refused naming the material (`at`) otherwise.
+    glm::vec3 colourFactor(const tinygltf::Value& ext, const char* key, glm::vec3 fallback, double max,
+                           const std::string& at) {
+        if (!ext.IsObject() || !ext.Has(key)) return fallback;
+        const tinygltf::Value& c = ext.Get(key);
+        if (!c.IsArray() || c.ArrayLen() != 3) fail(at + ": " + key + " is not 3 numbers");
+        glm::vec3 colour;
+        for (int k = 0; k < 3; ++k) {
+            const tinygltf::Value& v = c.Get(k);
+            const double x = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+            if (!(x >= 0.0 && x <= max)) {
+                char limit[32];
+                std::snprintf(limit, sizeof limit, "%g", max);
+                fail(at + ": " + key + " must be 3 numbers in [0, " + limit + "]");
+            }
+            colour[k] = float(x);
+        }
+        return colour;
     }
 
     // KHR_materials_specular (glsl/common/materials/gltf.h gltfDielectricLayer): the specular
@@ -1043,16 +1084,7 @@ class GltfReader {
         const double factor = number(ext, "specularFactor", 1.0);
         if (!(factor >= 0.0 && factor <= 1.0)) fail(at + ": specularFactor must be in [0, 1]");
         m.specularFactor = float(factor);
-        if (ext.IsObject() && ext.Has("specularColorFactor")) {
-            const tinygltf::Value& c = ext.Get("specularColorFactor");
-            if (!c.IsArray() || c.ArrayLen() != 3) fail(at + ": specularColorFactor is not 3 numbers");
-            for (int k = 0; k < 3; ++k) {
-                const tinygltf::Value& v = c.Get(k);
-                const double x = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
-                if (!(x >= 0.0 && x <= 1e3)) fail(at + ": specularColorFactor must be 3 numbers in [0, 1000]");
-                m.specularColor[k] = float(x);
-            }
-        }
+        m.specularColor = colourFactor(ext, "specularColorFactor", m.specularColor, 1e3, at);
         const int weight = extensionTexture(ext, "specularTexture", named, uv, scene);
         if (weight >= 0) m.specularTexture = {weight, 3};  // A
         m.specularColorTexture = extensionTexture(ext, "specularColorTexture", named, uv, scene);

@@ -509,7 +509,7 @@ class SceneReader {
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
-                                  "specular_color", "doubleSided"});
+                                  "specular_color", "sheen_color", "sheen_roughness", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -531,10 +531,12 @@ class SceneReader {
         // "metallic", "roughness" or a layer of glTF's extensions: glTF's metallic-roughness
         // model, "diffuse" its base colour; "clearcoat" and "clearcoat_roughness"
         // (KHR_materials_clearcoat), "specular_factor" and "specular_color"
-        // (KHR_materials_specular), each a factor in [0, 1].
+        // (KHR_materials_specular), "sheen_color" and "sheen_roughness" (KHR_materials_sheen), each
+        // a factor in [0, 1] but the specular colour.
         const std::pair<const char*, float*> factors[] = {
             {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
-            {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor}};
+            {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor},
+            {"sheen_roughness", &material.sheenRoughness}};
         for (const auto& [key, field] : factors) {
             const json* given = find(value, key);
             if (!given) continue;
@@ -545,6 +547,13 @@ class SceneReader {
         }
         if (const json* tint = find(value, "specular_color")) {
             material.specularColor = color(*tint, at / "specular_color");
+            material.model = GPURT_MODEL_GLTF;
+        }
+        if (const json* sheen = find(value, "sheen_color")) {  // KHR_materials_sheen: each in [0, 1]
+            material.sheenColor = color(*sheen, at / "sheen_color");
+            for (int i = 0; i < 3; ++i)
+                if (material.sheenColor[i] > 1.0f)
+                    fail(at / "sheen_color" / i, "must be <= 1, got " + formatNumber(material.sheenColor[i]));
             material.model = GPURT_MODEL_GLTF;
         }
         if (material.model == GPURT_MODEL_GLTF) {

@@ -102,6 +102,13 @@ struct Material {
     TextureChannel clearcoatTexture, clearcoatRoughnessTexture;
     int clearcoatNormalTexture = -1;
     float clearcoatNormalScale = 1.0f;
+    // glTF model, KHR_materials_sheen: the Charlie sheen of colour sheenColor (times
+    // sheenColorTexture, sRGB) and roughness sheenRoughness (times sheenRoughnessTexture's A) over
+    // the rest, which the sheen's albedo scales down; black: no sheen.
+    glm::vec3 sheenColor{0.0f};
+    float sheenRoughness = 0.0f;
+    int sheenColorTexture = -1;
+    TextureChannel sheenRoughnessTexture;
 
     bool hasAlpha() const { return alphaMode != 0; }
     // Whether it uses KHR_materials_specular's values (the kernels compile them in then).
@@ -110,6 +117,7 @@ struct Material {
                specularColorTexture >= 0;
     }
     bool hasClearcoat() const { return clearcoat > 0.0f; }
+    bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
     // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
     bool transmits() const { return ior > 0.0f && (model != GPURT_MODEL_GLTF || transmission.x > 0.0f); }

@@ -12,6 +12,7 @@
 
 #include "GltfReference.h"
 #include "raytrace/common/RayMath.h"
+#include "raytrace/materials/SheenTable.h"
 
 namespace gpurt::test {
 namespace {
@@ -31,6 +32,8 @@ MaterialRecord record(const GltfParams& p) {
     m.coat = float(p.clearcoat);  // KHR_materials_clearcoat, its normal the tests' n
     m.coatRoughness = float(p.clearcoatRoughness);
     m.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+    m.sheenColor = glm::vec3(p.sheenColor);  // KHR_materials_sheen
+    m.sheenRoughness = float(p.sheenRoughness);
     if (p.transmission > 0.0 || p.ior != 1.5) {  // the loader's KHR_materials_ior / _transmission
         m.ior = float(p.ior);
         m.tf = glm::vec3(float(p.transmission));
@@ -253,6 +256,42 @@ TEST(GltfBrdf, LayersAreTheExtensionsFormulas) {
     EXPECT_FLOAT_EQ(raymath::gltfCoatWeight(record(coat), glm::vec3(0.0f, 0.0f, 1.0f)), 0.02f);
 }
 
+// KHR_materials_sheen's albedo table (SheenTable.cpp, by quadrature of the shared lobe) is the
+// lobe's directional albedo as the test integrates the formula written again (GltfReference.h, on
+// another grid; both at most 1), and the lookup between entries stays close to the exact albedo.
+TEST(GltfBrdf, SheenTableIsTheLobesAlbedo) {
+    const std::vector<float>& table = sheenAlbedoTable();
+    const int n = GPURT_SHEEN_TABLE;
+    ASSERT_EQ(table.size(), size_t(n * n));
+    for (int j = 0; j < n; j += 3)
+        for (int i = 0; i < n; i += 3) {
+            const double x = double(i) / (n - 1), mu = std::max(x * x, 1e-4), r = double(j) / (n - 1);  // sqrt(mu) along a row
+            const double e = std::min(1.0, gltfref::sheenAlbedo(mu, r, 128));  // at most 1 (SheenTable.cpp)
+            EXPECT_NEAR(table[size_t(j * n + i)], e, 2e-3 + 1e-2 * e) << "mu " << mu << " r " << r;
+            EXPECT_GE(table[size_t(j * n + i)], 0.0f);
+        }
+    for (double mu : {0.1, 0.37, 0.8})
+        for (double r : {0.2, 0.55, 0.9})
+            EXPECT_NEAR(raymath::sheenAlbedo(float(mu), float(r)), gltfref::sheenAlbedo(mu, r, 128), 1e-2) << mu << " " << r;
+}
+
+// The sheen over the rest is the extension's: sheen colour D V + the rest x min(1 - max(colour)
+// E(n.v), 1 - max(colour) E(n.l)), under a coat where there is one.
+TEST(GltfBrdf, SheenIsTheExtensionsFormula) {
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    for (int k = 0; k < 400; ++k) {
+        GltfParams p = k % 2 ? randomLayers(rng) : randomParams(rng);
+        p.sheenColor = glm::dvec3(u(rng), u(rng), u(rng));
+        p.sheenRoughness = 0.1 + 0.3 * (k % 4);  // a few: the reference tabulates E once a roughness
+        const glm::dvec3 v = hemisphere(rng), l = hemisphere(rng);
+        const glm::vec3 f = raymath::gltfBrdf(record(p), n, glm::vec3(v), glm::vec3(l));
+        const glm::dvec3 expected = gltfReferenceBrdf(p, glm::dvec3(n), v, l);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], expected[c], 3e-3 + 3e-3 * expected[c]) << k;
+    }
+}
+
 // With layers the sampler stays consistent: a sampled direction's factor is eval cos / (pi pdf)
 // (a smooth coat's mirror: its weight over its probability), the samples follow the pdf, and the
 // mean factor is the coated albedo (GltfReference.h gltfReferenceCoatedAlbedo).
@@ -264,6 +303,10 @@ TEST(GltfBrdf, LayeredSamplingIsConsistent) {
     for (int k = 0; k < 5000; ++k) {
         GltfParams p = randomLayers(rng);
         if (k % 3 == 0) p.clearcoatRoughness = 0.0;  // a smooth coat: a delta lobe
+        if (k % 2 == 0) {                              // a sheen under the coat
+            p.sheenColor = glm::dvec3(u(rng), u(rng), u(rng));
+            p.sheenRoughness = u(rng);
+        }
         const MaterialRecord m = record(p);
         const glm::vec3 v(hemisphere(rng, 0.1));
         glm::vec3 dir, factor;
@@ -292,13 +335,16 @@ TEST(GltfBrdf, LayeredSamplingIsConsistent) {
     tinted.specularColor = glm::dvec3(1.2, 0.5, 0.1);
     tinted.clearcoat = 0.4;
     tinted.clearcoatRoughness = 0.6;
-    expectSamplesFollowThePdf({coated, tinted}, 37);
+    GltfParams velvet{glm::dvec3(0.3, 0.05, 0.1), 0.0, 0.8};
+    velvet.sheenColor = glm::dvec3(1.0, 0.6, 0.8);
+    velvet.sheenRoughness = 0.4;
+    expectSamplesFollowThePdf({coated, tinted, velvet}, 37);
 
     GltfParams smoothCoat{glm::dvec3(0.9, 0.3, 0.3), 0.0, 0.7};
     smoothCoat.clearcoat = 1.0;
-    for (const GltfParams& p : {coated, tinted, smoothCoat})
+    for (const GltfParams& p : {coated, tinted, smoothCoat, velvet})
         for (double mu : {0.2, 0.7, 1.0}) {
-            const glm::dvec3 e = gltfReferenceCoatedAlbedo(p, mu, 300);
+            const glm::dvec3 e = gltfReferenceCoatedAlbedo(p, mu, p.sheenColor == glm::dvec3(0.0) ? 300 : 200);
             const MaterialRecord m = record(p);
             const glm::vec3 v(float(std::sqrt(1.0 - mu * mu)), 0.0f, float(mu));
             const int samples = 100000;

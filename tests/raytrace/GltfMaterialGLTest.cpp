@@ -62,6 +62,8 @@ uint32_t addGltfMaterial(Scene& scene, const GltfParams& p) {
     m.specularColor = glm::vec3(p.specularColor);
     m.clearcoat = float(p.clearcoat);
     m.clearcoatRoughness = float(p.clearcoatRoughness);
+    m.sheenColor = glm::vec3(p.sheenColor);
+    m.sheenRoughness = float(p.sheenRoughness);
     scene.materials.push_back(m);
     return uint32_t(scene.materials.size() - 1);
 }
@@ -153,11 +155,12 @@ TEST_F(GltfMaterials, FurnaceSpheresShowTheirDirectionalAlbedo) {
     });
 }
 
-// KHR_materials_clearcoat and KHR_materials_specular in the white furnace: the coat mixes its
-// lobe over the rest by its Fresnel weight at n.v, and over a black base without a specular layer
+// KHR_materials_clearcoat, KHR_materials_specular and KHR_materials_sheen in the white furnace: the
+// coat mixes its lobe over the rest by its Fresnel weight at n.v, the sheen scales the rest by its
+// albedo (GltfReference.h integrates the whole BRDF for it), and over a black base without a specular layer
 // a smooth coat shows its own Fresnel, clearcoat x (0.04 + 0.96 (1 - n.v)^5), alone. No layer
-// makes light: head-on every albedo is at most 1, and at other views a coat never raises the
-// albedo above 1 or above its base's (Appendix B's dielectric reflects more than it receives at
+// makes light: head-on every albedo is at most 1, and at other views a coat or a sheen never raises
+// the albedo above 1 or above its base's (Appendix B's dielectric reflects more than it receives at
 // grazing views: GltfBrdf.AlbedoIsAtMostOneAndTheSamplerEstimatesIt).
 TEST_F(GltfMaterials, FurnaceSpheresWithLayersShowTheirDirectionalAlbedo) {
     auto layered = [](glm::dvec3 base, double metallic, double roughness) {
@@ -178,13 +181,17 @@ TEST_F(GltfMaterials, FurnaceSpheresWithLayersShowTheirDirectionalAlbedo) {
     GltfParams coatAlone = layered(glm::dvec3(0.0), 0.0, 1.0);
     coatAlone.specularFactor = 0.0;
     coatAlone.clearcoat = 1.0;
-    expectFurnaceAlbedo({coatOverWhite, roughCoatOverCopper, tinted, coatAlone});
+    GltfParams velvet = layered(glm::dvec3(0.9, 0.2, 0.4), 0.0, 0.7);
+    velvet.sheenColor = glm::dvec3(1.0, 0.9, 0.8);
+    velvet.sheenRoughness = 0.5;
+    expectFurnaceAlbedo({coatOverWhite, roughCoatOverCopper, tinted, coatAlone, velvet});
     for (double mu : {0.05, 0.3, 1.0}) {
         const glm::dvec3 e = gltfReferenceCoatedAlbedo(coatAlone, mu, 100);
         EXPECT_NEAR(e.x, 0.04 + 0.96 * std::pow(1.0 - mu, 5.0), 1e-9) << mu;
-        for (const GltfParams& p : {coatOverWhite, roughCoatOverCopper, tinted}) {
+        for (const GltfParams& p : {coatOverWhite, roughCoatOverCopper, tinted, velvet}) {
             GltfParams uncoated = p;
             uncoated.clearcoat = 0.0;
+            uncoated.sheenColor = glm::dvec3(0.0);
             const glm::dvec3 e = gltfReferenceCoatedAlbedo(p, mu, 200), base = gltfReferenceCoatedAlbedo(uncoated, mu, 200);
             for (int c = 0; c < 3; ++c) {
                 if (mu == 1.0) {
@@ -598,7 +605,8 @@ TEST_F(GltfMaterials, TransmissionTextureScalesTheFactorPerHit) {
     }
 }
 
-// KHR_materials_clearcoat and KHR_materials_specular with every map they name, on both backends,
+// KHR_materials_clearcoat, KHR_materials_specular and KHR_materials_sheen with every map they name
+// (the sheen's on a sphere), on both backends,
 // path traced and Whitted: a quad whose coat is weighed by a texture's R (half), has its own
 // normal map (a constant bend of the coat alone: the base keeps the face's normal) and whose
 // specular colour comes from a texture, beside spheres under a smooth and a rough coat, under a
@@ -624,6 +632,14 @@ TEST_F(GltfMaterials, LayersWithTheirMapsAgreeAcrossBackends) {
         rough.clearcoatRoughness = 0.3;
         addIcosphere(s, glm::vec3(-0.55f, 0.4f, 0.4f), 0.3f, 3, addGltfMaterial(s, smooth));
         addIcosphere(s, glm::vec3(0.55f, -0.4f, 0.4f), 0.3f, 3, addGltfMaterial(s, rough));
+        GltfParams velvet{glm::dvec3(0.2, 0.05, 0.1), 0.0, 0.8};
+        velvet.sheenColor = glm::dvec3(1.0, 0.8, 0.9);
+        velvet.sheenRoughness = 0.6;
+        const uint32_t cloth = addGltfMaterial(s, velvet);
+        s.materials[cloth].sheenColorTexture = addFlatTexture(s, 0xff40c0ffu);   // sRGB (255, 192, 64)
+        s.materials[cloth].sheenRoughnessTexture = {addFlatTexture(s, 0x80ffffffu), 3};  // A 128
+        addIcosphere(s, glm::vec3(0.55f, 0.45f, 0.4f), 0.3f, 3, cloth);
+        s.texcoords.resize(s.triangles.size());  // the spheres at (0, 0) of the flat maps
         s.environment = environmentThroughFile(sky, "sky.hdr");
         return s;
     };

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -25,6 +27,9 @@ struct GltfParams {
     glm::dvec3 specularColor{1.0};
     // KHR_materials_clearcoat: the coat's weight and roughness (its normal is n).
     double clearcoat = 0.0, clearcoatRoughness = 0.0;
+    // KHR_materials_sheen: the sheen's colour (black: none) and roughness.
+    glm::dvec3 sheenColor{0.0};
+    double sheenRoughness = 0.0;
 };
 
 namespace gltfref {
@@ -83,6 +88,48 @@ inline glm::dvec3 transmissionWeight(const GltfParams& p, double vh) {
     return (1.0 - p.metallic) * p.transmission * dielectricBase(p, vh) * p.base;
 }
 
+// KHR_materials_sheen's lobe as the extension's implementation notes write it: Charlie's D and
+// the visibility with the fitted Lambda, alpha = max(roughness, 0.07)^2 (gpurt's floor).
+inline double sheenAlpha(double r) { return std::pow(std::max(r, 0.07), 2.0); }
+inline double charlieL(double x, double a) {
+    const double k = (1.0 - a) * (1.0 - a);
+    auto lerp = [k](double p, double q) { return p + (q - p) * k; };
+    return lerp(21.5473, 25.3245) / (1.0 + lerp(3.82987, 3.32435) * std::pow(x, lerp(0.19823, 0.16801))) +
+           lerp(-1.97760, -1.27393) * x + lerp(-4.32054, -4.85967);
+}
+inline double charlieLambda(double c, double a) {
+    c = std::abs(c);
+    return c < 0.5 ? std::exp(charlieL(c, a)) : std::exp(2.0 * charlieL(0.5, a) - charlieL(1.0 - c, a));
+}
+inline double sheenLobe(double r, double nh, double nl, double nv) {
+    const double a = sheenAlpha(r), d = (2.0 + 1.0 / a) * std::pow(std::max(0.0, 1.0 - nh * nh), 0.5 / a) / (2.0 * kPi);
+    return d / ((1.0 + charlieLambda(nv, a) + charlieLambda(nl, a)) * 4.0 * nv * nl);
+}
+// Its directional albedo at view cosine mu, by the midpoint rule over cos theta and phi in [0, 2 pi).
+inline double sheenAlbedo(double mu, double r, int grid = 64) {
+    const glm::dvec3 v(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
+    double sum = 0.0;
+    for (int i = 0; i < grid; ++i)
+        for (int j = 0; j < 2 * grid; ++j) {
+            const double c = (i + 0.5) / grid, phi = kPi * (j + 0.5) / grid, s = std::sqrt(1.0 - c * c);
+            const glm::dvec3 l(s * std::cos(phi), s * std::sin(phi), c), h = glm::normalize(l + v);
+            sum += sheenLobe(r, h.z, c, mu) * c;
+        }
+    return sum * (1.0 / grid) * (kPi / grid);
+}
+
+// The same, at most 1 (as gpurt's table: a smooth sheen's lobe integrates above 1 at grazing
+// views), on a fine grid of mu (257 points, linear between), computed once a roughness.
+inline double sheenAlbedoFine(double mu, double r) {
+    static std::map<double, std::vector<double>> tables;
+    std::vector<double>& t = tables[r];
+    if (t.empty())
+        for (int k = 0; k <= 256; ++k) t.push_back(std::min(1.0, sheenAlbedo(std::max(k / 256.0, 1e-4), r)));
+    const double x = std::clamp(mu, 0.0, 1.0) * 256.0;
+    const int k = std::min(255, int(x));
+    return t[size_t(k)] + (t[size_t(k + 1)] - t[size_t(k)]) * (x - k);
+}
+
 // KHR_materials_clearcoat's fresnel_coat weight at n.v: clearcoat x Schlick's with F0 0.04.
 inline double coatWeight(const GltfParams& p, double nv) { return p.clearcoat * (0.04 + 0.96 * schlick(std::abs(nv))); }
 
@@ -116,6 +163,11 @@ inline glm::dvec3 gltfReferenceBrdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     if (p.roughness > 0.0) {
         const double a2 = std::pow(p.roughness, 4.0);
         f += specularWeight(p, vh) * (ggx(a2, glm::dot(n, h)) * visibility(a2, nl, nv));
+    }
+    if (p.sheenColor != glm::dvec3(0.0)) {  // sheen colour D V + base x min(scaling at v, at l)
+        const double c = std::max(p.sheenColor.x, std::max(p.sheenColor.y, p.sheenColor.z));
+        f = f * std::min(1.0 - c * sheenAlbedoFine(nv, p.sheenRoughness), 1.0 - c * sheenAlbedoFine(nl, p.sheenRoughness)) +
+            p.sheenColor * sheenLobe(p.sheenRoughness, glm::dot(n, h), nl, nv);
     }
     if (p.clearcoat > 0.0) {  // mix(base, coat's D V, coat weight at n.v)
         const double w = coatWeight(p, nv);
@@ -184,6 +236,19 @@ inline glm::dvec3 gltfReferenceAlbedo(const GltfParams& p, double mu, int grid =
 // (1 - w) E_base + w E_lobe, E_lobe the albedo of the coat's D V alone (a white metal's of the
 // coat's roughness: its Fresnel is 1; 1 for a smooth coat's mirror). Without a coat: E_base.
 inline glm::dvec3 gltfReferenceCoatedAlbedo(const GltfParams& p, double mu, int grid = 400) {
+    if (p.sheenColor != glm::dvec3(0.0)) {
+        // The sheen's scaling couples v and l: the BRDF integrated over a cosine-weighted grid of
+        // l (rough lobes only: no smooth coat or base with a sheen here).
+        const glm::dvec3 n(0.0, 0.0, 1.0), v(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
+        glm::dvec3 e(0.0);
+        for (int i = 0; i < grid; ++i)
+            for (int j = 0; j < grid; ++j) {
+                const double u1 = (i + 0.5) / grid, phi = 2.0 * gltfref::kPi * (j + 0.5) / grid, r = std::sqrt(u1);
+                const glm::dvec3 l(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u1));
+                e += gltfReferenceBrdf(p, n, v, l) * gltfref::kPi;  // f cos / (cos / pi)
+            }
+        return e / (double(grid) * double(grid));
+    }
     GltfParams base = p;
     base.clearcoat = 0.0;
     const glm::dvec3 e = gltfReferenceAlbedo(base, mu, grid);

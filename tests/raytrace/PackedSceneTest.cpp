@@ -226,6 +226,10 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_EQ(x.materials[m].transmissionTexture.texture, y.materials[m].transmissionTexture.texture) << m;
         EXPECT_EQ(x.materials[m].transmissionTexture.channel, y.materials[m].transmissionTexture.channel) << m;
         const Material &a = x.materials[m], &b = y.materials[m];  // LAYR
+        EXPECT_TRUE(sameBits(a.sheenColor, b.sheenColor) && sameBits(a.sheenRoughness, b.sheenRoughness) &&
+                    a.sheenColorTexture == b.sheenColorTexture && a.sheenRoughnessTexture.texture == b.sheenRoughnessTexture.texture &&
+                    a.sheenRoughnessTexture.channel == b.sheenRoughnessTexture.channel)
+            << m;
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -806,8 +810,8 @@ TEST_F(PackedSceneTest, TransmissionMapsTravelInTheirOwnSection) {
     EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
 }
 
-// The layers of glTF's extensions (LAYR: KHR_materials_specular, KHR_materials_clearcoat, 60 bytes
-// a material): written only when some material has one, so that other files stay as they were;
+// The layers of glTF's extensions (LAYR: KHR_materials_specular, KHR_materials_clearcoat,
+// KHR_materials_sheen, 88 bytes a material): written only when some material has one, so that other files stay as they were;
 // kept through the round trip; factors outside [0, 1], a colour below 0, a map's texture or
 // channel out of range and a count other than the materials' are refused.
 TEST_F(PackedSceneTest, LayersTravelInTheirOwnSection) {
@@ -826,12 +830,16 @@ TEST_F(PackedSceneTest, LayersTravelInTheirOwnSection) {
     m.clearcoatRoughnessTexture = {0, 1};
     m.clearcoatNormalTexture = 1;
     m.clearcoatNormalScale = -0.5f;
+    m.sheenColor = glm::vec3(0.5f, 1.0f, 0.25f);
+    m.sheenRoughness = 0.75f;
+    m.sheenColorTexture = 1;
+    m.sheenRoughnessTexture = {0, 3};
     const size_t materials = layered.scene.materials.size();
     const Bytes b = encodePackedScene(layered, *makeStructure(grid_), "layered");
     const Entry layr = section(b, "LAYR");
-    EXPECT_EQ(layr.size, 8 + 60 * materials);
+    EXPECT_EQ(layr.size, 8 + 88 * materials);
     EXPECT_EQ(get64(b, layr.offset), materials);
-    const size_t at = layr.offset + 8 + 60 * 2;  // material 2's record
+    const size_t at = layr.offset + 8 + 88 * 2;  // material 2's record
     EXPECT_EQ(get32(b, at), 0x3f000000u);        // 0.5f
     EXPECT_EQ(get32(b, at + 16), 1u);            // specularTexture: texture 1,
     EXPECT_EQ(get32(b, at + 20), 3u);            // channel A
@@ -847,6 +855,9 @@ TEST_F(PackedSceneTest, LayersTravelInTheirOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 52, textures); }),
                    "material 2: texture " + std::to_string(textures) + " out of range");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 40, 4); }), "material 2: texture channel 4");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 60, 0x3fc00000u); }), "sheen colour and roughness must be in [0, 1]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 76, textures); }),
+                   "material 2: texture " + std::to_string(textures) + " out of range");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, layr.offset, materials + 1); }), "section LAYR");
     LoadedScene bad = layered;
     bad.scene.materials[2].clearcoat = 2.0f;

@@ -575,12 +575,13 @@ TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
               std::string::npos);
 }
 
-// KHR_materials_clearcoat and KHR_materials_specular (TransmissionQuad.h's window with the two
-// extensions added): their factors, colour and maps as given (each map's channel as the
-// extensions say: clearcoat R, its roughness G, specular A, the colour a texture), the coat's
+// KHR_materials_clearcoat, KHR_materials_specular and KHR_materials_sheen (TransmissionQuad.h's
+// window with the extensions added): their factors, colours and maps as given (each map's channel
+// as the extensions say: clearcoat R, its roughness G, specular A, sheen roughness A, the colours
+// textures), the coat's
 // normal map with its scale, through the window's shared texture coordinates, and no warning
 // about them; values outside their ranges are refused naming the material.
-TEST(GltfLoaderMaterials, ClearcoatAndSpecularAreRead) {
+TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
     const fs::path dir = fs::temp_directory_path() / ("gpurt-layers-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
@@ -598,7 +599,9 @@ TEST(GltfLoaderMaterials, ClearcoatAndSpecularAreRead) {
         ", \"clearcoatNormalTexture\": {\"index\": 0, \"texCoord\": 1, \"scale\": 0.5, \"extensions\": "
         "{\"KHR_texture_transform\": {\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}}, "
         "\"KHR_materials_specular\": {\"specularFactor\": 0.5, \"specularColorFactor\": [1, 0.5, 2], "
-        "\"specularTexture\": " + info + ", \"specularColorTexture\": " + info + "}";
+        "\"specularTexture\": " + info + ", \"specularColorTexture\": " + info + "}, "
+        "\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 0.5, 0.25], \"sheenRoughnessFactor\": 0.5, "
+        "\"sheenColorTexture\": " + info + ", \"sheenRoughnessTexture\": " + info + "}";
     ::testing::internal::CaptureStderr();
     const Scene scene = parseGltf(withLayers(layers), "window.gltf", dir);
     const std::string warnings = ::testing::internal::GetCapturedStderr();
@@ -618,8 +621,14 @@ TEST(GltfLoaderMaterials, ClearcoatAndSpecularAreRead) {
     EXPECT_EQ(m.specularTexture.texture, 0);
     EXPECT_EQ(m.specularTexture.channel, 3);  // A
     EXPECT_EQ(m.specularColorTexture, 0);
+    EXPECT_EQ(m.sheenColor, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(m.sheenRoughness, 0.5f);
+    EXPECT_EQ(m.sheenColorTexture, 0);
+    EXPECT_EQ(m.sheenRoughnessTexture.texture, 0);
+    EXPECT_EQ(m.sheenRoughnessTexture.channel, 3);  // A
     EXPECT_TRUE(m.hasClearcoat());
     EXPECT_TRUE(m.hasSpecularLayer());
+    EXPECT_TRUE(m.hasSheen());
     EXPECT_EQ(scene.textures.size(), 1u);  // one image, one texture, every slot
     // Without the extensions: no layer.
     const Scene plain = parseGltf(test::TransmissionQuad::gltf(0.75, "bands.bmp"), "window.gltf", dir);
@@ -631,7 +640,10 @@ TEST(GltfLoaderMaterials, ClearcoatAndSpecularAreRead) {
              {"\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1, \"clearcoatTexture\": {\"texCoord\": 1}}", "material 0 ('window'): clearcoatTexture has no texture index"},
              {"\"KHR_materials_specular\": {\"specularFactor\": 2}", "material 0: specularFactor must be in [0, 1]"},
              {"\"KHR_materials_specular\": {\"specularColorFactor\": [1, 1]}", "material 0: specularColorFactor is not 3 numbers"},
-             {"\"KHR_materials_specular\": {\"specularColorFactor\": [1, -1, 1]}", "specularColorFactor must be 3 numbers in [0, 1000]"}}) {
+             {"\"KHR_materials_specular\": {\"specularColorFactor\": [1, -1, 1]}", "specularColorFactor must be 3 numbers in [0, 1000]"},
+             {"\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 2, 1]}", "material 0: sheenColorFactor must be 3 numbers in [0, 1]"},
+             {"\"KHR_materials_sheen\": {\"sheenColorFactor\": 1}", "sheenColorFactor is not 3 numbers"},
+             {"\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 1, 1], \"sheenRoughnessFactor\": 3}", "sheenRoughnessFactor must be in [0, 1]"}}) {
         const std::string message = test::refusalOf([&] { parseGltf(withLayers(bad), "window.gltf", dir); }, "window.gltf: ");
         EXPECT_NE(message.find(part), std::string::npos) << message;
     }

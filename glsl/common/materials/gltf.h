@@ -150,6 +150,78 @@ GPURT_FN float gltfCoatWeight(MaterialRecord m, vec3 v) {
 // Whether the coat is a perfect mirror (its roughness below GPURT_GLTF_SMOOTH; the default).
 GPURT_FN bool gltfCoatSmooth(MaterialRecord m) { return gltfSmooth(m.coatRoughness); }
 
+// KHR_materials_sheen: the Charlie sheen (Conty Estevez and Kulla 2017) as the extension's
+// implementation notes write it, alpha = roughness^2, its visibility with their fitted Lambda; a
+// roughness below GPURT_SHEEN_MIN_ROUGHNESS is taken as that (the lobe's spike at grazing
+// angles is past what a table and a cosine-weighted sampler resolve; three.js clamps the same).
+#define GPURT_SHEEN_MIN_ROUGHNESS 0.07f
+
+GPURT_FN float sheenAlpha(float roughness) {
+    float r = max(roughness, GPURT_SHEEN_MIN_ROUGHNESS);
+    return r * r;
+}
+
+// The Charlie distribution D at n.h = nh.
+GPURT_FN float charlieDistribution(float alpha, float nh) {
+    float invR = 1.0f / alpha;
+    float sin2h = max(1.0f - nh * nh, 0.0f);
+    return (2.0f + invR) * pow(sin2h, invR * 0.5f) / (2.0f * GPURT_PI);
+}
+
+GPURT_FN float charlieL(float x, float alpha) {
+    float k = (1.0f - alpha) * (1.0f - alpha);
+    float a = mix(21.5473f, 25.3245f, k);
+    float b = mix(3.82987f, 3.32435f, k);
+    float c = mix(0.19823f, 0.16801f, k);
+    float d = mix(-1.97760f, -1.27393f, k);
+    float e = mix(-4.32054f, -4.85967f, k);
+    return a / (1.0f + b * pow(x, c)) + d * x + e;
+}
+
+// The sheen's Lambda at cosine c.
+GPURT_FN float charlieLambda(float c, float alpha) {
+    float x = abs(c);
+    return x < 0.5f ? exp(charlieL(x, alpha)) : exp(2.0f * charlieL(0.5f, alpha) - charlieL(1.0f - x, alpha));
+}
+
+// The sheen lobe D V (before its colour) for cosines nh, nl, nv > 0.
+GPURT_FN float sheenLobe(float alpha, float nh, float nl, float nv) {
+    return charlieDistribution(alpha, nh) / ((1.0f + charlieLambda(nv, alpha) + charlieLambda(nl, alpha)) * (4.0f * nv * nl));
+}
+
+#if defined(__cplusplus) || defined(SCENE_SHEEN)  // SceneTextures::bind
+// The sheen's directional albedo E(mu) of roughness r (its lobe of colour 1, integrated: the
+// table sheenAlbedoTexel reads, raytrace/materials/SheenTable.cpp), bilinear between its entries.
+GPURT_FN float sheenAlbedo(float mu, float r) {
+    float x = sqrt(clamp(mu, 0.0f, 1.0f)) * float(GPURT_SHEEN_TABLE - 1);  // rows in sqrt(n.v): E is steep at grazing views
+    float y = clamp(r, 0.0f, 1.0f) * float(GPURT_SHEEN_TABLE - 1);
+    int i = min(int(x), GPURT_SHEEN_TABLE - 2);
+    int j = min(int(y), GPURT_SHEEN_TABLE - 2);
+    float fx = x - float(i);
+    float a = mix(sheenAlbedoTexel(i, j), sheenAlbedoTexel(i + 1, j), fx);
+    float b = mix(sheenAlbedoTexel(i, j + 1), sheenAlbedoTexel(i + 1, j + 1), fx);
+    return mix(a, b, y - float(j));
+}
+#endif
+
+// Whether the record has a sheen (compiled only for scenes with one).
+GPURT_FN bool gltfHasSheen(MaterialRecord m) {
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    return maxChannel(m.sheenColor) > 0.0f;
+#else
+    return false;
+#endif
+}
+
+// What the sheen leaves of the rest seen at cosine mu: 1 - max(sheen colour) E(mu) (the albedo
+// scaling's one side; 1 without a sheen).
+GPURT_FN float gltfSheenBase(MaterialRecord m, float mu) {
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    if (gltfHasSheen(m)) return 1.0f - maxChannel(m.sheenColor) * sheenAlbedo(mu, m.sheenRoughness);
+#endif
+    return 1.0f;
+}
+
 // The probability that the specular lobe's microfacet at v.h = vh reflects (else it refracts):
 // the reflection's share of the two weights (largest channels).
 GPURT_FN float gltfReflectProbability(MaterialRecord m, float vh) {
@@ -193,10 +265,20 @@ GPURT_FN float gltfCoatLobe(MaterialRecord m, vec3 v, vec3 l) {
     return ggxDistribution(a2, max(dot(n, h), 0.0f)) * smithVisibility(a2, nl, nv);
 }
 
-// The BRDF f(l, v): the base's, under the coat where there is one (KHR_materials_clearcoat:
-// mix(base, coat lobe, coat weight)).
+// The BRDF f(l, v): the base's, under a sheen where there is one (KHR_materials_sheen: sheen colour
+// D V + base x min(1 - max(colour) E(n.v), 1 - max(colour) E(n.l))), under the coat where there is
+// one (KHR_materials_clearcoat: mix(that, coat lobe, coat weight)).
 GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     vec3 f = gltfBaseBrdf(m, n, v, l);
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    float nl = dot(n, l);
+    if (gltfHasSheen(m) && nl > 0.0f) {  // sheen colour D V + the rest x min(scaling at v, at l)
+        float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
+        vec3 h = contractNormalize(l + v);
+        f = f * min(gltfSheenBase(m, nv), gltfSheenBase(m, nl)) +
+            m.sheenColor * sheenLobe(sheenAlpha(m.sheenRoughness), max(dot(n, h), 0.0f), nl, nv);
+    }
+#endif
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     if (m.coat > 0.0f) {
         float w = gltfCoatWeight(m, v);
@@ -238,7 +320,7 @@ GPURT_FN vec3 gltfBtdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     // G2 / (|n.l| n.v) = 4 V
     float k = ggxDistribution(a2, max(dot(n, h), 0.0f)) * 4.0f * smithVisibility(a2, anl, nv) * (-lh) * vh /
               (denom * denom * m.ior * m.ior);
-    return gltfTransmissionWeight(m, vh) * (k * (1.0f - gltfCoatWeight(m, v)));
+    return gltfTransmissionWeight(m, vh) * (k * (1.0f - gltfCoatWeight(m, v)) * gltfSheenBase(m, nv));
 }
 
 // The probability of sampling the specular lobe (reflection or refraction at a visible normal) at
@@ -296,10 +378,31 @@ GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, ve
     return pdf + pSpecular * gltfReflectProbability(m, vh) * ggxVisiblePdf(a2, n, v, h) / (4.0f * vh);
 }
 
+// The probability of sampling the sheen (by the cosine, as the diffuse lobe) under the coat at
+// shading n.v = nv: its albedo max(colour) E(nv)'s share beside the lobes under it; 0 without.
+GPURT_FN float gltfSheenProbability(MaterialRecord m, float nv) {
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    if (gltfHasSheen(m)) {
+        float w = 1.0f - gltfSheenBase(m, nv);
+        float base = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv)) +
+                     maxChannel(gltfDiffuseWeight(m, nv));
+        return w + (1.0f - w) * base > 0.0f ? w / (w + (1.0f - w) * base) : 0.0f;
+    }
+#endif
+    return 0.0f;
+}
+
 // The solid-angle pdf of sampling l: the coat's visible normal with probability pCoat (0 for a
-// smooth coat: a delta), else the base's lobes (gltfBasePdf).
+// smooth coat: a delta), else the sheen's cosine lobe with its probability, else the base's lobes
+// (gltfBasePdf).
 GPURT_FN float gltfPdf(MaterialRecord m, float pCoat, float pSpecular, vec3 n, vec3 v, vec3 l) {
     float pdf = gltfBasePdf(m, pSpecular, n, v, l);
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    if (gltfHasSheen(m)) {
+        float ps = gltfSheenProbability(m, max(dot(n, v), GPURT_GLTF_MIN_COS));
+        pdf = pdf * (1.0f - ps) + ps * max(dot(n, l), 0.0f) * GPURT_INV_PI;
+    }
+#endif
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     if (pCoat > 0.0f) {
         pdf = pdf * (1.0f - pCoat);
@@ -338,12 +441,15 @@ GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
 }
 
 // The ambient albedo: the directional albedo at normal incidence, (1 - m)(1 - t) 0.96 c + F0 with
-// F0 = mix(0.04, c, m), without F0 for a smooth coat (its mirror ray brings it), under a coat's
-// (1 - its weight) with a rough coat's own weight added (a smooth one's comes by the mirror ray),
-// times the occlusion.
+// F0 = mix(0.04, c, m), without F0 for a smooth coat (its mirror ray brings it), under a sheen's
+// scaling with the sheen's own albedo added, under a coat's (1 - its weight) with a rough coat's
+// own weight added (a smooth one's comes by the mirror ray), times the occlusion.
 GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
     vec3 albedo = gltfDiffuseWeight(m, 1.0f);
     if (!gltfSmooth(m.roughness)) albedo = albedo + gltfSpecularFresnel(m, 1.0f);
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    if (gltfHasSheen(m)) albedo = albedo * gltfSheenBase(m, 1.0f) + m.sheenColor * sheenAlbedo(1.0f, m.sheenRoughness);
+#endif
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     if (m.coat > 0.0f) {
         float w = m.coat * GPURT_GLTF_DIELECTRIC;
@@ -395,13 +501,14 @@ GPURT_FN bool gltfSplits(MaterialRecord m) { return gltfTransmission(m) > 0.0f; 
 // Whitted's rays: the refracted ray (as through a smooth surface) where the material transmits,
 // continuing the pixel's ray, and the mirror ray of a smooth surface and of a smooth coat (one ray:
 // about the coat's normal where the coat mirrors, a smooth base's mirror taken along it; the two
-// normals differ only under a normal map), the base's weights under the coat's 1 - weight.
+// normals differ only under a normal map), the base's weights under the coat's 1 - weight and the
+// sheen's scaling.
 GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GPURT_OUT(vec3) dirA,
                           GPURT_OUT(vec3) weightA, GPURT_OUT(float) sideA, GPURT_OUT(vec3) dirB,
                           GPURT_OUT(vec3) weightB) {
     float nv = clamp(-dot(d, ns), 0.0f, 1.0f);
     float coat = gltfCoatWeight(m, -d);
-    vec3 under = w * (1.0f - coat);
+    vec3 under = w * ((1.0f - coat) * gltfSheenBase(m, nv));
     dirA = shadingReflection(d, gltfCoatMirrors(m) ? m.coatNormal : ns, ng);
     weightA = gltfSmooth(m.roughness) ? under * gltfSpecularFresnel(m, nv) : vec3(0.0f);
     if (gltfCoatMirrors(m)) weightA = weightA + w * coat;
@@ -426,7 +533,7 @@ GPURT_FN bool gltfLit(MaterialRecord m) {
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     roughCoat = m.coat > 0.0f && !gltfCoatSmooth(m);
 #endif
-    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f || roughCoat;
+    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f || roughCoat || gltfHasSheen(m);
 }
 
 // pi times the BRDF (light sampling reaches only directions above the surface).
@@ -454,7 +561,8 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
     pdf = 0.0f;
     side = 1.0f;
     bool mirror = gltfSmooth(m.roughness);
-    vec3 under = vec3(1.0f);  // the base's delta lobes' share under the coat over their probability's
+    vec3 under = vec3(1.0f);  // the base's delta lobes' share under the coat and sheen over their probability's
+    bool picked = false;      // a direction of the coat's or the sheen's lobe, evaluated below as the mixture
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     if (lobe < pc) {
         if (gltfCoatSmooth(m)) {  // a delta lobe
@@ -463,13 +571,24 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
             return true;
         }
         dir = mirrorDirection(d, ggxVisibleNormal(m.coatNormal, v, m.coatRoughness * m.coatRoughness, u));
-        lobe = 2.0f;  // past the base's lobes: evaluated below as the mixture
+        picked = true;
     } else if (pc > 0.0f) {
         lobe = (lobe - pc) / (1.0f - pc);
         under = vec3((1.0f - coat) / (1.0f - pc));
     }
 #endif
-    if (lobe < p) {
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    float ps = picked ? 0.0f : gltfSheenProbability(m, nv);
+    if (lobe < ps) {
+        dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
+        picked = true;
+    } else if (ps > 0.0f) {
+        lobe = (lobe - ps) / (1.0f - ps);
+        under = under * (gltfSheenBase(m, nv) / (1.0f - ps));
+    }
+#endif
+    if (picked) {  // the coat's or the sheen's direction: evaluated below as the mixture
+    } else if (lobe < p) {
         vec3 h = mirror ? ns : ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
         float vh = mirror ? nv : max(dot(v, h), 0.0f);
         float pr = gltfReflectProbability(m, vh);
@@ -494,7 +613,7 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
             factor = gltfBtdf(m, ns, v, dir) * (cosT / tpdf);
             return true;
         }
-    } else if (lobe <= 1.0f) {
+    } else {
         dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
     }
     float cosI = dot(ns, dir);

@@ -4,8 +4,13 @@
 
 #include <glm/glm.hpp>
 
+#include "../../../glsl/common/scene_layout.h"
+
 namespace gpurt::raymath {
 using namespace glm;
+// Entry (i, j) of the sheen's albedo table (glsl/common/scene_layout.h GPURT_SHEEN_TABLE; the
+// kernels read it from their sheenTable buffer): raytrace/materials/SheenTable.cpp.
+float sheenAlbedoTexel(int i, int j);
 #include "../../../glsl/common/raymath.h"
 #include "../../../glsl/common/sampling.h"
 #include "../../../glsl/common/alpha.h"

@@ -31,6 +31,9 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
             r.specularColor = m.specularColor * sampleTexture(scene.textures[size_t(m.specularColorTexture)], t);
         r.coat = m.clearcoat * channelAt(scene, m.clearcoatTexture, t);  // SCENE_CLEARCOAT
         r.coatRoughness = m.clearcoatRoughness * channelAt(scene, m.clearcoatRoughnessTexture, t);
+        r.sheenRoughness = m.sheenRoughness * channelAt(scene, m.sheenRoughnessTexture, t);  // SCENE_SHEEN
+        if (m.sheenColorTexture >= 0 && !scene.texcoords.empty())
+            r.sheenColor = m.sheenColor * sampleTexture(scene.textures[size_t(m.sheenColorTexture)], t);
         if (m.emissiveTexture >= 0) {
             r.emitterLight = false;
             if (!scene.texcoords.empty()) r.emission = m.emission * sampleTexture(scene.textures[size_t(m.emissiveTexture)], t);
@@ -59,6 +62,8 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.coat = gltf ? m.clearcoat : 0.0f;
     r.coatRoughness = gltf ? m.clearcoatRoughness : 0.0f;
     r.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);  // CpuScene::surfaceAt: the surface's
+    r.sheenColor = gltf ? m.sheenColor : glm::vec3(0.0f);
+    r.sheenRoughness = gltf ? m.sheenRoughness : 0.0f;
     return r;
 }
 

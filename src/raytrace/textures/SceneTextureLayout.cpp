@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "raytrace/common/RayMath.h"  // common/alpha.h GPURT_COVER_*
+#include "raytrace/materials/SheenTable.h"
 #include "raytrace/materials/SurfaceTexture.h"
 
 namespace gpurt {
@@ -109,7 +110,9 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.specularColor, mat.clearcoat),
             vec4(mat.clearcoatRoughness, channel(mat.clearcoatTexture), channel(mat.clearcoatRoughnessTexture),
                  float(mat.clearcoatNormalTexture)),
-            vec4(mat.clearcoatNormalScale, 0.0f, 0.0f, 0.0f)};
+            vec4(mat.clearcoatNormalScale, mat.sheenRoughness, float(mat.sheenColorTexture),
+                 channel(mat.sheenRoughnessTexture)),
+            vec4(mat.sheenColor, 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =
@@ -203,6 +206,13 @@ TextureTexels srgbTableTexels() {
     return table;
 }
 
+TextureTexels sheenTableTexels() {
+    TextureTexels table = emptyTexture("sheenTable", GPURT_SHEEN_TABLE * GPURT_SHEEN_TABLE, 1, 1, true);
+    const std::vector<float>& albedo = sheenAlbedoTable();
+    std::copy(albedo.begin(), albedo.end(), table.floats.begin());
+    return table;
+}
+
 TextureTexels emitterTexels(const EmitterTable& emitters) {
     const size_t n = std::max<size_t>(1, emitters.triangles.size());
     TextureTexels table = emptyTexture("emitters", n, 1, 2, true);
@@ -227,6 +237,9 @@ std::vector<TextureTexels> integratorTextureTexels(const Scene& scene) {
     all.push_back(srgbTableTexels());
     all.push_back(vertexColorTexels(scene));
     if (!scene.tangents.empty()) all.push_back(vertexTangentTexels(scene));
+    if (std::any_of(scene.materials.begin(), scene.materials.end(),
+                    [](const Material& m) { return m.model == GPURT_MODEL_GLTF && m.hasSheen(); }))
+        all.push_back(sheenTableTexels());
     return all;
 }
 

@@ -72,6 +72,8 @@ TextureTexels textureImageTexels(const Scene& scene);
 TextureTexels textureTableTexels(const Scene& scene);
 // R32F, the 256 linear values of the sRGB codes (srgbDecodeTable).
 TextureTexels srgbTableTexels();
+// KHR_materials_sheen's albedo table (materials/SheenTable.h): R32F, row-major.
+TextureTexels sheenTableTexels();
 // RG32F, one row: (cumulative area share, triangle id) per entry of the emitter table; (1, -1)
 // when it is empty.
 TextureTexels emitterTexels(const EmitterTable& emitters);

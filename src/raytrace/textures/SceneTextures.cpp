@@ -171,6 +171,8 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
             hasNormalMaps_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasSpecularLayer()) hasSpecularLayer_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasClearcoat()) hasClearcoat_ = true;
+        if (m.model == GPURT_MODEL_GLTF && m.hasSheen() && !sheenTable_)
+            sheenTable_.emplace(uploadTexels(sheenTableTexels(), GPUFormat::R32F, GPUStorage::Buffer));
         if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
             hasTransmission_ = true;
             if (m.transmissionTexture.given() && hasTexcoords_) hasTransmissionMaps_ = true;
@@ -192,6 +194,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasTransmissionMaps_) kernel.addDefine("SCENE_TRANSMISSION_MAPS");  // shading.glsl fetchMaterialRecord
     if (hasSpecularLayer_) kernel.addDefine("SCENE_SPECULAR_LAYER");  // common/materials/gltf.h
     if (hasClearcoat_) kernel.addDefine("SCENE_CLEARCOAT");
+    if (sheenTable_) kernel.addDefine("SCENE_SHEEN").addInput(*sheenTable_, "sheenTable");  // gltf.h sheenAlbedo
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (lightKinds_) kernel.addDefine("SCENE_LIGHT_KINDS");  // common/shading.h punctualAsPoint

@@ -11,6 +11,7 @@
 #include "stream/GPUFloatArray.h"
 #include "stream/GPUKernel.h"
 
+#include <optional>
 #include <set>
 
 namespace gpurt {
@@ -83,6 +84,7 @@ class SceneTextures {
     bool hasTransmissionMaps_ = false;  // one of them with a transmissionTexture (SCENE_TRANSMISSION_MAPS)
     bool hasSpecularLayer_ = false;  // a glTF material with KHR_materials_specular (SCENE_SPECULAR_LAYER)
     bool hasClearcoat_ = false;      // a glTF material with a clearcoat (SCENE_CLEARCOAT)
+    std::optional<GPUFloatArray> sheenTable_;  // a glTF material with a sheen: its albedo table (SCENE_SHEEN)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels
     bool shadowless_ = false;      // SCENE_SHADOWLESS in the accelerators' kernels

@@ -33,8 +33,9 @@ constexpr size_t kGlowBytes = 4;
 constexpr size_t kTransmissionMapBytes = 2 * 4;
 // LAYR per material: KHR_materials_specular's factor, colour (f32) and maps (the factor's channel:
 // texture, channel; the colour's texture), KHR_materials_clearcoat's factor, roughness (f32), maps
-// (two channels, the normal texture) and normal scale (f32).
-constexpr size_t kLayerBytes = 4 * 4 + 3 * 4 + 2 * 4 + 5 * 4 + 4;
+// (two channels, the normal texture) and normal scale (f32), KHR_materials_sheen's colour,
+// roughness (f32) and maps (the colour's texture, the roughness's channel).
+constexpr size_t kLayerBytes = 4 * 4 + 3 * 4 + 2 * 4 + 5 * 4 + 4 + 4 * 4 + 3 * 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -307,6 +308,10 @@ void readLayers(const PackedSection& s, Scene& scene) {
         m.clearcoatRoughnessTexture = channel();
         m.clearcoatNormalTexture = int(int32_t(in.u32()));
         m.clearcoatNormalScale = in.f32();
+        m.sheenColor = in.vec3();
+        m.sheenRoughness = in.f32();
+        m.sheenColorTexture = int(int32_t(in.u32()));
+        m.sheenRoughnessTexture = channel();
     }
 }
 void writeLayers(ByteWriter& out, const LoadedScene& loaded) {
@@ -327,6 +332,10 @@ void writeLayers(ByteWriter& out, const LoadedScene& loaded) {
         channel(m.clearcoatRoughnessTexture);
         out.u32(uint32_t(int32_t(m.clearcoatNormalTexture)));
         out.f32(m.clearcoatNormalScale);
+        out.vec3(m.sheenColor);
+        out.f32(m.sheenRoughness);
+        out.u32(uint32_t(int32_t(m.sheenColorTexture)));
+        channel(m.sheenRoughnessTexture);
     }
 }
 
@@ -375,12 +384,13 @@ const SceneSection kTransmissionMapSection{
     [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.transmissionTexture.given(); }); },
     false, writeTransmissionMaps, [](const PackedSection& s, LoadedScene& l) { readTransmissionMaps(s, l.scene); }};
 
-// Only when some material has a layer of glTF's extensions (KHR_materials_specular, _clearcoat):
+// Only when some material has a layer of glTF's extensions (KHR_materials_specular, _clearcoat,
+// _sheen):
 // likewise.
 const SceneSection kLayerSection{
     "LAYR",
     [](const LoadedScene& l) {
-        return anyMaterial(l, [](const Material& m) { return m.hasSpecularLayer() || m.hasClearcoat(); });
+        return anyMaterial(l, [](const Material& m) { return m.hasSpecularLayer() || m.hasClearcoat() || m.hasSheen(); });
     },
     false, writeLayers, [](const PackedSection& s, LoadedScene& l) { readLayers(s, l.scene); }};
 
@@ -407,23 +417,24 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
                             mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture,
                             mat.transmissionTexture.texture, mat.specularTexture.texture, mat.specularColorTexture,
                             mat.clearcoatTexture.texture, mat.clearcoatRoughnessTexture.texture,
-                            mat.clearcoatNormalTexture})
+                            mat.clearcoatNormalTexture, mat.sheenColorTexture, mat.sheenRoughnessTexture.texture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
         for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture,
                                  mat.transmissionTexture, mat.specularTexture, mat.clearcoatTexture,
-                                 mat.clearcoatRoughnessTexture})
+                                 mat.clearcoatRoughnessTexture, mat.sheenRoughnessTexture})
             if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
         if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
             !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": metallic, roughness and occlusion strength must be in [0, 1], the normal scale finite");
         auto unit = [](float v) { return v >= 0.0f && v <= 1.0f; };
         if (!unit(mat.specularFactor) || !isFinite(mat.specularColor) || !nonNegative(mat.specularColor) ||
-            !unit(mat.clearcoat) || !unit(mat.clearcoatRoughness) || !std::isfinite(mat.clearcoatNormalScale))
+            !unit(mat.clearcoat) || !unit(mat.clearcoatRoughness) || !std::isfinite(mat.clearcoatNormalScale) ||
+            !unit(mat.sheenColor.x) || !unit(mat.sheenColor.y) || !unit(mat.sheenColor.z) || !unit(mat.sheenRoughness))
             failAt(file, "material " + std::to_string(m) +
-                             ": specular factor, clearcoat and its roughness must be in [0, 1], the specular colour "
-                             "finite and >= 0, the clearcoat normal scale finite");
+                             ": specular factor, clearcoat and its roughness, sheen colour and roughness must be in [0, 1], "
+                             "the specular colour finite and >= 0, the clearcoat normal scale finite");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +
