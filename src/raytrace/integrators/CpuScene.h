@@ -62,11 +62,13 @@ class CpuScene {
     // The surface at a hit of the ray from o along d: the point, the facing geometric normal, the
     // shading normal (common/shading.h), the side and the material record (common/material.h).
     raymath::SurfaceHit surfaceAt(const TraceHit& hit, glm::vec3 o, glm::vec3 d) const;
-    glm::vec3 normalMappedAt(const TraceHit& hit, glm::vec3 d, glm::vec3 ng, glm::vec3 ns, int map, float scale) const;
     // Traces one shadow ray (counted in stats); true when nothing blocks it.
     bool unblocked(glm::vec3 origin, glm::vec3 dir, float limit, uint32_t coverageKey, RenderStats& stats) const;
 
   private:
+    // ns at the hit bent by normal map `map` (-1: none) of scale `scale` (the base's, a coat's).
+    glm::vec3 normalMappedAt(const TraceHit& hit, glm::vec3 d, glm::vec3 ng, glm::vec3 ns, int map, float scale) const;
+
     const Scene& scene_;
     std::unique_ptr<CpuAccelerator> accel_;
     std::vector<PreparedTriangle> triangles_;
