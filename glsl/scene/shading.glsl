@@ -155,6 +155,34 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 #endif
 }
 
+// The layers of glTF's extensions of the record r of the material at texel `at` (fetchMaterialRecord):
+// KHR_materials_specular, _sheen and _clearcoat, each compiled in for scenes that have it.
+void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2 t) {
+#ifdef SCENE_SPECULAR_LAYER  // KHR_materials_specular
+    vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
+    r.specularWeight = sp.w * textureChannel(int(sp.y), t);
+    r.specularColor = texturedDiffuse(int(sp.z), texelFetch(materials, at + ivec2(9, 0), 0).xyz, t);
+#endif
+#ifdef SCENE_SHEEN  // KHR_materials_sheen: its colour (sRGB map) and roughness (A of its map)
+    vec4 sh = texelFetch(materials, at + ivec2(11, 0), 0);
+    r.sheenColor = texturedDiffuse(int(sh.z), texelFetch(materials, at + ivec2(12, 0), 0).xyz, t);
+    r.sheenRoughness = sh.y * textureChannel(int(sh.w), t);
+#endif
+#ifdef SCENE_CLEARCOAT  // KHR_materials_clearcoat: the coat and its normal, the interpolated one or its own map's
+    vec4 cc = texelFetch(materials, at + ivec2(10, 0), 0);
+    r.coat = texelFetch(materials, at + ivec2(9, 0), 0).w * textureChannel(int(cc.y), t);
+    r.coatRoughness = cc.x * textureChannel(int(cc.z), t);
+    if (r.coat > 0.0f) {
+        vec3 v0, e1, e2;
+        int material;
+        fetchTriangle(id, v0, e1, e2, material);
+        vec3 ng = facingNormal(e1, e2, d);
+        r.coatNormal = fetchNormalMapped(int(cc.w), texelFetch(materials, at + ivec2(11, 0), 0).x, id, e1, e2, d, ng,
+                                         fetchShadingNormal(id, uv.x, uv.y, ng), t, uv);
+    }
+#endif
+}
+
 // The material record (common/material.h) of material m at image coordinates t: every field of
 // its texels, the diffuse colour textured at t and times the vertex colour, t and the colour those
 // of triangle `id` at the hit's barycentrics uv (surface.frag writes uv; the later passes read it
@@ -202,29 +230,7 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
 #ifdef SCENE_TRANSMISSION_MAPS  // a transmissive glTF material with a transmissionTexture: its R scales the factor
     r.tf = r.tf * textureChannel(int(texelFetch(materials, at + ivec2(8, 0), 0).x), t);
 #endif
-#ifdef SCENE_SPECULAR_LAYER  // KHR_materials_specular
-    vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
-    r.specularWeight = sp.w * textureChannel(int(sp.y), t);
-    r.specularColor = texturedDiffuse(int(sp.z), texelFetch(materials, at + ivec2(9, 0), 0).xyz, t);
-#endif
-#ifdef SCENE_SHEEN  // KHR_materials_sheen: its colour (sRGB map) and roughness (A of its map)
-    vec4 sh = texelFetch(materials, at + ivec2(11, 0), 0);
-    r.sheenColor = texturedDiffuse(int(sh.z), texelFetch(materials, at + ivec2(12, 0), 0).xyz, t);
-    r.sheenRoughness = sh.y * textureChannel(int(sh.w), t);
-#endif
-#ifdef SCENE_CLEARCOAT  // KHR_materials_clearcoat: the coat and its normal, the interpolated one or its own map's
-    vec4 cc = texelFetch(materials, at + ivec2(10, 0), 0);
-    r.coat = texelFetch(materials, at + ivec2(9, 0), 0).w * textureChannel(int(cc.y), t);
-    r.coatRoughness = cc.x * textureChannel(int(cc.z), t);
-    if (r.coat > 0.0f) {
-        vec3 v0, e1, e2;
-        int material;
-        fetchTriangle(id, v0, e1, e2, material);
-        vec3 ng = facingNormal(e1, e2, d);
-        r.coatNormal = fetchNormalMapped(int(cc.w), texelFetch(materials, at + ivec2(11, 0), 0).x, id, e1, e2, d, ng,
-                                         fetchShadingNormal(id, uv.x, uv.y, ng), t, uv);
-    }
-#endif
+    fetchLayers(r, at, id, uv, d, t);
 #endif
     return r;
 }

@@ -506,33 +506,11 @@ class SceneReader {
         return m;
     }
 
-    Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
-        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
-                                  "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
-                                  "specular_color", "sheen_color", "sheen_roughness", "doubleSided"});
-        Material material;
-        material.name = printable(fileName) + " (override)";
-        if (const json* name = find(value, "name")) {
-            if (!name->is_string())
-                fail(at / "name", std::string("expected a string, got ") + name->type_name());
-            material.name = name->get<std::string>();
-        }
-        if (const json* diffuse = find(value, "diffuse"))
-            material.diffuse = color(*diffuse, at / "diffuse");
-        if (const json* specular = find(value, "specular"))
-            material.specular = color(*specular, at / "specular");
-        if (const json* emission = find(value, "emission"))
-            material.emission = color(*emission, at / "emission");
-        if (const json* ior = find(value, "ior")) {
-            const double eta = numberAtLeast(*ior, at / "ior", 0.0);
-            if (!(eta > 0.0)) fail(at / "ior", "must be > 0, got " + formatNumber(eta));
-            material.ior = static_cast<float>(eta);
-        }
-        // "metallic", "roughness" or a layer of glTF's extensions: glTF's metallic-roughness
-        // model, "diffuse" its base colour; "clearcoat" and "clearcoat_roughness"
-        // (KHR_materials_clearcoat), "specular_factor" and "specular_color"
-        // (KHR_materials_specular), "sheen_color" and "sheen_roughness" (KHR_materials_sheen), each
-        // a factor in [0, 1] but the specular colour.
+    // "metallic", "roughness" or a layer of glTF's extensions: glTF's metallic-roughness model,
+    // "diffuse" its base colour; "clearcoat" and "clearcoat_roughness" (KHR_materials_clearcoat),
+    // "specular_factor" and "specular_color" (KHR_materials_specular), "sheen_color" and
+    // "sheen_roughness" (KHR_materials_sheen), each a factor in [0, 1] but the specular colour.
+    void readGltfFactors(const json& value, const Pointer& at, Material& material) const {
         const std::pair<const char*, float*> factors[] = {
             {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
             {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor},
@@ -556,6 +534,31 @@ class SceneReader {
                     fail(at / "sheen_color" / i, "must be <= 1, got " + formatNumber(material.sheenColor[i]));
             material.model = GPURT_MODEL_GLTF;
         }
+    }
+
+    Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
+        requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
+                                  "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
+                                  "specular_color", "sheen_color", "sheen_roughness", "doubleSided"});
+        Material material;
+        material.name = printable(fileName) + " (override)";
+        if (const json* name = find(value, "name")) {
+            if (!name->is_string())
+                fail(at / "name", std::string("expected a string, got ") + name->type_name());
+            material.name = name->get<std::string>();
+        }
+        if (const json* diffuse = find(value, "diffuse"))
+            material.diffuse = color(*diffuse, at / "diffuse");
+        if (const json* specular = find(value, "specular"))
+            material.specular = color(*specular, at / "specular");
+        if (const json* emission = find(value, "emission"))
+            material.emission = color(*emission, at / "emission");
+        if (const json* ior = find(value, "ior")) {
+            const double eta = numberAtLeast(*ior, at / "ior", 0.0);
+            if (!(eta > 0.0)) fail(at / "ior", "must be > 0, got " + formatNumber(eta));
+            material.ior = static_cast<float>(eta);
+        }
+        readGltfFactors(value, at, material);
         if (material.model == GPURT_MODEL_GLTF) {
             // glTF's model: "ior" (KHR_materials_ior) and "transmission" a factor in [0, 1]
             // (KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h).

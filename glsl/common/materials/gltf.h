@@ -546,6 +546,46 @@ GPURT_FN float gltfMaterialPdf(MaterialRecord m, vec3 n, vec3 d, vec3 wi) {
     return gltfPdf(m, gltfCoatProbability(m, gltfCoatWeight(m, -d), nv), p, n, -d, wi);
 }
 
+// gltfSample's layers: with probability pc (the coat's weight `coat` seen at n.v = nv) the coat's
+// lobe, its mirror a delta (GPURT_LAYER_DELTA: dir and factor set), its GGX lobe a direction
+// (GPURT_LAYER_PICKED: dir set, to be weighed as the mixture); else with the sheen's share its
+// cosine lobe (GPURT_LAYER_PICKED); else (GPURT_LAYER_BASE) the lobe number rescaled for the base's
+// lobes and `under` their delta lobes' factor for the layers over them.
+#define GPURT_LAYER_BASE 0
+#define GPURT_LAYER_DELTA 1
+#define GPURT_LAYER_PICKED 2
+GPURT_FN int gltfSampleLayers(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, float nv, float coat, float pc,
+                              GPURT_INOUT(float) lobe, GPURT_INOUT(vec3) dir, GPURT_INOUT(vec3) factor,
+                              GPURT_OUT(vec3) under) {
+    under = vec3(1.0f);
+    int layer = GPURT_LAYER_BASE;
+#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
+    if (lobe < pc) {
+        if (gltfCoatSmooth(m)) {  // a delta lobe
+            dir = shadingReflection(d, m.coatNormal, ng);
+            factor = vec3(coat / pc);
+            return GPURT_LAYER_DELTA;
+        }
+        dir = mirrorDirection(d, ggxVisibleNormal(m.coatNormal, -d, m.coatRoughness * m.coatRoughness, u));
+        layer = GPURT_LAYER_PICKED;
+    } else if (pc > 0.0f) {
+        lobe = (lobe - pc) / (1.0f - pc);
+        under = vec3((1.0f - coat) / (1.0f - pc));
+    }
+#endif
+#if defined(__cplusplus) || defined(SCENE_SHEEN)
+    float ps = layer == GPURT_LAYER_PICKED ? 0.0f : gltfSheenProbability(m, nv);
+    if (lobe < ps) {
+        dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
+        layer = GPURT_LAYER_PICKED;
+    } else if (ps > 0.0f) {
+        lobe = (lobe - ps) / (1.0f - ps);
+        under = under * (gltfSheenBase(m, nv) / (1.0f - ps));
+    }
+#endif
+    return layer;
+}
+
 // A direction by the lobes' probabilities: the coat's (its weight's share), else the base's lobes
 // (the lobe number rescaled). A refracted direction reports pdf 0: light sampling never draws
 // below the surface, so the emission it finds counts in full (common/path.h).
@@ -561,33 +601,10 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
     pdf = 0.0f;
     side = 1.0f;
     bool mirror = gltfSmooth(m.roughness);
-    vec3 under = vec3(1.0f);  // the base's delta lobes' share under the coat and sheen over their probability's
-    bool picked = false;      // a direction of the coat's or the sheen's lobe, evaluated below as the mixture
-#if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
-    if (lobe < pc) {
-        if (gltfCoatSmooth(m)) {  // a delta lobe
-            dir = shadingReflection(d, m.coatNormal, ng);
-            factor = vec3(coat / pc);
-            return true;
-        }
-        dir = mirrorDirection(d, ggxVisibleNormal(m.coatNormal, v, m.coatRoughness * m.coatRoughness, u));
-        picked = true;
-    } else if (pc > 0.0f) {
-        lobe = (lobe - pc) / (1.0f - pc);
-        under = vec3((1.0f - coat) / (1.0f - pc));
-    }
-#endif
-#if defined(__cplusplus) || defined(SCENE_SHEEN)
-    float ps = picked ? 0.0f : gltfSheenProbability(m, nv);
-    if (lobe < ps) {
-        dir = directionAbout(ns, sqrt(1.0f - u.x), u.y);  // cosine-weighted
-        picked = true;
-    } else if (ps > 0.0f) {
-        lobe = (lobe - ps) / (1.0f - ps);
-        under = under * (gltfSheenBase(m, nv) / (1.0f - ps));
-    }
-#endif
-    if (picked) {  // the coat's or the sheen's direction: evaluated below as the mixture
+    vec3 under;  // the base's delta lobes' share under the coat and sheen over their probability's
+    int layer = gltfSampleLayers(m, d, ng, ns, u, nv, coat, pc, lobe, dir, factor, under);
+    if (layer == GPURT_LAYER_DELTA) return true;
+    if (layer == GPURT_LAYER_PICKED) {  // the coat's or the sheen's direction: evaluated below as the mixture
     } else if (lobe < p) {
         vec3 h = mirror ? ns : ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
         float vh = mirror ? nv : max(dot(v, h), 0.0f);
