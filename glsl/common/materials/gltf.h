@@ -331,15 +331,19 @@ GPURT_FN float gltfSpecularProbability(MaterialRecord m, float nv) {
     return s + d > 0.0f ? s / (s + d) : 0.0f;
 }
 
-// The probability of sampling the coat (coat weight w seen from v, shading n.v = nv): its weight's
-// share beside the base's lobes under it (largest channels at h = n); 0 without a coat.
+// The probability of sampling a layer of weight w over the base at shading n.v = nv: w's share
+// beside the base's lobes under it, scaled by 1 - w (their weights at h = n, largest channels).
+GPURT_FN float gltfLayerProbability(MaterialRecord m, float w, float nv) {
+    float base = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv)) +
+                 maxChannel(gltfDiffuseWeight(m, nv));
+    float all = w + (1.0f - w) * base;
+    return all > 0.0f ? w / all : 0.0f;
+}
+
+// The probability of sampling the coat (coat weight w seen from v, shading n.v = nv); 0 without.
 GPURT_FN float gltfCoatProbability(MaterialRecord m, float w, float nv) {
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
-    if (w > 0.0f) {
-        float base = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv)) +
-                     maxChannel(gltfDiffuseWeight(m, nv));
-        return w / (w + (1.0f - w) * base);
-    }
+    if (w > 0.0f) return gltfLayerProbability(m, w, nv);
 #endif
     return 0.0f;
 }
@@ -382,12 +386,7 @@ GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, ve
 // shading n.v = nv: its albedo max(colour) E(nv)'s share beside the lobes under it; 0 without.
 GPURT_FN float gltfSheenProbability(MaterialRecord m, float nv) {
 #if defined(__cplusplus) || defined(SCENE_SHEEN)
-    if (gltfHasSheen(m)) {
-        float w = 1.0f - gltfSheenBase(m, nv);
-        float base = maxChannel(gltfSpecularFresnel(m, nv)) + maxChannel(gltfTransmissionWeight(m, nv)) +
-                     maxChannel(gltfDiffuseWeight(m, nv));
-        return w + (1.0f - w) * base > 0.0f ? w / (w + (1.0f - w) * base) : 0.0f;
-    }
+    if (gltfHasSheen(m)) return gltfLayerProbability(m, 1.0f - gltfSheenBase(m, nv), nv);
 #endif
     return 0.0f;
 }
