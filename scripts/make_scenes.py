@@ -18,6 +18,9 @@ from geometry generated here, so that every shipped asset can be regenerated and
                    clearcoat_roughness, specular_factor, specular_color, sheen_color,
                    sheen_roughness): a rough red plastic bare, under a smooth and a rough coat, a
                    coated black, a tinted reflection, a velvet
+  I  volume.json   KHR_materials_volume (JSON attenuation_color, attenuation_distance): three
+                   spheres of one amber glass, small to large (the larger, the deeper its colour),
+                   an upright torus of blue-green glass and a rough green glass cube
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -533,6 +536,32 @@ def scene_h():
     return 0
 
 
+def scene_i():
+    """Coloured glass (KHR_materials_volume's Beer-Lambert absorption: JSON attenuation_color and
+    attenuation_distance) on slab.obj: sphere.obj three times in one amber glass at radii 0.5, 0.8
+    and 1.1 (light travels farther inside the larger ones), torus.obj upright in a blue-green glass
+    and cube.obj in a rough green one."""
+    def glass(name, colour, distance, roughness=0.0):
+        return {"name": name, "diffuse": [1.0, 1.0, 1.0], "metallic": 0, "roughness": roughness, "transmission": 1,
+                "ior": 1.5, "attenuation_color": colour, "attenuation_distance": distance}
+    amber = glass("amber glass", [0.95, 0.6, 0.2], 0.8)
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
+    for x, radius in ((-5.0, 0.5), (-3.3, 0.8), (-0.9, 1.1)):
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [x, radius - 1.0, 0.0], "scale": radius},
+                       "material": amber})
+    meshes.append({"file": "torus.obj", "transform": {"translate": [2.2, 0.08, 0.0], "rotate": [90.0, 0.0, 0.0], "scale": 0.8},
+                   "material": glass("blue-green glass", [0.15, 0.65, 0.8], 0.4)})
+    meshes.append({"file": "cube.obj", "transform": {"translate": [4.9, -0.4, 0.3], "rotate": [0.0, 30.0, 0.0], "scale": 1.2},
+                   "material": glass("rough green glass", [0.35, 0.85, 0.4], 0.6, 0.15)})
+    write("volume.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 2.2, 10.0], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 42.0},
+        "render": {"size": [720, 300], "max_bounces": 12},
+    }) + "\n")
+    return 0
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
@@ -540,7 +569,7 @@ def main():
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
-                       ("H layers", scene_h)):
+                       ("H layers", scene_h), ("I volume", scene_i)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

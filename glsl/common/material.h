@@ -45,6 +45,9 @@ struct MaterialRecord {
     vec3 coatNormal;      // its normal facing the ray (the surface's: CpuScene::surfaceAt, fetchMaterialRecord)
     vec3 sheenColor;      // glTF, KHR_materials_sheen: the sheen's colour (0: none), textured
     float sheenRoughness; // and roughness, textured
+    vec3 absorption;      // glTF, KHR_materials_volume: the absorption coefficient (per unit length)
+                          // of the medium the ray arrives through: the solid's, seen from inside
+                          // it (materialFacing), else 0
 };
 
 #include "raytree.h"
@@ -88,6 +91,17 @@ GPURT_FN MaterialRecord materialFacing(MaterialRecord m, bool entering) {
     if (m.model == GPURT_MODEL_GLTF) return gltfFacing(m, entering);
 #endif
     return m;
+}
+
+// The fraction of the light along the ray's segment of length t to the hit that arrives there:
+// the Beer-Lambert transmittance exp(-absorption t) of a KHR_materials_volume solid the ray
+// travelled inside (the record as materialFacing made it), 1 elsewhere. The integrators weigh
+// everything the hit gives the ray (emission, lights, the rays it spawns) with it.
+GPURT_FN vec3 materialTransmittance(MaterialRecord m, float t) {
+#if defined(__cplusplus) || defined(SCENE_VOLUME)  // SceneTextures::bind
+    if (m.absorption != vec3(0.0f)) return exp(-m.absorption * t);
+#endif
+    return vec3(1.0f);
 }
 
 // The albedo that the denoiser's feature buffer records at a hit (Open Image Denoise's: the

@@ -69,5 +69,6 @@ void main() {
 #else
     vec3 add = materialLight(m, s.xyz, n, d, lightPosition, lightColor, lightIntensity);
 #endif
-    localColor = vec4(readStream(localState).xyz + add, 0.0f);
+    vec4 before = readStream(localState);
+    localColor = vec4(before.xyz + add, before.w);  // w: the hit's distance (surface.frag)
 }

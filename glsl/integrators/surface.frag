@@ -40,7 +40,7 @@ layout(location = 0) out vec4 color;          // (accumulated colour, 0)
 layout(location = 1) out vec4 surfacePoint;   // (p, triangle | -1 when this path has no hit)
 layout(location = 2) out vec4 surfaceNormal;  // (n facing the ray, material)
 layout(location = 3) out vec4 surfaceView;    // (ray direction, barycentric u of the hit)
-layout(location = 4) out vec4 localColor;     // (ambient, 0); lights add to it
+layout(location = 4) out vec4 localColor;     // (ambient, the hit's distance t); lights add to it
 layout(location = 5) out vec4 surfaceShading; // (shading normal, barycentric v): the normal
                                               // smooth, facing as the geometric one
 
@@ -110,6 +110,7 @@ void main() {
     surfaceNormal = vec4(ng, float(material));
     surfaceShading = vec4(ns, h.z);
     surfaceView = vec4(d, h.y);
+    localColor.w = h.x;  // for the bounce passes' crossedWeight
 #ifdef PATH
     SurfaceHit s;
     s.p = surfacePoint.xyz;
@@ -120,11 +121,12 @@ void main() {
     pathArrive(st, s, h.x, depth);
     color = vec4(st.color, 0.0f);
 #else
-    color = vec4(c.xyz + w.xyz * materialEmitted(m, ns, d), 0.0f);
+    vec3 crossed = materialTransmittance(materialFacing(m, frontFace(e1, e2, d)), h.x);  // the medium the ray crossed
+    color = vec4(c.xyz + w.xyz * crossed * materialEmitted(m, ns, d), 0.0f);
 #ifdef SCENE_ENVIRONMENT
-    localColor = vec4(materialEnvironmentAmbient(m, environmentAmbient(ns)), 0.0f);
+    localColor.xyz = materialEnvironmentAmbient(m, environmentAmbient(ns));
 #else
-    localColor = vec4(materialAmbient(m), 0.0f);
+    localColor.xyz = materialAmbient(m);
 #endif
 #endif
 }

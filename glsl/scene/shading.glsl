@@ -156,8 +156,12 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 }
 
 // The layers of glTF's extensions of the record r of the material at texel `at` (fetchMaterialRecord):
-// KHR_materials_specular, _sheen and _clearcoat, each compiled in for scenes that have it.
+// KHR_materials_specular, _sheen and _clearcoat, and KHR_materials_volume's medium, each compiled in
+// for scenes that have it.
 void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2 t) {
+#ifdef SCENE_VOLUME  // KHR_materials_volume: the absorption coefficient (Material::absorption)
+    r.absorption = texelFetch(materials, at + ivec2(13, 0), 0).xyz;
+#endif
 #ifdef SCENE_SPECULAR_LAYER  // KHR_materials_specular
     vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
     r.specularWeight = sp.w * textureChannel(int(sp.y), t);
@@ -217,6 +221,7 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.coatNormal = vec3(0.0f, 0.0f, 1.0f);
     r.sheenColor = vec3(0.0f);
     r.sheenRoughness = 0.0f;
+    r.absorption = vec3(0.0f);
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);
     vec4 g = texelFetch(materials, at + ivec2(6, 0), 0);

@@ -70,7 +70,8 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_materials_emissive_strength",
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
-    "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen"};
+    "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
+    "KHR_materials_volume"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -957,8 +958,11 @@ class GltfReader {
             if (t > 0.0) {
                 if (!(m.ior > 0.0f)) m.ior = 1.5f;
                 m.transmission = glm::vec3(float(t));
-                if (g.extensions.count("KHR_materials_volume") == 0 && !thinWalledWarned_) {
-                    warn(at + ": KHR_materials_transmission without KHR_materials_volume is thin-walled in glTF; gpurt renders solids of index ior");
+                const auto volume = g.extensions.find("KHR_materials_volume");
+                const bool thin = volume == g.extensions.end() || !(number(volume->second, "thicknessFactor", 0.0) > 0.0);
+                if (thin && !thinWalledWarned_) {
+                    warn(at + ": KHR_materials_transmission without KHR_materials_volume (or with its thicknessFactor 0) is "
+                              "thin-walled in glTF; gpurt renders solids of index ior");
                     thinWalledWarned_ = true;
                 }
             }
@@ -1032,6 +1036,25 @@ class GltfReader {
         readSpecular(g, at, named, m, uv, scene);
         readClearcoat(g, at, named, m, uv, scene);
         readSheen(g, at, named, m, uv, scene);
+        readVolume(g, at, named, m);
+    }
+
+    // KHR_materials_volume (glsl/common/material.h materialTransmittance): the thickness (0: a thin
+    // wall) and the attenuation (attenuationColor, attenuationDistance > 0, infinite by default).
+    // The rays measure the distance they travel inside, so thicknessTexture is a warning.
+    void readVolume(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m) {
+        const auto found = g.extensions.find("KHR_materials_volume");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        const double thickness = number(ext, "thicknessFactor", 0.0);
+        if (!(thickness >= 0.0 && std::isfinite(thickness))) fail(at + ": thicknessFactor must be a number >= 0");
+        m.thickness = float(thickness);
+        m.attenuationColor = colourFactor(ext, "attenuationColor", m.attenuationColor, 1.0, at);
+        const double distance = number(ext, "attenuationDistance", double(m.attenuationDistance));
+        if (!(distance > 0.0)) fail(at + ": attenuationDistance must be a number > 0");
+        m.attenuationDistance = float(distance);
+        if (ext.IsObject() && ext.Has("thicknessTexture"))
+            warn(named + ": KHR_materials_volume's thicknessTexture is not used (rays measure the distance inside)");
     }
 
     // KHR_materials_sheen (glsl/common/materials/gltf.h sheenLobe): the sheen's colour

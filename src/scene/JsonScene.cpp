@@ -509,7 +509,8 @@ class SceneReader {
     // "metallic", "roughness" or a layer of glTF's extensions: glTF's metallic-roughness model,
     // "diffuse" its base colour; "clearcoat" and "clearcoat_roughness" (KHR_materials_clearcoat),
     // "specular_factor" and "specular_color" (KHR_materials_specular), "sheen_color" and
-    // "sheen_roughness" (KHR_materials_sheen), each a factor in [0, 1] but the specular colour.
+    // "sheen_roughness" (KHR_materials_sheen), each a factor in [0, 1] but the specular colour;
+    // "attenuation_color" and "attenuation_distance" (KHR_materials_volume: the solid's medium).
     void readGltfFactors(const json& value, const Pointer& at, Material& material) const {
         const std::pair<const char*, float*> factors[] = {
             {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
@@ -534,12 +535,36 @@ class SceneReader {
                     fail(at / "sheen_color" / i, "must be <= 1, got " + formatNumber(material.sheenColor[i]));
             material.model = GPURT_MODEL_GLTF;
         }
+        readVolume(value, at, material);
+    }
+
+    // KHR_materials_volume's attenuation: "attenuation_color" (each in [0, 1]) and
+    // "attenuation_distance" (> 0; infinite without). A JSON material's solid has no thin walls
+    // (its thickness is 1).
+    void readVolume(const json& value, const Pointer& at, Material& material) const {
+        const json* tint = find(value, "attenuation_color");
+        const json* distance = find(value, "attenuation_distance");
+        if (!tint && !distance) return;
+        if (tint) {
+            material.attenuationColor = color(*tint, at / "attenuation_color");
+            for (int i = 0; i < 3; ++i)
+                if (material.attenuationColor[i] > 1.0f)
+                    fail(at / "attenuation_color" / i, "must be <= 1, got " + formatNumber(material.attenuationColor[i]));
+        }
+        if (distance) {
+            const double d = numberAtLeast(*distance, at / "attenuation_distance", 0.0);
+            if (!(d > 0.0)) fail(at / "attenuation_distance", "must be > 0, got " + formatNumber(d));
+            material.attenuationDistance = static_cast<float>(d);
+        }
+        material.thickness = 1.0f;
+        material.model = GPURT_MODEL_GLTF;
     }
 
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
-                                  "specular_color", "sheen_color", "sheen_roughness", "doubleSided"});
+                                  "specular_color", "sheen_color", "sheen_roughness", "attenuation_color",
+                                  "attenuation_distance", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {

@@ -109,6 +109,14 @@ struct Material {
     float sheenRoughness = 0.0f;
     int sheenColorTexture = -1;
     TextureChannel sheenRoughnessTexture;
+    // glTF model, KHR_materials_volume: behind a transmissive surface, a solid whose medium absorbs
+    // (Beer-Lambert) so that light travelling attenuationDistance inside it (scene units; infinite:
+    // nothing absorbed) keeps attenuationColor of itself. thickness 0 is the extension's thin wall
+    // (no volume). The rays measure the distance they travel inside, so the thickness's value (and
+    // thicknessTexture: the glTF reader warns) is needed only to tell a volume from a thin wall.
+    float thickness = 0.0f;
+    glm::vec3 attenuationColor{1.0f};
+    float attenuationDistance = std::numeric_limits<float>::infinity();
 
     bool hasAlpha() const { return alphaMode != 0; }
     // Whether it uses KHR_materials_specular's values (the kernels compile them in then).
@@ -118,6 +126,18 @@ struct Material {
     }
     bool hasClearcoat() const { return clearcoat > 0.0f; }
     bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
+    // Whether the volume behind it absorbs: a glTF material that transmits (the extension needs
+    // one that does), KHR_materials_volume's thickness > 0 and an attenuation.
+    bool hasVolume() const {
+        return model == GPURT_MODEL_GLTF && transmits() && thickness > 0.0f && attenuationDistance < std::numeric_limits<float>::infinity() &&
+               attenuationColor != glm::vec3(1.0f);
+    }
+    // The medium's absorption coefficient -ln(attenuationColor) / attenuationDistance per channel
+    // (a black channel absorbs as if its colour were 1e-30); 0 without a volume.
+    glm::vec3 absorption() const {
+        if (!hasVolume()) return glm::vec3(0.0f);
+        return -glm::log(glm::max(attenuationColor, glm::vec3(1e-30f))) / attenuationDistance;
+    }
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
     // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
     bool transmits() const { return ior > 0.0f && (model != GPURT_MODEL_GLTF || transmission.x > 0.0f); }

@@ -230,6 +230,9 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
                     a.sheenColorTexture == b.sheenColorTexture && a.sheenRoughnessTexture.texture == b.sheenRoughnessTexture.texture &&
                     a.sheenRoughnessTexture.channel == b.sheenRoughnessTexture.channel)
             << m;
+        EXPECT_TRUE(sameBits(a.thickness, b.thickness) && sameBits(a.attenuationColor, b.attenuationColor) &&
+                    sameBits(a.attenuationDistance, b.attenuationDistance))
+            << m;  // VOLM
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -862,6 +865,39 @@ TEST_F(PackedSceneTest, LayersTravelInTheirOwnSection) {
     LoadedScene bad = layered;
     bad.scene.materials[2].clearcoat = 2.0f;
     EXPECT_THROW(encodePackedScene(bad, *makeStructure(grid_), "bad"), InputError);
+}
+
+// KHR_materials_volume (VOLM, 20 bytes a material: thickness, attenuation colour and distance):
+// written only when some material has a thickness; kept bit for bit through the round trip (an
+// infinite distance too); bad values and a count that is not the materials' are refused.
+TEST_F(PackedSceneTest, VolumesTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "VOLM")) << "a scene without volumes";
+    LoadedScene glass = source_;
+    Material& m = glass.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.ior = 1.5f;
+    m.transmission = glm::vec3(1.0f);
+    m.thickness = 0.25f;
+    m.attenuationColor = glm::vec3(0.5f, 0.75f, 1.0f);
+    m.attenuationDistance = 2.0f;
+    glass.scene.materials[1].thickness = 1.0f;  // a volume that absorbs nothing: the distance stays infinite
+    const size_t materials = glass.scene.materials.size();
+    const Bytes b = encodePackedScene(glass, *makeStructure(grid_), "glass");
+    const Entry volm = section(b, "VOLM");
+    EXPECT_EQ(volm.size, 8 + 20 * materials);
+    EXPECT_EQ(get64(b, volm.offset), materials);
+    const size_t at = volm.offset + 8 + 20 * 2;  // material 2's record
+    EXPECT_EQ(get32(b, at), 0x3e800000u);        // 0.25f
+    EXPECT_EQ(get32(b, at + 16), 0x40000000u);   // 2.0f
+    const LoadedScene packed = decodePackedScene(b, "glass.gpscene");
+    expectSameScene(glass, packed);
+    EXPECT_TRUE(packed.scene.materials[2].hasVolume());
+    EXPECT_EQ(packed.scene.materials[1].attenuationDistance, std::numeric_limits<float>::infinity());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 0xbf800000u); }), "material 2: the volume's thickness");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 8, 0x3fc00000u); }), "its attenuation colour in [0, 1]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 16, 0u); }), "its distance > 0");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, volm.offset, materials + 1); }), "section VOLM");
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

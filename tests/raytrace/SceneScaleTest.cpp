@@ -5,6 +5,7 @@
 #include <cfloat>
 #include <cmath>
 
+#include <glm/gtx/component_wise.hpp>
 #include <gtest/gtest.h>
 
 #include "raytrace/camera/Camera.h"
@@ -99,6 +100,49 @@ TEST(SceneScaleTest, RescaledSceneRendersTheSameImage) {
         EXPECT_EQ(out.prim, reference.prim);
         EXPECT_EQ(out.normal, reference.normal);
         EXPECT_EQ(out.depth, reference.depth);
+    }
+}
+
+// A KHR_materials_volume solid's attenuation distance is a length: rescaled with the scene, a box
+// of coloured glass absorbs the same (within what the secondary rays' offset from the surface,
+// which does not scale exactly, changes of the length inside), and visibly (the same box without
+// its volume differs).
+TEST(SceneScaleTest, RescaledVolumesAbsorbTheSame) {
+    Scene original = loadJsonScene("scenes/boxes.json");
+    Material& glass = original.materials[original.materialIds[0]];
+    glass.model = GPURT_MODEL_GLTF;
+    glass.diffuse = glm::vec3(1.0f);
+    glass.roughness = 0.0f;
+    glass.ior = 1.5f;
+    glass.transmission = glm::vec3(1.0f);
+    glass.thickness = 1.0f;
+    glass.attenuationColor = glm::vec3(0.9f, 0.5f, 0.2f);
+    glass.attenuationDistance = 0.5f;
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    auto render = [&](const Scene& scene) {
+        const UniformGrid grid = buildGrid(scene, {});
+        return CpuTracer(scene, grid).render(makeCamera(*scene.camera, 64, 48), settings);
+    };
+    const RenderOutput reference = render(original);
+    Scene clear = original;
+    clear.materials[original.materialIds[0]].thickness = 0.0f;
+    const RenderOutput unabsorbed = render(clear);
+    double change = 0.0;
+    for (size_t k = 0; k < reference.color.size(); ++k)
+        change = std::max(change, double(glm::compMax(glm::abs(unabsorbed.color[k] - reference.color[k]))));
+    EXPECT_GT(change, 0.05);
+    for (int exponent : {40, -20}) {
+        SCOPED_TRACE(exponent);
+        Scene scene = original;
+        rescaleScene(scene, exponent);
+        EXPECT_EQ(scene.materials[original.materialIds[0]].attenuationDistance, std::ldexp(0.5f, -exponent));
+        EXPECT_EQ(scene.materials[0].attenuationDistance == INFINITY, original.materials[0].attenuationDistance == INFINITY);
+        const RenderOutput out = render(scene);
+        for (size_t k = 0; k < out.color.size(); ++k)
+            ASSERT_LE(glm::compMax(glm::abs(out.color[k] - reference.color[k])), 1e-3f * (1.0f + glm::compMax(reference.color[k])))
+                << "pixel " << k;
     }
 }
 

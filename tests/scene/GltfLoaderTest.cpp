@@ -581,16 +581,20 @@ TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
 // textures), the coat's
 // normal map with its scale, through the window's shared texture coordinates, and no warning
 // about them; values outside their ranges are refused naming the material.
+// TransmissionQuad's window (transmission 0.75, the texture bands.bmp) with more material
+// extensions beside its KHR_materials_transmission.
+std::string windowWith(const std::string& extensions) {
+    std::string text = test::TransmissionQuad::gltf(0.75, "bands.bmp");
+    const std::string at = "\"KHR_materials_transmission\": {";
+    text.replace(text.find(at), at.size(), extensions + ", " + at);
+    return text;
+}
+
 TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
     const fs::path dir = fs::temp_directory_path() / ("gpurt-layers-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
-    auto withLayers = [](const std::string& layers) {
-        std::string text = test::TransmissionQuad::gltf(0.75, "bands.bmp");
-        const std::string at = "\"KHR_materials_transmission\": {";
-        text.replace(text.find(at), at.size(), layers + ", " + at);
-        return text;
-    };
+    auto withLayers = windowWith;
     const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
                              "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
     const std::string layers =
@@ -645,6 +649,45 @@ TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
              {"\"KHR_materials_sheen\": {\"sheenColorFactor\": 1}", "sheenColorFactor is not 3 numbers"},
              {"\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 1, 1], \"sheenRoughnessFactor\": 3}", "sheenRoughnessFactor must be in [0, 1]"}}) {
         const std::string message = test::refusalOf([&] { parseGltf(withLayers(bad), "window.gltf", dir); }, "window.gltf: ");
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+}
+
+// KHR_materials_volume: thicknessFactor, attenuationColor and attenuationDistance are read (the
+// defaults without: a thin wall, white, infinite), the absorption is -ln(colour) / distance, the
+// thicknessTexture is a warning naming the material (rays measure the distance inside), and bad
+// values are refused naming the material.
+TEST(GltfLoaderMaterials, VolumeIsRead) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-volume-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(windowWith("\"KHR_materials_volume\": {\"thicknessFactor\": 0.5, \"attenuationColor\": "
+                                             "[0.5, 0.25, 1], \"attenuationDistance\": 2, \"thicknessTexture\": {\"index\": 0}}"),
+                                  "window.gltf", dir);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("material 0 ('window'): KHR_materials_volume's thicknessTexture is not used"), std::string::npos)
+        << warnings;
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.thickness, 0.5f);
+    EXPECT_EQ(m.attenuationColor, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(m.attenuationDistance, 2.0f);
+    ASSERT_TRUE(m.hasVolume());
+    EXPECT_NEAR(m.absorption().x, std::log(2.0) / 2.0, 1e-6);
+    EXPECT_NEAR(m.absorption().y, std::log(4.0) / 2.0, 1e-6);
+    EXPECT_EQ(m.absorption().z, 0.0f);
+    const Material thin = parseGltf(windowWith("\"KHR_materials_volume\": {\"attenuationColor\": [0.5, 0.5, 0.5]}"),
+                                    "window.gltf", dir).materials[1];
+    EXPECT_EQ(thin.thickness, 0.0f);
+    EXPECT_EQ(thin.attenuationDistance, std::numeric_limits<float>::infinity());
+    EXPECT_FALSE(thin.hasVolume());
+    EXPECT_EQ(thin.absorption(), glm::vec3(0.0f));
+    for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"KHR_materials_volume\": {\"thicknessFactor\": -1}", "material 0: thicknessFactor must be a number >= 0"},
+             {"\"KHR_materials_volume\": {\"attenuationDistance\": 0}", "material 0: attenuationDistance must be a number > 0"},
+             {"\"KHR_materials_volume\": {\"attenuationColor\": [1, 2, 1]}", "attenuationColor must be 3 numbers in [0, 1]"}}) {
+        const std::string message = test::refusalOf([&] { parseGltf(windowWith(bad), "window.gltf", dir); }, "window.gltf: ");
         EXPECT_NE(message.find(part), std::string::npos) << message;
     }
     fs::remove_all(dir);

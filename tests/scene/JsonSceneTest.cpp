@@ -395,6 +395,31 @@ TEST_F(JsonSceneTest, DoubleSidedFalseMakesAMaterialSingleSided) {
                 {"/meshes/0/material/doubleSided: expected true or false, got number"});
 }
 
+// KHR_materials_volume's keys: "attenuation_color" and "attenuation_distance" make glTF's model
+// and a volume (a JSON solid has no thin walls); without them, no volume; bad values name the key.
+TEST_F(JsonSceneTest, AttenuationMakesAVolume) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj", "material": {"metallic": 0, "roughness": 0, "transmission": 1}},
+        {"file": "tri.obj", "material": {"metallic": 0, "roughness": 0, "transmission": 1,
+                                         "attenuation_color": [0.5, 1, 0.25], "attenuation_distance": 3}}]})"));
+    ASSERT_EQ(scene.materials.size(), 2u);
+    EXPECT_FALSE(scene.materials[0].hasVolume());
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.model, GPURT_MODEL_GLTF);
+    EXPECT_EQ(m.attenuationColor, glm::vec3(0.5f, 1.0f, 0.25f));
+    EXPECT_EQ(m.attenuationDistance, 3.0f);
+    ASSERT_TRUE(m.hasVolume());
+    EXPECT_NEAR(m.absorption().x, std::log(2.0) / 3.0, 1e-6);
+    EXPECT_EQ(m.absorption().y, 0.0f);
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"attenuation_distance": 0}}]})",
+                {"/meshes/0/material/attenuation_distance: must be > 0"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"attenuation_color": [0.5, 1.5, 1]}}]})",
+                {"/meshes/0/material/attenuation_color/1: must be <= 1"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"attenuation_color": [0.5, -1, 1]}}]})",
+                {"/meshes/0/material/attenuation_color/1: must be >= 0"});
+}
+
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});

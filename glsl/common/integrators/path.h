@@ -61,9 +61,19 @@ GPURT_FN void pathMiss(GPURT_INOUT(PathState) st, int b) {
         pathAdd(st, background, b);
 }
 
-// The path's ray hit surface s at distance t, depth b: the hit's features while they are open,
-// and its emission, weighed against next-event estimation of the same point.
+// The path's ray reached surface s at distance t: its throughput times what of the light the
+// medium it crossed lets through (a KHR_materials_volume solid's Beer-Lambert absorption, seen from
+// inside). pathArrive applies it; the wavefront chain's bounce pass again, as the surface pass
+// does not write the throughput back.
+GPURT_FN void pathCross(GPURT_INOUT(PathState) st, SurfaceHit s, float t) {
+    st.weight = st.weight * materialTransmittance(s.m, t);
+}
+
+// The path's ray hit surface s at distance t, depth b: the medium it crossed (pathCross), the hit's
+// features while they are open, and its emission, weighed against next-event estimation of the
+// same point.
 GPURT_FN void pathArrive(GPURT_INOUT(PathState) st, SurfaceHit s, float t, int b) {
+    pathCross(st, s, t);
     if (materialHiddenFrom(s.m, st.prevPdf)) return;  // not there for this ray (pathScatter passes it)
     if (st.open) recordFeatures(materialAlbedo(s.m), s.ns);
     float mis = s.m.emitterLight ? emissionWeight(st.prevPdf, t, s.n, st.d, emitterArea) : 1.0f;

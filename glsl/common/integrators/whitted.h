@@ -68,6 +68,7 @@ GPURT_FN vec3 whittedTrace(vec3 o, vec3 d, GPURT_OUT(int) rounds) {
             if (round == 0) recordPrimary(h, s.n);
             p = s.p;
             n = s.n;
+            weight = weight * materialTransmittance(s.m, h.x);  // the medium the ray crossed
             color = color + weight * materialEmitted(s.m, s.ns, d);
             if (maxBounces < 0) break;
             color = color + weight * whittedLocal(s, d, round);

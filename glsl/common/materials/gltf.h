@@ -459,9 +459,11 @@ GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
 }
 
 // The record as a ray meets the surface: a transmissive material's index becomes relative across
-// the boundary in the ray's direction (1 / ior leaving the solid: `entering` false).
+// the boundary in the ray's direction (1 / ior leaving the solid: `entering` false), and a volume's
+// absorption is the medium the ray came through only when it leaves the solid.
 GPURT_FN MaterialRecord gltfFacing(MaterialRecord m, bool entering) {
     if (m.ior > 0.0f && !entering) m.ior = 1.0f / m.ior;
+    if (entering) m.absorption = vec3(0.0f);  // the volume's medium is behind the front face
     return m;
 }
 

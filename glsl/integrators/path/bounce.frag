@@ -67,7 +67,9 @@ bool nextRay(vec4 s, inout PathState st) {
     hit.front = frontFace(e1, e2, view.xyz);
     hit.m = materialFacing(fetchMaterialRecord(int(nm.w), int(s.w), vec2(view.w, shading.w), view.xyz), hit.front);
     st.d = view.xyz;
-    vec3 local = readStream(localColor).xyz;
+    vec4 local4 = readStream(localColor);
+    vec3 local = local4.xyz;
+    pathCross(st, hit, local4.w);  // the surface pass applied it to its own copy of the throughput
 #ifdef SCENE_EMITTERS  // SceneTextures::bind: compiled out without emitters
     vec4 q = readStream(lightSample);
     if (q.w >= 0.0f && readStream(hitState).w < 0.0f) {  // the emitter point is not in shadow

@@ -30,7 +30,7 @@ void main() {
     vec4 s = readStream(surfacePoint);
     vec4 w = readStream(weightState);
     color = readStream(colorState);
-    if (w.w != 0.0f && s.w >= 0.0f) color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
+    if (w.w != 0.0f && s.w >= 0.0f) color = vec4(color.xyz + crossedWeight(w.xyz, s) * readStream(localColor).xyz, 0.0f);
 }
 #else
 layout(location = 1) out vec4 weight;     // (weight of the pixel's ray, alive)
@@ -54,6 +54,7 @@ void main() {
     float sideA;
     int imageHeight = textureSize(colorState, 0).y;
     if (s.w >= 0.0f) {  // a miss was shaded by the surface pass; a hit adds its local colour
+        w.xyz = crossedWeight(w.xyz, s);
         color = vec4(color.xyz + w.xyz * readStream(localColor).xyz, 0.0f);
         if (rayTreeMaySpawn(depth, rays, maxBounces)) {
             vec4 nm = readStream(surfaceNormal);

@@ -64,6 +64,7 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);  // CpuScene::surfaceAt: the surface's
     r.sheenColor = gltf ? m.sheenColor : glm::vec3(0.0f);
     r.sheenRoughness = gltf ? m.sheenRoughness : 0.0f;
+    r.absorption = m.absorption();  // SCENE_VOLUME
     return r;
 }
 

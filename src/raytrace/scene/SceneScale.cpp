@@ -47,6 +47,8 @@ void rescaleScene(Scene& scene, int exponent) {
         t.v1 = rescalePoint(t.v1, exponent);
         t.v2 = rescalePoint(t.v2, exponent);
     }
+    for (Material& m : scene.materials)  // KHR_materials_volume's distance (infinite stays so)
+        m.attenuationDistance = std::ldexp(m.attenuationDistance, -exponent);
     for (Light& light : scene.lights) {
         light.position = rescalePoint(light.position, exponent);
         light.range = std::ldexp(light.range, -exponent);

@@ -29,8 +29,8 @@ int renderScaleExponent(const Scene& scene);
 void rescaleCamera(CameraSpec& camera, int exponent);
 
 // Multiplies every position of the scene by 2^-exponent (vertices, lights, the camera's eye and
-// target) and light intensities by 2^-2*exponent, so that radiance, intensity / distance^2,
-// stays the same.
+// target, the volumes' attenuation distances) and light intensities by 2^-2*exponent, so that
+// radiance, intensity / distance^2, stays the same.
 void rescaleScene(Scene& scene, int exponent);
 
 // Depths of the rescaled scene back in the original units: each times 2^exponent, at most the

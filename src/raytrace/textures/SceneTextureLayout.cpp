@@ -112,7 +112,8 @@ TextureTexels materialTexels(const Scene& scene) {
                  float(mat.clearcoatNormalTexture)),
             vec4(mat.clearcoatNormalScale, mat.sheenRoughness, float(mat.sheenColorTexture),
                  channel(mat.sheenRoughnessTexture)),
-            vec4(mat.sheenColor, 0.0f)};
+            vec4(mat.sheenColor, 0.0f),
+            vec4(mat.absorption(), 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

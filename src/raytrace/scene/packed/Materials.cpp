@@ -1,6 +1,6 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
 // models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
-// transmission maps (TRNS) and the layers of glTF's extensions (LAYR).
+// transmission maps (TRNS), the layers of glTF's extensions (LAYR) and the volumes (VOLM).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -36,6 +36,9 @@ constexpr size_t kTransmissionMapBytes = 2 * 4;
 // (two channels, the normal texture) and normal scale (f32), KHR_materials_sheen's colour,
 // roughness (f32) and maps (the colour's texture, the roughness's channel).
 constexpr size_t kLayerBytes = 4 * 4 + 3 * 4 + 2 * 4 + 5 * 4 + 4 + 4 * 4 + 3 * 4;
+// VOLM per material: KHR_materials_volume's thickness, attenuation colour and distance (f32; the
+// distance +inf: no absorption).
+constexpr size_t kVolumeBytes = 5 * 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -339,6 +342,27 @@ void writeLayers(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
+// Each material's volume (count = the materials', then kVolumeBytes each).
+void readVolumes(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kVolumeBytes, "materials' volumes", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.thickness = in.f32();
+        m.attenuationColor = in.vec3();
+        m.attenuationDistance = in.f32();
+    }
+}
+void writeVolumes(ByteWriter& out, const LoadedScene& loaded) {
+    out.u64(loaded.scene.materials.size());
+    for (const Material& m : loaded.scene.materials) {
+        out.f32(m.thickness);
+        out.vec3(m.attenuationColor);
+        out.f32(m.attenuationDistance);
+    }
+}
+
 // Whether some material has `has`.
 template <class Has>
 bool anyMaterial(const LoadedScene& l, Has has) {
@@ -394,6 +418,11 @@ const SceneSection kLayerSection{
     },
     false, writeLayers, [](const PackedSection& s, LoadedScene& l) { readLayers(s, l.scene); }};
 
+// Only when some material's thickness is not 0 (KHR_materials_volume): likewise.
+const SceneSection kVolumeSection{
+    "VOLM", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.thickness != 0.0f; }); },
+    false, writeVolumes, [](const PackedSection& s, LoadedScene& l) { readVolumes(s, l.scene); }};
+
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
 // them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
@@ -435,6 +464,11 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             failAt(file, "material " + std::to_string(m) +
                              ": specular factor, clearcoat and its roughness, sheen colour and roughness must be in [0, 1], "
                              "the specular colour finite and >= 0, the clearcoat normal scale finite");
+        if (!(mat.thickness >= 0.0f) || !std::isfinite(mat.thickness) || !unit(mat.attenuationColor.x) ||
+            !unit(mat.attenuationColor.y) || !unit(mat.attenuationColor.z) || !(mat.attenuationDistance > 0.0f))
+            failAt(file, "material " + std::to_string(m) +
+                             ": the volume's thickness must be finite and >= 0, its attenuation colour in [0, 1], its "
+                             "distance > 0");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +
