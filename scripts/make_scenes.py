@@ -21,6 +21,9 @@ from geometry generated here, so that every shipped asset can be regenerated and
   I  volume.json   KHR_materials_volume (JSON attenuation_color, attenuation_distance): three
                    spheres of one amber glass, small to large (the larger, the deeper its colour),
                    an upright torus of blue-green glass and a rough green glass cube
+  J  iridescence.json  KHR_materials_iridescence (JSON iridescence, iridescence_ior,
+                   iridescence_thickness): four dark spheres under films of 250 to 550 nm and two
+                   anodised titanium ones
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -562,6 +565,27 @@ def scene_i():
     return 0
 
 
+def scene_j():
+    """Thin films (KHR_materials_iridescence: JSON iridescence, iridescence_ior,
+    iridescence_thickness) on sphere.obj six times on slab.obj: a near-black dielectric under films
+    of index 2 and thickness 250, 350, 450 and 550 nm (the colours of beetles and oil), then a grey
+    metal under films of index 2.2, 250 and 420 nm (anodised titanium)."""
+    spheres = [{"name": "film %d nm" % d, "diffuse": [0.01, 0.01, 0.012], "metallic": 0, "roughness": 0.1,
+                "iridescence": 1, "iridescence_ior": 2.0, "iridescence_thickness": d} for d in (250, 350, 450, 550)]
+    spheres += [{"name": "titanium, %d nm" % d, "diffuse": [0.55, 0.52, 0.5], "metallic": 1, "roughness": 0.2,
+                 "iridescence": 1, "iridescence_ior": 2.2, "iridescence_thickness": d} for d in (250, 420)]
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
+    for k, material in enumerate(spheres):
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2.5), 0.0, 0.0]}, "material": material})
+    write("iridescence.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 2.2, 11.0], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 40.0},
+        "render": {"size": [720, 300], "max_bounces": 8},
+    }) + "\n")
+    return 0
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
@@ -569,7 +593,8 @@ def main():
     os.makedirs(SCENES, exist_ok=True)
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
-                       ("H layers", scene_h), ("I volume", scene_i)):
+                       ("H layers", scene_h), ("I volume", scene_i),
+                       ("J iridescence", scene_j)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

@@ -45,6 +45,9 @@ struct MaterialRecord {
     vec3 coatNormal;      // its normal facing the ray (the surface's: CpuScene::surfaceAt, fetchMaterialRecord)
     vec3 sheenColor;      // glTF, KHR_materials_sheen: the sheen's colour (0: none), textured
     float sheenRoughness; // and roughness, textured
+    float iridescence;    // glTF, KHR_materials_iridescence: the film's weight (0: none), textured
+    float iridescenceIor; // its index
+    float iridescenceThickness;  // and thickness (nm), textured
     vec3 absorption;      // glTF, KHR_materials_volume: the absorption coefficient (per unit length)
                           // of the medium the ray arrives through: the solid's, seen from inside
                           // it (materialFacing), else 0

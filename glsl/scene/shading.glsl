@@ -156,11 +156,17 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 }
 
 // The layers of glTF's extensions of the record r of the material at texel `at` (fetchMaterialRecord):
-// KHR_materials_specular, _sheen and _clearcoat, and KHR_materials_volume's medium, each compiled in
+// KHR_materials_specular, _sheen, _clearcoat and _iridescence, and KHR_materials_volume's medium, each compiled in
 // for scenes that have it.
 void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2 t) {
 #ifdef SCENE_VOLUME  // KHR_materials_volume: the absorption coefficient (Material::absorption)
     r.absorption = texelFetch(materials, at + ivec2(13, 0), 0).xyz;
+#endif
+#ifdef SCENE_IRIDESCENCE  // KHR_materials_iridescence: the film's weight (R of its map), index, thickness (G)
+    vec4 film = texelFetch(materials, at + ivec2(14, 0), 0);
+    r.iridescence = film.x * textureChannel(int(texelFetch(materials, at + ivec2(12, 0), 0).w), t);
+    r.iridescenceIor = film.y;
+    r.iridescenceThickness = mix(film.z, film.w, textureChannel(int(texelFetch(materials, at + ivec2(13, 0), 0).w), t));
 #endif
 #ifdef SCENE_SPECULAR_LAYER  // KHR_materials_specular
     vec4 sp = texelFetch(materials, at + ivec2(8, 0), 0);
@@ -221,6 +227,9 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.coatNormal = vec3(0.0f, 0.0f, 1.0f);
     r.sheenColor = vec3(0.0f);
     r.sheenRoughness = 0.0f;
+    r.iridescence = 0.0f;
+    r.iridescenceIor = 1.3f;
+    r.iridescenceThickness = 0.0f;
     r.absorption = vec3(0.0f);
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);

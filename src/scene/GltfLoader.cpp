@@ -71,7 +71,7 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
     "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
-    "KHR_materials_volume"};
+    "KHR_materials_volume",       "KHR_materials_iridescence"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -1037,6 +1037,33 @@ class GltfReader {
         readClearcoat(g, at, named, m, uv, scene);
         readSheen(g, at, named, m, uv, scene);
         readVolume(g, at, named, m);
+        readIridescence(g, at, named, m, uv, scene);
+    }
+
+    // KHR_materials_iridescence (glsl/common/materials/gltf.h thinFilmFresnel): the film's weight
+    // (iridescenceFactor times iridescenceTexture's R), index, and thickness from its minimum to its
+    // maximum by iridescenceThicknessTexture's G (the maximum without it); factor 0: no film, its
+    // maps unread.
+    void readIridescence(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                         MaterialUv& uv, Scene& scene) {
+        const auto found = g.extensions.find("KHR_materials_iridescence");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        const double factor = number(ext, "iridescenceFactor", 0.0), ior = number(ext, "iridescenceIor", 1.3);
+        const double lo = number(ext, "iridescenceThicknessMinimum", 100.0), hi = number(ext, "iridescenceThicknessMaximum", 400.0);
+        if (!(factor >= 0.0 && factor <= 1.0)) fail(at + ": iridescenceFactor must be in [0, 1]");
+        if (!(ior >= 1.0 && ior <= 1e3)) fail(at + ": iridescenceIor must be in [1, 1000]");
+        if (!(lo >= 0.0 && lo <= 1e6) || !(hi >= 0.0 && hi <= 1e6))
+            fail(at + ": iridescenceThicknessMinimum and iridescenceThicknessMaximum must be in [0, 1e6] nm");
+        m.iridescenceFactor = float(factor);
+        m.iridescenceIor = float(ior);
+        m.iridescenceThicknessMin = float(lo);
+        m.iridescenceThicknessMax = float(hi);
+        if (!(factor > 0.0)) return;
+        const int weight = extensionTexture(ext, "iridescenceTexture", named, uv, scene);
+        if (weight >= 0) m.iridescenceTexture = {weight, 0};  // R
+        const int thickness = extensionTexture(ext, "iridescenceThicknessTexture", named, uv, scene);
+        if (thickness >= 0) m.iridescenceThicknessTexture = {thickness, 1};  // G
     }
 
     // KHR_materials_volume (glsl/common/material.h materialTransmittance): the thickness (0: a thin

@@ -510,12 +510,14 @@ class SceneReader {
     // "diffuse" its base colour; "clearcoat" and "clearcoat_roughness" (KHR_materials_clearcoat),
     // "specular_factor" and "specular_color" (KHR_materials_specular), "sheen_color" and
     // "sheen_roughness" (KHR_materials_sheen), each a factor in [0, 1] but the specular colour;
-    // "attenuation_color" and "attenuation_distance" (KHR_materials_volume: the solid's medium).
+    // "attenuation_color" and "attenuation_distance" (KHR_materials_volume: the solid's medium);
+    // "iridescence" (a factor), "iridescence_ior" (>= 1) and "iridescence_thickness" (nm >= 0)
+    // (KHR_materials_iridescence: a thin film of that one thickness).
     void readGltfFactors(const json& value, const Pointer& at, Material& material) const {
         const std::pair<const char*, float*> factors[] = {
             {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
             {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor},
-            {"sheen_roughness", &material.sheenRoughness}};
+            {"sheen_roughness", &material.sheenRoughness}, {"iridescence", &material.iridescenceFactor}};
         for (const auto& [key, field] : factors) {
             const json* given = find(value, key);
             if (!given) continue;
@@ -536,6 +538,18 @@ class SceneReader {
             material.model = GPURT_MODEL_GLTF;
         }
         readVolume(value, at, material);
+        if (const json* ior = find(value, "iridescence_ior")) {
+            const double n = numberAtLeast(*ior, at / "iridescence_ior", 1.0);
+            if (n > 1e3) fail(at / "iridescence_ior", "must be <= 1000, got " + formatNumber(n));
+            material.iridescenceIor = static_cast<float>(n);
+            material.model = GPURT_MODEL_GLTF;
+        }
+        if (const json* thickness = find(value, "iridescence_thickness")) {
+            const double d = numberAtLeast(*thickness, at / "iridescence_thickness", 0.0);
+            if (d > 1e6) fail(at / "iridescence_thickness", "must be <= 1e6 (nm), got " + formatNumber(d));
+            material.iridescenceThicknessMin = material.iridescenceThicknessMax = static_cast<float>(d);
+            material.model = GPURT_MODEL_GLTF;
+        }
     }
 
     // KHR_materials_volume's attenuation: "attenuation_color" (each in [0, 1]) and
@@ -564,7 +578,8 @@ class SceneReader {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
                                   "specular_color", "sheen_color", "sheen_roughness", "attenuation_color",
-                                  "attenuation_distance", "doubleSided"});
+                                  "attenuation_distance", "iridescence", "iridescence_ior", "iridescence_thickness",
+                                  "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {

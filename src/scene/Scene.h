@@ -109,6 +109,16 @@ struct Material {
     float sheenRoughness = 0.0f;
     int sheenColorTexture = -1;
     TextureChannel sheenRoughnessTexture;
+    // glTF model, KHR_materials_iridescence: a thin film of index iridescenceIor over the base, of
+    // weight iridescenceFactor (times iridescenceTexture's R) and thickness (nm) from
+    // iridescenceThicknessMin to iridescenceThicknessMax by iridescenceThicknessTexture's G (the
+    // maximum without it); factor 0: no film.
+    float iridescenceFactor = 0.0f;
+    TextureChannel iridescenceTexture;
+    float iridescenceIor = 1.3f;
+    float iridescenceThicknessMin = 100.0f;
+    float iridescenceThicknessMax = 400.0f;
+    TextureChannel iridescenceThicknessTexture;
     // glTF model, KHR_materials_volume: behind a transmissive surface, a solid whose medium absorbs
     // (Beer-Lambert) so that light travelling attenuationDistance inside it (scene units; infinite:
     // nothing absorbed) keeps attenuationColor of itself. thickness 0 is the extension's thin wall
@@ -126,6 +136,7 @@ struct Material {
     }
     bool hasClearcoat() const { return clearcoat > 0.0f; }
     bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
+    bool hasIridescence() const { return model == GPURT_MODEL_GLTF && iridescenceFactor > 0.0f; }
     // Whether the volume behind it absorbs: a glTF material that transmits (the extension needs
     // one that does), KHR_materials_volume's thickness > 0 and an attenuation.
     bool hasVolume() const {

@@ -30,6 +30,8 @@ struct GltfParams {
     // KHR_materials_sheen: the sheen's colour (black: none) and roughness.
     glm::dvec3 sheenColor{0.0};
     double sheenRoughness = 0.0;
+    // KHR_materials_iridescence: the film's weight (0: none), index and thickness (nm).
+    double iridescence = 0.0, iridescenceIor = 1.3, iridescenceThickness = 400.0;
 };
 
 namespace gltfref {
@@ -260,5 +262,65 @@ inline glm::dvec3 gltfReferenceCoatedAlbedo(const GltfParams& p, double mu, int 
     const double w = gltfref::coatWeight(p, mu);
     return (1.0 - w) * e + w * gltfReferenceAlbedo(lobe, mu, grid);
 }
+
+// KHR_materials_iridescence, computed another way than Belcour and Barla's Fourier-space fits:
+// the CIE 1931 colour matching functions as Wyman, Sloan and Shirley's multi-lobe Gaussians (2013,
+// "Simple Analytic Approximations to the CIE XYZ Color Matching Functions"), integrated over
+// wavelength.
+namespace thinfilm {
+
+inline double lobe(double lambda, double mean, double below, double above) {
+    const double t = (lambda - mean) / (lambda < mean ? below : above);
+    return std::exp(-0.5 * t * t);
+}
+
+// x, y, z at wavelength lambda (nm).
+inline glm::dvec3 cie(double lambda) {
+    return {1.056 * lobe(lambda, 599.8, 37.9, 31.0) + 0.362 * lobe(lambda, 442.0, 16.0, 26.7) -
+                0.065 * lobe(lambda, 501.1, 20.4, 26.2),
+            0.821 * lobe(lambda, 568.8, 46.9, 40.5) + 0.286 * lobe(lambda, 530.9, 16.3, 31.1),
+            1.217 * lobe(lambda, 437.0, 11.8, 36.0) + 0.681 * lobe(lambda, 459.0, 26.0, 13.8)};
+}
+
+// XYZ to linear sRGB (IEC 61966-2-1), row by row.
+inline glm::dvec3 toRgb(glm::dvec3 c) {
+    return {3.2404542 * c.x - 1.5371385 * c.y - 0.4985314 * c.z, -0.9692660 * c.x + 1.8760108 * c.y + 0.0415560 * c.z,
+            0.0556434 * c.x - 0.2040259 * c.y + 1.0572252 * c.z};
+}
+
+// Linear sRGB to XYZ (IEC 61966-2-1's matrix, not the inverse of toRgb computed).
+inline glm::dvec3 toXyz(glm::dvec3 c) {
+    return {0.4124564 * c.x + 0.3575761 * c.y + 0.1804375 * c.z, 0.2126729 * c.x + 0.7151522 * c.y + 0.0721750 * c.z,
+            0.0193339 * c.x + 0.1191920 * c.y + 0.9503041 * c.z};
+}
+
+// The integral of cos(2 pi opd / lambda + shift[channel]) against x, y, z over 360..830 nm, over
+// the integral of y (XYZ): what the film's orders contribute per unit amplitude.
+inline glm::dvec3 sensitivity(double opd, glm::dvec3 shift) {
+    glm::dvec3 xyz(0.0);
+    double norm = 0.0;
+    for (double lambda = 360.0; lambda <= 830.0; lambda += 0.05) {
+        const glm::dvec3 w = cie(lambda);
+        const double phase = 2.0 * gltfref::kPi * opd / lambda;
+        xyz += glm::dvec3(w.x * std::cos(phase + shift.x), w.y * std::cos(phase + shift.y), w.z * std::cos(phase + shift.z));
+        norm += w.y;
+    }
+    return xyz / norm;
+}
+
+inline double schlick(double f0, double c) { return f0 + (1.0 - f0) * gltfref::schlick(c); }
+
+// A film's reflectance where the waves add without interference (the film much thicker than the
+// light's coherence length): R12 + T^2 R23 / (1 - R12 R23), T = 1 - R12, the two interfaces'
+// Schlick reflectances (film index n2 over a base of reflectance f0 at normal incidence).
+inline double incoherent(double n2, double c, double f0) {
+    const double r12 = schlick(std::pow((n2 - 1.0) / (n2 + 1.0), 2.0), c);
+    const double cos2 = std::sqrt(1.0 - (1.0 - c * c) / (n2 * n2));
+    const double n3 = (1.0 + std::sqrt(f0)) / (1.0 - std::sqrt(f0));
+    const double r23 = schlick(std::pow((n3 - n2) / (n3 + n2), 2.0), cos2);
+    return r12 + (1.0 - r12) * (1.0 - r12) * r23 / (1.0 - r12 * r23);
+}
+
+}  // namespace thinfilm
 
 }  // namespace gpurt::test

@@ -233,6 +233,14 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(a.thickness, b.thickness) && sameBits(a.attenuationColor, b.attenuationColor) &&
                     sameBits(a.attenuationDistance, b.attenuationDistance))
             << m;  // VOLM
+        EXPECT_TRUE(sameBits(a.iridescenceFactor, b.iridescenceFactor) && sameBits(a.iridescenceIor, b.iridescenceIor) &&
+                    sameBits(a.iridescenceThicknessMin, b.iridescenceThicknessMin) &&
+                    sameBits(a.iridescenceThicknessMax, b.iridescenceThicknessMax) &&
+                    a.iridescenceTexture.texture == b.iridescenceTexture.texture &&
+                    a.iridescenceTexture.channel == b.iridescenceTexture.channel &&
+                    a.iridescenceThicknessTexture.texture == b.iridescenceThicknessTexture.texture &&
+                    a.iridescenceThicknessTexture.channel == b.iridescenceThicknessTexture.channel)
+            << m;  // IRID
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -898,6 +906,45 @@ TEST_F(PackedSceneTest, VolumesTravelInTheirOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 8, 0x3fc00000u); }), "its attenuation colour in [0, 1]");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 16, 0u); }), "its distance > 0");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, volm.offset, materials + 1); }), "section VOLM");
+}
+
+// KHR_materials_iridescence (IRID, 32 bytes a material: factor, index, thickness range, the
+// factor's and the thickness's maps): written only when some material has a film; kept bit for
+// bit through the round trip; bad values, maps out of range and a count that is not the
+// materials' are refused.
+TEST_F(PackedSceneTest, FilmsTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "IRID")) << "a scene without films";
+    LoadedScene filmed = source_;
+    ASSERT_GE(filmed.scene.textures.size(), 2u);
+    Material& m = filmed.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.iridescenceFactor = 0.5f;
+    m.iridescenceIor = 1.75f;
+    m.iridescenceThicknessMin = 150.0f;
+    m.iridescenceThicknessMax = 650.0f;
+    m.iridescenceTexture = {1, 0};
+    m.iridescenceThicknessTexture = {0, 1};
+    const size_t materials = filmed.scene.materials.size();
+    const Bytes b = encodePackedScene(filmed, *makeStructure(grid_), "filmed");
+    const Entry irid = section(b, "IRID");
+    EXPECT_EQ(irid.size, 8 + 32 * materials);
+    EXPECT_EQ(get64(b, irid.offset), materials);
+    const size_t at = irid.offset + 8 + 32 * 2;  // material 2's record
+    EXPECT_EQ(get32(b, at), 0x3f000000u);        // 0.5f
+    EXPECT_EQ(get32(b, at + 16), 1u);            // iridescenceTexture: texture 1,
+    EXPECT_EQ(get32(b, at + 28), 1u);            // the thickness's channel G
+    const LoadedScene packed = decodePackedScene(b, "filmed.gpscene");
+    expectSameScene(filmed, packed);
+    EXPECT_TRUE(packed.scene.materials[2].hasIridescence());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    const uint32_t textures = uint32_t(filmed.scene.textures.size());
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 0x40000000u); }), "material 2: the iridescence factor must be in [0, 1]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 4, 0x3f000000u); }), "its index in [1, 1000]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 12, 0xbf800000u); }), "its thicknesses in [0, 1e6] nm");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 24, textures); }),
+                   "material 2: texture " + std::to_string(textures) + " out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 20, 4); }), "material 2: texture channel 4");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, irid.offset, materials + 1); }), "section IRID");
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

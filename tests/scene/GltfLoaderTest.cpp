@@ -693,6 +693,53 @@ TEST(GltfLoaderMaterials, VolumeIsRead) {
     fs::remove_all(dir);
 }
 
+// KHR_materials_iridescence: the factor, index and thickness range are read (the extension's
+// defaults without them: 0, 1.3, 100..400 nm), the factor's map is the texture's R and the
+// thickness's its G, read through the slot's texCoord and transform; factor 0 reads no map; bad
+// values are refused naming the material.
+TEST(GltfLoaderMaterials, IridescenceIsRead) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-iridescence-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
+                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(windowWith("\"KHR_materials_iridescence\": {\"iridescenceFactor\": 0.75, \"iridescenceIor\": 1.8, "
+                                             "\"iridescenceThicknessMinimum\": 250, \"iridescenceThicknessMaximum\": 700, "
+                                             "\"iridescenceTexture\": " + info + ", \"iridescenceThicknessTexture\": " + info + "}"),
+                                  "window.gltf", dir);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    for (const char* name : {"iridescence", "not used", "not read"}) EXPECT_EQ(warnings.find(name), std::string::npos) << warnings;
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.iridescenceFactor, 0.75f);
+    EXPECT_EQ(m.iridescenceIor, 1.8f);
+    EXPECT_EQ(m.iridescenceThicknessMin, 250.0f);
+    EXPECT_EQ(m.iridescenceThicknessMax, 700.0f);
+    EXPECT_EQ(m.iridescenceTexture.texture, 0);
+    EXPECT_EQ(m.iridescenceTexture.channel, 0);  // R
+    EXPECT_EQ(m.iridescenceThicknessTexture.texture, 0);
+    EXPECT_EQ(m.iridescenceThicknessTexture.channel, 1);  // G
+    EXPECT_TRUE(m.hasIridescence());
+    EXPECT_EQ(scene.textures.size(), 1u);  // the slots share the window's coordinates and image
+    const Material defaults =
+        parseGltf(windowWith("\"KHR_materials_iridescence\": {\"iridescenceFactor\": 1}"), "window.gltf", dir).materials[1];
+    EXPECT_EQ(defaults.iridescenceIor, 1.3f);
+    EXPECT_EQ(defaults.iridescenceThicknessMin, 100.0f);
+    EXPECT_EQ(defaults.iridescenceThicknessMax, 400.0f);
+    const Material off = parseGltf(windowWith("\"KHR_materials_iridescence\": {\"iridescenceTexture\": " + info + "}"),
+                                   "window.gltf", dir).materials[1];
+    EXPECT_FALSE(off.hasIridescence());
+    EXPECT_FALSE(off.iridescenceTexture.given());
+    for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"KHR_materials_iridescence\": {\"iridescenceFactor\": 2}", "material 0: iridescenceFactor must be in [0, 1]"},
+             {"\"KHR_materials_iridescence\": {\"iridescenceIor\": 0.5}", "material 0: iridescenceIor must be in [1, 1000]"},
+             {"\"KHR_materials_iridescence\": {\"iridescenceThicknessMaximum\": -1}", "must be in [0, 1e6] nm"}}) {
+        const std::string message = test::refusalOf([&] { parseGltf(windowWith(bad), "window.gltf", dir); }, "window.gltf: ");
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+}
+
 // KHR_materials_transmission's transmissionTexture (TransmissionQuad.h): the slot is the texture's
 // R channel, read through its texCoord (1) and its KHR_texture_transform (rotation pi/2, offset
 // (0, 1): u' = v, v' = 1 - u by the extension's matrix), with no warning about the slot; the

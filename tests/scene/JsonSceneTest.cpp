@@ -420,6 +420,27 @@ TEST_F(JsonSceneTest, AttenuationMakesAVolume) {
                 {"/meshes/0/material/attenuation_color/1: must be >= 0"});
 }
 
+// KHR_materials_iridescence's keys: "iridescence" (a factor), "iridescence_ior" and
+// "iridescence_thickness" (one thickness, nm) make glTF's model; bad values name the key.
+TEST_F(JsonSceneTest, IridescenceMakesAFilm) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj", "material": {"iridescence": 0.5, "iridescence_ior": 1.7, "iridescence_thickness": 320}}]})"));
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.model, GPURT_MODEL_GLTF);
+    EXPECT_TRUE(m.hasIridescence());
+    EXPECT_EQ(m.iridescenceFactor, 0.5f);
+    EXPECT_EQ(m.iridescenceIor, 1.7f);
+    EXPECT_EQ(m.iridescenceThicknessMin, 320.0f);
+    EXPECT_EQ(m.iridescenceThicknessMax, 320.0f);
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"iridescence": 1.5}}]})",
+                {"/meshes/0/material/iridescence: must be <= 1"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"iridescence_ior": 0.9}}]})",
+                {"/meshes/0/material/iridescence_ior: must be >= 1"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"iridescence_thickness": -3}}]})",
+                {"/meshes/0/material/iridescence_thickness: must be >= 0"});
+}
+
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});

@@ -34,6 +34,9 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
         r.sheenRoughness = m.sheenRoughness * channelAt(scene, m.sheenRoughnessTexture, t);  // SCENE_SHEEN
         if (m.sheenColorTexture >= 0 && !scene.texcoords.empty())
             r.sheenColor = m.sheenColor * sampleTexture(scene.textures[size_t(m.sheenColorTexture)], t);
+        r.iridescence = r.iridescence * channelAt(scene, m.iridescenceTexture, t);  // SCENE_IRIDESCENCE
+        r.iridescenceThickness = glm::mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax,
+                                          channelAt(scene, m.iridescenceThicknessTexture, t));
         if (m.emissiveTexture >= 0) {
             r.emitterLight = false;
             if (!scene.texcoords.empty()) r.emission = m.emission * sampleTexture(scene.textures[size_t(m.emissiveTexture)], t);
@@ -64,6 +67,9 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);  // CpuScene::surfaceAt: the surface's
     r.sheenColor = gltf ? m.sheenColor : glm::vec3(0.0f);
     r.sheenRoughness = gltf ? m.sheenRoughness : 0.0f;
+    r.iridescence = m.hasIridescence() ? m.iridescenceFactor : 0.0f;
+    r.iridescenceIor = m.iridescenceIor;
+    r.iridescenceThickness = m.iridescenceThicknessMax;
     r.absorption = m.absorption();  // SCENE_VOLUME
     return r;
 }

@@ -112,8 +112,10 @@ TextureTexels materialTexels(const Scene& scene) {
                  float(mat.clearcoatNormalTexture)),
             vec4(mat.clearcoatNormalScale, mat.sheenRoughness, float(mat.sheenColorTexture),
                  channel(mat.sheenRoughnessTexture)),
-            vec4(mat.sheenColor, 0.0f),
-            vec4(mat.absorption(), 0.0f)};
+            vec4(mat.sheenColor, channel(mat.iridescenceTexture)),
+            vec4(mat.absorption(), channel(mat.iridescenceThicknessTexture)),
+            vec4(mat.hasIridescence() ? mat.iridescenceFactor : 0.0f, mat.iridescenceIor, mat.iridescenceThicknessMin,
+                 mat.iridescenceThicknessMax)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

@@ -172,6 +172,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.model == GPURT_MODEL_GLTF && m.hasSpecularLayer()) hasSpecularLayer_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasClearcoat()) hasClearcoat_ = true;
         if (m.hasVolume()) hasVolume_ = true;
+        if (m.hasIridescence()) hasIridescence_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasSheen() && !sheenTable_)
             sheenTable_.emplace(uploadTexels(sheenTableTexels(), GPUFormat::R32F, GPUStorage::Buffer));
         if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
@@ -196,6 +197,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasSpecularLayer_) kernel.addDefine("SCENE_SPECULAR_LAYER");  // common/materials/gltf.h
     if (hasClearcoat_) kernel.addDefine("SCENE_CLEARCOAT");
     if (hasVolume_) kernel.addDefine("SCENE_VOLUME");  // common/material.h materialTransmittance
+    if (hasIridescence_) kernel.addDefine("SCENE_IRIDESCENCE");  // common/materials/gltf.h thinFilmFresnel
     if (sheenTable_) kernel.addDefine("SCENE_SHEEN").addInput(*sheenTable_, "sheenTable");  // gltf.h sheenAlbedo
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h

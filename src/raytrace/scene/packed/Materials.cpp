@@ -1,6 +1,7 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
 // models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
-// transmission maps (TRNS), the layers of glTF's extensions (LAYR) and the volumes (VOLM).
+// transmission maps (TRNS), the layers of glTF's extensions (LAYR), the volumes (VOLM) and the
+// thin films (IRID).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -39,6 +40,9 @@ constexpr size_t kLayerBytes = 4 * 4 + 3 * 4 + 2 * 4 + 5 * 4 + 4 + 4 * 4 + 3 * 4
 // VOLM per material: KHR_materials_volume's thickness, attenuation colour and distance (f32; the
 // distance +inf: no absorption).
 constexpr size_t kVolumeBytes = 5 * 4;
+// IRID per material: KHR_materials_iridescence's factor, index, thickness minimum and maximum (f32)
+// and maps (the factor's channel, the thickness's channel: texture, channel).
+constexpr size_t kFilmBytes = 4 * 4 + 4 * 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -363,6 +367,37 @@ void writeVolumes(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
+// Each material's thin film (count = the materials', then kFilmBytes each).
+void readFilms(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kFilmBytes, "materials' thin films", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.iridescenceFactor = in.f32();
+        m.iridescenceIor = in.f32();
+        m.iridescenceThicknessMin = in.f32();
+        m.iridescenceThicknessMax = in.f32();
+        for (TextureChannel* c : {&m.iridescenceTexture, &m.iridescenceThicknessTexture}) {
+            c->texture = int(int32_t(in.u32()));
+            c->channel = int(int32_t(in.u32()));
+        }
+    }
+}
+void writeFilms(ByteWriter& out, const LoadedScene& loaded) {
+    out.u64(loaded.scene.materials.size());
+    for (const Material& m : loaded.scene.materials) {
+        out.f32(m.iridescenceFactor);
+        out.f32(m.iridescenceIor);
+        out.f32(m.iridescenceThicknessMin);
+        out.f32(m.iridescenceThicknessMax);
+        for (TextureChannel c : {m.iridescenceTexture, m.iridescenceThicknessTexture}) {
+            out.u32(uint32_t(int32_t(c.texture)));
+            out.u32(uint32_t(int32_t(c.channel)));
+        }
+    }
+}
+
 // Whether some material has `has`.
 template <class Has>
 bool anyMaterial(const LoadedScene& l, Has has) {
@@ -423,6 +458,11 @@ const SceneSection kVolumeSection{
     "VOLM", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.thickness != 0.0f; }); },
     false, writeVolumes, [](const PackedSection& s, LoadedScene& l) { readVolumes(s, l.scene); }};
 
+// Only when some material has a thin film (KHR_materials_iridescence): likewise.
+const SceneSection kFilmSection{
+    "IRID", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.iridescenceFactor != 0.0f; }); },
+    false, writeFilms, [](const PackedSection& s, LoadedScene& l) { readFilms(s, l.scene); }};
+
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
 // them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
@@ -446,13 +486,15 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
                             mat.emissiveTexture, mat.occlusionTexture.texture, mat.alphaTexture.texture,
                             mat.transmissionTexture.texture, mat.specularTexture.texture, mat.specularColorTexture,
                             mat.clearcoatTexture.texture, mat.clearcoatRoughnessTexture.texture,
-                            mat.clearcoatNormalTexture, mat.sheenColorTexture, mat.sheenRoughnessTexture.texture})
+                            mat.clearcoatNormalTexture, mat.sheenColorTexture, mat.sheenRoughnessTexture.texture,
+                            mat.iridescenceTexture.texture, mat.iridescenceThicknessTexture.texture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
         for (TextureChannel c : {mat.roughnessTexture, mat.metallicTexture, mat.occlusionTexture, mat.alphaTexture,
                                  mat.transmissionTexture, mat.specularTexture, mat.clearcoatTexture,
-                                 mat.clearcoatRoughnessTexture, mat.sheenRoughnessTexture})
+                                 mat.clearcoatRoughnessTexture, mat.sheenRoughnessTexture, mat.iridescenceTexture,
+                                 mat.iridescenceThicknessTexture})
             if (c.channel < 0 || c.channel > 3) failAt(file, "material " + std::to_string(m) + ": texture channel " + std::to_string(c.channel));
         if (!(mat.metallic >= 0.0f && mat.metallic <= 1.0f) || !(mat.roughness >= 0.0f && mat.roughness <= 1.0f) ||
             !std::isfinite(mat.normalScale) || !(mat.occlusionStrength >= 0.0f && mat.occlusionStrength <= 1.0f))
@@ -469,6 +511,11 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             failAt(file, "material " + std::to_string(m) +
                              ": the volume's thickness must be finite and >= 0, its attenuation colour in [0, 1], its "
                              "distance > 0");
+        if (!unit(mat.iridescenceFactor) || !(mat.iridescenceIor >= 1.0f && mat.iridescenceIor <= 1000.0f) ||
+            !(mat.iridescenceThicknessMin >= 0.0f && mat.iridescenceThicknessMin <= 1e6f) ||
+            !(mat.iridescenceThicknessMax >= 0.0f && mat.iridescenceThicknessMax <= 1e6f))
+            failAt(file, "material " + std::to_string(m) +
+                             ": the iridescence factor must be in [0, 1], its index in [1, 1000], its thicknesses in [0, 1e6] nm");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +

@@ -32,7 +32,7 @@ struct SceneSection {
 
 extern const SceneSection kTriangleSection, kNormalSection, kTexcoordSection, kColorSection, kTangentSection;
 extern const SceneSection kMaterialSection, kTextureSection, kModelSection, kPbrSection, kAlphaSection, kSideSection,
-    kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection;
+    kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection, kFilmSection;
 extern const SceneSection kLightSection, kLightKindSection, kEnvironmentSection;
 extern const SceneSection kCameraSection, kLensSection, kAnimationSection, kBackgroundSection, kRenderSection;
 
