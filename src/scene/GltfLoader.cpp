@@ -71,7 +71,7 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
     "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
-    "KHR_materials_volume",       "KHR_materials_iridescence"};
+    "KHR_materials_volume",       "KHR_materials_iridescence", "KHR_materials_pbrSpecularGlossiness"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -890,8 +890,8 @@ class GltfReader {
         if (index < 0) return 0;
         if (index >= int(m_.materials.size())) fail("material " + std::to_string(index) + " does not exist");
         if (materialIds_[size_t(index)] >= 0) return uint32_t(materialIds_[size_t(index)]);
-        const tinygltf::Material& g = m_.materials[size_t(index)];
         const std::string at = "material " + std::to_string(index);
+        const tinygltf::Material g = metallicRoughnessOf(m_.materials[size_t(index)], at);
         const std::vector<double>& base = g.pbrMetallicRoughness.baseColorFactor;
         if (base.size() != 4) fail(at + ": baseColorFactor is not 4 numbers");
         const glm::vec3 colour{float(base[0]), float(base[1]), float(base[2])};
@@ -928,12 +928,71 @@ class GltfReader {
         // Material extensions gpurt does not read are warned about once per file with the
         // other unread extensions (kExtensionsRead).
         readAlpha(g, baseTexture, named, m, uv, scene);
+        readGlossiness(m_.materials[size_t(index)], named, m, uv, scene);
         m.doubleSided = g.doubleSided;  // glTF's default: single-sided (back faces culled)
         uvs_.resize(scene.materials.size() + 1);
         uvs_.back() = uv;
         scene.materials.push_back(m);
         materialIds_[size_t(index)] = int(scene.materials.size() - 1);
         return uint32_t(scene.materials.size() - 1);
+    }
+
+    // KHR_materials_pbrSpecularGlossiness (archived, in many older files) as the metallic-roughness
+    // model with KHR_materials_specular, the conversion Khronos' tools make (glTF-Transform's
+    // metalRough): base colour = diffuseFactor (its alpha too) and diffuseTexture, metallic 0,
+    // roughness 1 - glossinessFactor, and a specular layer of F0 = specularFactor x the RGB of
+    // specularGlossinessTexture (sRGB): specular colour = specularFactor / 0.04 over ior 1.5's F0.
+    // The glossiness map (A) is readGlossiness's. A material with both the extension and
+    // pbrMetallicRoughness uses the extension (the metallic-roughness values are its fallback).
+    // What differs from the archived extension's own BRDF: the diffuse under the specular is
+    // weighed by 1 - max(F(v.h)) (fresnel_mix) rather than 1 - max(F0).
+    tinygltf::Material metallicRoughnessOf(const tinygltf::Material& source, const std::string& at) {
+        const auto found = source.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (found == source.extensions.end()) return source;
+        const tinygltf::Value& ext = found->second;
+        tinygltf::Material g = source;
+        std::vector<double> diffuse = {1.0, 1.0, 1.0, 1.0};
+        if (ext.IsObject() && ext.Has("diffuseFactor")) {
+            const tinygltf::Value& d = ext.Get("diffuseFactor");
+            if (!d.IsArray() || d.ArrayLen() != 4) fail(at + ": diffuseFactor is not 4 numbers");
+            for (int k = 0; k < 4; ++k) {
+                diffuse[size_t(k)] = d.Get(k).IsNumber() ? d.Get(k).GetNumberAsDouble() : -1.0;
+                if (!(diffuse[size_t(k)] >= 0.0 && diffuse[size_t(k)] <= 1.0)) fail(at + ": diffuseFactor must be 4 numbers in [0, 1]");
+            }
+        }
+        const glm::vec3 specular = colourFactor(ext, "specularFactor", glm::vec3(1.0f), 1.0, at);
+        const double glossiness = number(ext, "glossinessFactor", 1.0);
+        if (!(glossiness >= 0.0 && glossiness <= 1.0)) fail(at + ": glossinessFactor must be in [0, 1]");
+        g.pbrMetallicRoughness = tinygltf::PbrMetallicRoughness();
+        g.pbrMetallicRoughness.baseColorFactor = diffuse;
+        g.pbrMetallicRoughness.metallicFactor = 0.0;
+        g.pbrMetallicRoughness.roughnessFactor = 1.0 - glossiness;
+        if (ext.IsObject() && ext.Has("diffuseTexture")) textureInfoOf(ext.Get("diffuseTexture"), at + ": diffuseTexture", g.pbrMetallicRoughness.baseColorTexture);
+        if (g.extensions.count("KHR_materials_specular") == 0) {
+            tinygltf::Value::Object layer;
+            tinygltf::Value::Array colour;
+            for (int k = 0; k < 3; ++k) colour.emplace_back(double(specular[k]) / 0.04);
+            layer["specularColorFactor"] = tinygltf::Value(colour);
+            if (ext.IsObject() && ext.Has("specularGlossinessTexture"))
+                layer["specularColorTexture"] = ext.Get("specularGlossinessTexture");
+            g.extensions["KHR_materials_specular"] = tinygltf::Value(layer);
+        }
+        return g;
+    }
+
+    // A textureInfo (index, texCoord, extensions) inside an extension, as tinygltf reads the core
+    // ones; `what` names it in refusals.
+    void textureInfoOf(const tinygltf::Value& info, const std::string& what, tinygltf::TextureInfo& out) {
+        int index = -1, texCoord = 0;
+        if (!info.IsObject() || !info.Has("index") || !wholeNumber(info.Get("index"), index) || index < 0)
+            fail(what + " has no texture index");
+        if (info.Has("texCoord") && !wholeNumber(info.Get("texCoord"), texCoord)) fail(what + " texCoord is not a whole number");
+        out.index = index;
+        out.texCoord = texCoord;
+        if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+            const tinygltf::Value& e = info.Get("extensions");
+            for (const std::string& k : e.Keys()) out.extensions[k] = e.Get(k);
+        }
     }
 
     // KHR_materials_ior: the dielectric's F0; KHR_materials_transmission: a rough dielectric
@@ -1038,6 +1097,32 @@ class GltfReader {
         readSheen(g, at, named, m, uv, scene);
         readVolume(g, at, named, m);
         readIridescence(g, at, named, m, uv, scene);
+    }
+
+    // KHR_materials_pbrSpecularGlossiness's glossiness map, the A of specularGlossinessTexture
+    // (linear): roughness = 1 - glossinessFactor x A, read from a texture made from it whose A is
+    // that roughness (8 bits, exact for the default factor 1), through the material's coordinates.
+    void readGlossiness(const tinygltf::Material& source, const std::string& named, Material& m, MaterialUv& uv,
+                        Scene& scene) {
+        const auto found = source.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (found == source.extensions.end()) return;
+        const int gloss = extensionTexture(found->second, "specularGlossinessTexture", named, uv, scene);
+        if (gloss < 0) return;
+        const float factor = 1.0f - m.roughness;  // metallicRoughnessOf: roughness = 1 - glossinessFactor
+        const std::pair<int, float> key(gloss, factor);
+        auto made = roughnessFromGloss_.find(key);
+        if (made == roughnessFromGloss_.end()) {
+            Texture rough = scene.textures[size_t(gloss)];
+            rough.name += " (roughness = 1 - " + std::to_string(factor) + " x glossiness)";
+            for (uint32_t& t : rough.image.texels) {
+                const float a = float(t >> 24) / 255.0f;
+                t = (t & 0xffffffu) | (uint32_t(std::lround((1.0f - factor * a) * 255.0f)) << 24);
+            }
+            scene.textures.push_back(std::move(rough));
+            made = roughnessFromGloss_.emplace(key, int(scene.textures.size() - 1)).first;
+        }
+        m.roughness = 1.0f;
+        m.roughnessTexture = {made->second, 3};  // A
     }
 
     // KHR_materials_iridescence (glsl/common/materials/gltf.h thinFilmFresnel): the film's weight
@@ -1384,7 +1469,8 @@ class GltfReader {
     std::string name_;
     std::vector<int> materialIds_;
     std::vector<MaterialUv> uvs_;  // per scene material: the texture coordinates of its textures
-    bool thinWalledWarned_ = false;  // the thin-walled transmission's warning is said once per file
+    bool thinWalledWarned_ = false;
+    std::map<std::pair<int, float>, int> roughnessFromGloss_;  // readGlossiness's textures, by source and factor  // the thin-walled transmission's warning is said once per file
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;

@@ -740,6 +740,69 @@ TEST(GltfLoaderMaterials, IridescenceIsRead) {
     fs::remove_all(dir);
 }
 
+// KHR_materials_pbrSpecularGlossiness becomes the metallic-roughness model with
+// KHR_materials_specular (as Khronos' tools convert it): the base colour is diffuseFactor with
+// diffuseTexture, metallic 0, F0 = 0.04 x specular colour = specularFactor with
+// specularGlossinessTexture's RGB as the specular colour's map, and roughness 1 - glossinessFactor,
+// or with the map a texture whose A is 1 - glossinessFactor x the map's A; no warning. Bad factors
+// are refused naming the material.
+TEST(GltfLoaderMaterials, SpecularGlossinessIsConverted) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-specgloss-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::vector<unsigned char> rgba = {10, 20, 30, 0, 40, 50, 60, 64, 70, 80, 90, 200, 100, 110, 120, 255};
+    std::ofstream(dir / "gloss.tga", std::ios::binary) << test::tgaOf(4, 1, 32, true, false, rgba);
+    auto document = [](const std::string& extension) {
+        std::string text = test::TransmissionQuad::gltf(0.75, "gloss.tga");
+        const std::string at = "\"KHR_materials_transmission\": {";
+        text.replace(text.find(at), at.size(), extension + ", " + at);
+        return text;
+    };
+    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
+                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(document("\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [0.5, 0.25, 1, 0.8], "
+                                           "\"specularFactor\": [0.04, 0.5, 1], \"glossinessFactor\": 0.5, "
+                                           "\"diffuseTexture\": " + info + ", \"specularGlossinessTexture\": " + info + "}"),
+                                  "old.gltf", dir);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    for (const char* name : {"Glossiness", "not used", "asks for other"}) EXPECT_EQ(warnings.find(name), std::string::npos) << warnings;
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.model, GPURT_MODEL_GLTF);
+    EXPECT_EQ(m.diffuse, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(m.metallic, 0.0f);
+    EXPECT_EQ(m.diffuseTexture, 0);
+    EXPECT_EQ(m.specularColorTexture, 0);
+    const glm::vec3 f0(0.04f, 0.5f, 1.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(0.04f * m.specularColor[c], f0[c], 1e-6f) << c;
+    EXPECT_EQ(m.specularFactor, 1.0f);
+    EXPECT_EQ(m.roughness, 1.0f);
+    ASSERT_EQ(m.roughnessTexture.channel, 3);  // A
+    ASSERT_EQ(scene.textures.size(), 2u);      // the image, and the roughness made from its A
+    ASSERT_EQ(m.roughnessTexture.texture, 1);
+    const Rgba8Image& rough = scene.textures[1].image;
+    ASSERT_EQ(rough.texels.size(), 4u);
+    for (size_t k = 0; k < 4; ++k) {
+        const double expected = 255.0 * (1.0 - 0.5 * rgba[4 * k + 3] / 255.0);
+        EXPECT_NEAR(double(rough.texels[k] >> 24), expected, 0.5) << k;
+        EXPECT_EQ(rough.texels[k] & 0xffffffu, scene.textures[0].image.texels[k] & 0xffffffu) << k;
+    }
+    const Material plain = parseGltf(document("\"KHR_materials_pbrSpecularGlossiness\": {\"glossinessFactor\": 0.25}"),
+                                     "old.gltf", dir).materials[1];
+    EXPECT_EQ(plain.roughness, 0.75f);
+    EXPECT_FALSE(plain.roughnessTexture.given());
+    EXPECT_EQ(plain.diffuse, glm::vec3(1.0f));  // the extension's defaults: diffuse 1, specular 1
+    EXPECT_NEAR(0.04f * plain.specularColor.x, 1.0f, 1e-6f);
+    for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"KHR_materials_pbrSpecularGlossiness\": {\"glossinessFactor\": 2}", "material 0: glossinessFactor must be in [0, 1]"},
+             {"\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [1, 1]}", "material 0: diffuseFactor is not 4 numbers"},
+             {"\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [1, 1, 2, 1]}", "diffuseFactor must be 4 numbers in [0, 1]"},
+             {"\"KHR_materials_pbrSpecularGlossiness\": {\"specularFactor\": [1, 1, 2]}", "specularFactor must be 3 numbers in [0, 1]"}}) {
+        const std::string message = test::refusalOf([&] { parseGltf(document(bad), "old.gltf", dir); }, "old.gltf: ");
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+}
+
 // KHR_materials_transmission's transmissionTexture (TransmissionQuad.h): the slot is the texture's
 // R channel, read through its texCoord (1) and its KHR_texture_transform (rotation pi/2, offset
 // (0, 1): u' = v, v' = 1 - u by the extension's matrix), with no warning about the slot; the
