@@ -248,6 +248,64 @@ TEST_F(GltfMaterials, TransmissiveSpheresConserveTheFurnaceAndAgreeAcrossBackend
     }
 }
 
+// The white furnace with KHR_materials_iridescence and KHR_materials_volume, path traced on both
+// backends: a white dielectric and a white metal under a film, and a smooth white glass sphere whose
+// volume absorbs, stay at or below 1 within the samples' standard error (a film redistributes the
+// specular layer's colour but adds no light; absorption only takes it), the film and the volume
+// visibly below 1 where they take light; and the same glass with a volume whose attenuation colour
+// is white (nothing absorbed) conserves the furnace as clear glass does.
+TEST_F(GltfMaterials, FilmsAndVolumesKeepTheFurnaceAtOrBelowOne) {
+    const EnvironmentImage white = makeMap(16, 8, [](glm::vec3) { return glm::vec3(1.0f); });
+    CameraSpec spec;
+    spec.eye = {0.0f, 0.0f, 3.2f};
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.fovy = 45.0f;
+    const int size = 32;
+    struct Case {
+        const char* name;
+        GltfParams p;
+        glm::vec3 attenuation;  // white: a volume that absorbs nothing (with transmission)
+        bool glass;
+        bool conserves;  // the furnace stays at 1
+    };
+    GltfParams dielectricFilm{glm::dvec3(1.0), 0.0, 0.3}, metalFilm{glm::dvec3(1.0), 1.0, 0.3}, clear{glm::dvec3(1.0), 0.0, 0.0};
+    dielectricFilm.iridescence = metalFilm.iridescence = 1.0;
+    dielectricFilm.iridescenceIor = metalFilm.iridescenceIor = 1.8;
+    dielectricFilm.iridescenceThickness = metalFilm.iridescenceThickness = 380.0;
+    for (const Case& c : {Case{"white dielectric under a film", dielectricFilm, glm::vec3(1.0f), false, false},
+                          Case{"white metal under a film", metalFilm, glm::vec3(1.0f), false, false},
+                          Case{"absorbing glass", clear, glm::vec3(0.6f, 0.8f, 0.9f), true, false},
+                          Case{"glass of a white volume", clear, glm::vec3(1.0f), true, true}}) {
+        SCOPED_TRACE(c.name);
+        Scene scene;
+        const uint32_t material = addGltfMaterial(scene, c.p);
+        if (c.glass) {
+            Material& m = scene.materials[material];
+            m.ior = 1.5f;
+            m.transmission = glm::vec3(1.0f);
+            m.thickness = 1.0f;
+            m.attenuationColor = c.attenuation;
+            m.attenuationDistance = 0.5f;
+        }
+        addIcosphere(scene, glm::vec3(0.0f), 1.0f, 3, material);
+        scene.environment = environmentThroughFile(white, "white.hdr");
+        const Both both = renderBoth(scene, spec, size, size, 16, 24, Integrator::Path, 3);
+        for (int backend = 0; backend < 2; ++backend) {
+            const RenderOutput& out = backend == 0 ? both.gl : both.cpu;
+            Mean sphere;
+            for (size_t at = 0; at < out.color.size(); ++at)
+                if (out.prim[at] >= 0.0f)
+                    for (int k = 0; k < 3; ++k) sphere.add(out.color[at][k]);
+            ASSERT_GT(sphere.n, 300u);
+            if (c.conserves)
+                EXPECT_NEAR(sphere.mean(), 1.0, 5.0 * sphere.error() + 3e-3) << (backend ? "cpu" : "gl");
+            else
+                EXPECT_LT(sphere.mean(), 1.0 - 5.0 * sphere.error()) << (backend ? "cpu" : "gl");
+            EXPECT_LE(sphere.mean(), 1.0 + 5.0 * sphere.error() + 3e-3) << (backend ? "cpu" : "gl");
+        }
+    }
+}
+
 // The sRGB transfer function's inverse (IEC 61966-2-1), for 8-bit codes.
 double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
