@@ -574,6 +574,31 @@ class SceneReader {
         material.model = GPURT_MODEL_GLTF;
     }
 
+    // "transmission": glTF's model's factor in [0, 1] with "ior" >= 1 (KHR_materials_ior and
+    // KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h), which
+    // cannot also have the classic model's keys; the classic model's filter colour otherwise.
+    void readTransmission(const json& value, const Pointer& at, Material& material) const {
+        if (material.model == GPURT_MODEL_GLTF) {
+            // glTF's model: "ior" (KHR_materials_ior) and "transmission" a factor in [0, 1]
+            // (KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h).
+            if (find(value, "reflectivity") || find(value, "specular") || find(value, "shininess"))
+                fail(at, "metallic and roughness (glTF's model) do not go with specular, shininess or reflectivity");
+            if (material.ior != 0.0f && material.ior < 1.0f) fail(at / "ior", "must be >= 1 with metallic and roughness, got " + formatNumber(material.ior));
+            material.transmission = glm::vec3(0.0f);
+            if (const json* transmission = find(value, "transmission")) {
+                const double t = numberAtLeast(*transmission, at / "transmission", 0.0);
+                if (t > 1.0) fail(at / "transmission", "must be <= 1, got " + formatNumber(t));
+                material.transmission = glm::vec3(float(t));
+                if (t > 0.0 && material.ior == 0.0f) material.ior = 1.5f;
+            }
+        } else if (const json* transmission = find(value, "transmission")) {
+            material.transmission = color(*transmission, at / "transmission");
+            for (int i = 0; i < 3; ++i)
+                if (material.transmission[i] > 1.0f)
+                    fail(at / "transmission" / i, "must be <= 1, got " + formatNumber(material.transmission[i]));
+    }
+    }
+
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
@@ -599,25 +624,7 @@ class SceneReader {
             material.ior = static_cast<float>(eta);
         }
         readGltfFactors(value, at, material);
-        if (material.model == GPURT_MODEL_GLTF) {
-            // glTF's model: "ior" (KHR_materials_ior) and "transmission" a factor in [0, 1]
-            // (KHR_materials_transmission: a rough dielectric solid, glsl/common/materials/gltf.h).
-            if (find(value, "reflectivity") || find(value, "specular") || find(value, "shininess"))
-                fail(at, "metallic and roughness (glTF's model) do not go with specular, shininess or reflectivity");
-            if (material.ior != 0.0f && material.ior < 1.0f) fail(at / "ior", "must be >= 1 with metallic and roughness, got " + formatNumber(material.ior));
-            material.transmission = glm::vec3(0.0f);
-            if (const json* transmission = find(value, "transmission")) {
-                const double t = numberAtLeast(*transmission, at / "transmission", 0.0);
-                if (t > 1.0) fail(at / "transmission", "must be <= 1, got " + formatNumber(t));
-                material.transmission = glm::vec3(float(t));
-                if (t > 0.0 && material.ior == 0.0f) material.ior = 1.5f;
-            }
-        } else if (const json* transmission = find(value, "transmission")) {
-            material.transmission = color(*transmission, at / "transmission");
-            for (int i = 0; i < 3; ++i)
-                if (material.transmission[i] > 1.0f)
-                    fail(at / "transmission" / i, "must be <= 1, got " + formatNumber(material.transmission[i]));
-        }
+        readTransmission(value, at, material);
         if (const json* shininess = find(value, "shininess"))
             material.shininess =
                 static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));
