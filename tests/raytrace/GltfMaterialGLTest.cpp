@@ -820,6 +820,37 @@ TEST_F(GltfMaterials, VolumeAbsorbsAsBeerLambertOnEveryBackendAndKernel) {
             }
         }
     }
+    // A camera inside the glowing solid (Whitted without bounces: the wavefront chain's last-round
+    // pass, the megakernel, the cpu) sees the back of its far face through the medium: the three agree.
+    Scene inside;
+    const uint32_t glow = addGltfMaterial(inside, GltfParams{glm::dvec3(1.0), 0.0, 0.3});
+    Material& m = inside.materials[glow];
+    m.ior = 1.5f;
+    m.transmission = glm::vec3(1.0f);
+    m.emission = glm::vec3(0.8f);
+    m.emissionIsLight = false;
+    m.thickness = 1.0f;
+    m.attenuationColor = glm::vec3(colour);
+    m.attenuationDistance = float(distance);
+    addBox(inside, glm::vec3(-2.0f), glm::vec3(2.0f), glow);
+    inside.environment = environmentThroughFile(white, "white.hdr");
+    CameraSpec within = spec;
+    within.eye = {0.0f, 0.0f, 1.5f};
+    within.fovy = 60.0f;
+    const UniformGrid grid = buildGrid(inside, GridOptions{});
+    const CameraBasis camera = makeCamera(within, size, size);
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.samples = 1;
+    settings.maxBounces = 0;
+    const RenderOutput cpu = CpuTracer(inside, grid).render(camera, settings);
+    for (const IntegratorKernel form : {IntegratorKernel::Wavefront, IntegratorKernel::Megakernel}) {
+        GpuTracerOptions options;
+        options.integratorKernel = form;
+        const RenderOutput gl = GpuTracer(inside, grid, options).render(camera, settings);
+        expectSamePictures(gl, cpu, "inside the solid", false);  // its own emitter points sampled edge-on
+    }
+    EXPECT_LT(cpu.color[size_t(size / 2 * size + size / 2)].z, 0.01f);  // blue: 0.2^(3.5 / 0.5) of it arrives
 }
 
 }  // namespace

@@ -15,10 +15,13 @@ namespace {
 
 // The ray tree's last pass of a sample (whitted/bounce.frag LAST_ROUND), where no ray can follow:
 // colour += weight * local colour.
-//   reads surfacePoint, weight, localColor; in place color.
+//   reads surfacePoint, weight, localColor (and the hit's record for a volume's absorption,
+//   surface_streams.glsl crossedWeight: surfaceNormal, surfaceView, surfaceShading); in place color.
 void declareLastBouncePass(GPUKernel& k, GpuPipeline& p) {
     k.addInput(p.surfacePoint, "surfacePoint").addInput(p.weight, "weightState");
     k.addInput(p.localColor, "localColor").addInOut(p.color, "colorState");
+    k.addInput(p.surfaceNormal, "surfaceNormal").addInput(p.surfaceView, "surfaceView");
+    k.addInput(p.surfaceShading, "surfaceShading");
 }
 
 // The bounce pass (whitted/bounce.frag): colour += weight * local colour, then the pixel's next
