@@ -1108,7 +1108,7 @@ class GltfReader {
         if (found == source.extensions.end()) return;
         const int gloss = extensionTexture(found->second, "specularGlossinessTexture", named, uv, scene);
         if (gloss < 0) return;
-        const float factor = 1.0f - m.roughness;  // metallicRoughnessOf: roughness = 1 - glossinessFactor
+        const float factor = float(number(found->second, "glossinessFactor", 1.0));  // checked by metallicRoughnessOf
         const std::pair<int, float> key(gloss, factor);
         auto made = roughnessFromGloss_.find(key);
         if (made == roughnessFromGloss_.end()) {

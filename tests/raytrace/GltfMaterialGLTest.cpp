@@ -54,6 +54,15 @@ struct Mean {
     }
 };
 
+// Every channel of every pixel that sees the object (the furnace's sphere).
+Mean objectMean(const RenderOutput& out) {
+    Mean m;
+    for (size_t at = 0; at < out.color.size(); ++at)
+        if (out.prim[at] >= 0.0f)
+            for (int c = 0; c < 3; ++c) m.add(out.color[at][c]);
+    return m;
+}
+
 uint32_t addGltfMaterial(Scene& scene, const GltfParams& p) {
     Material m;
     m.model = GPURT_MODEL_GLTF;
@@ -232,10 +241,7 @@ TEST_F(GltfMaterials, TransmissiveSpheresConserveTheFurnaceAndAgreeAcrossBackend
         expectSamePictures(both.gl, both.cpu, "transmissive sphere");
         for (int backend = 0; backend < 2; ++backend) {
             const RenderOutput& out = backend == 0 ? both.gl : both.cpu;
-            Mean sphere;
-            for (size_t at = 0; at < out.color.size(); ++at)
-                if (out.prim[at] >= 0.0f)
-                    for (int c = 0; c < 3; ++c) sphere.add(out.color[at][c]);
+            const Mean sphere = objectMean(out);
             ASSERT_GT(sphere.n, 300u);
             if (roughness == 0.0)
                 EXPECT_NEAR(sphere.mean(), 1.0, 5.0 * sphere.error() + 3e-3) << (backend ? "cpu" : "gl");
@@ -292,10 +298,7 @@ TEST_F(GltfMaterials, FilmsAndVolumesKeepTheFurnaceAtOrBelowOne) {
         const Both both = renderBoth(scene, spec, size, size, 16, 24, Integrator::Path, 3);
         for (int backend = 0; backend < 2; ++backend) {
             const RenderOutput& out = backend == 0 ? both.gl : both.cpu;
-            Mean sphere;
-            for (size_t at = 0; at < out.color.size(); ++at)
-                if (out.prim[at] >= 0.0f)
-                    for (int k = 0; k < 3; ++k) sphere.add(out.color[at][k]);
+            const Mean sphere = objectMean(out);
             ASSERT_GT(sphere.n, 300u);
             if (c.conserves)
                 EXPECT_NEAR(sphere.mean(), 1.0, 5.0 * sphere.error() + 3e-3) << (backend ? "cpu" : "gl");

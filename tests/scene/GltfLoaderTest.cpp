@@ -581,10 +581,15 @@ TEST(GltfLoaderMaterials, RefusesHostileTextureSlots) {
 // textures), the coat's
 // normal map with its scale, through the window's shared texture coordinates, and no warning
 // about them; values outside their ranges are refused naming the material.
-// TransmissionQuad's window (transmission 0.75, the texture bands.bmp) with more material
-// extensions beside its KHR_materials_transmission.
-std::string windowWith(const std::string& extensions) {
-    std::string text = test::TransmissionQuad::gltf(0.75, "bands.bmp");
+// A textureInfo of texture 0 through the window's TEXCOORD_1 turned as its transmissionTexture is
+// (TransmissionQuad.h), for the extensions' slots.
+const std::string kTurnedSlot = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
+                                "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+
+// TransmissionQuad's window (transmission 0.75, the texture `image`) with more material extensions
+// beside its KHR_materials_transmission.
+std::string windowWith(const std::string& extensions, const std::string& image = "bands.bmp") {
+    std::string text = test::TransmissionQuad::gltf(0.75, image);
     const std::string at = "\"KHR_materials_transmission\": {";
     text.replace(text.find(at), at.size(), extensions + ", " + at);
     return text;
@@ -594,9 +599,7 @@ TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
     const fs::path dir = fs::temp_directory_path() / ("gpurt-layers-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
-    auto withLayers = windowWith;
-    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
-                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    const std::string info = kTurnedSlot;
     const std::string layers =
         "\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 0.75, \"clearcoatRoughnessFactor\": 0.25, "
         "\"clearcoatTexture\": " + info + ", \"clearcoatRoughnessTexture\": " + info +
@@ -607,7 +610,7 @@ TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
         "\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 0.5, 0.25], \"sheenRoughnessFactor\": 0.5, "
         "\"sheenColorTexture\": " + info + ", \"sheenRoughnessTexture\": " + info + "}";
     ::testing::internal::CaptureStderr();
-    const Scene scene = parseGltf(withLayers(layers), "window.gltf", dir);
+    const Scene scene = parseGltf(windowWith(layers), "window.gltf", dir);
     const std::string warnings = ::testing::internal::GetCapturedStderr();
     for (const char* name : {"clearcoat", "specular", "not used", "not read"}) EXPECT_EQ(warnings.find(name), std::string::npos) << warnings;
     ASSERT_EQ(scene.materials.size(), 2u);
@@ -648,7 +651,7 @@ TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
              {"\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 2, 1]}", "material 0: sheenColorFactor must be 3 numbers in [0, 1]"},
              {"\"KHR_materials_sheen\": {\"sheenColorFactor\": 1}", "sheenColorFactor is not 3 numbers"},
              {"\"KHR_materials_sheen\": {\"sheenColorFactor\": [1, 1, 1], \"sheenRoughnessFactor\": 3}", "sheenRoughnessFactor must be in [0, 1]"}}) {
-        const std::string message = test::refusalOf([&] { parseGltf(withLayers(bad), "window.gltf", dir); }, "window.gltf: ");
+        const std::string message = test::refusalOf([&] { parseGltf(windowWith(bad), "window.gltf", dir); }, "window.gltf: ");
         EXPECT_NE(message.find(part), std::string::npos) << message;
     }
     fs::remove_all(dir);
@@ -701,8 +704,7 @@ TEST(GltfLoaderMaterials, IridescenceIsRead) {
     const fs::path dir = fs::temp_directory_path() / ("gpurt-iridescence-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
-    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
-                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    const std::string info = kTurnedSlot;
     ::testing::internal::CaptureStderr();
     const Scene scene = parseGltf(windowWith("\"KHR_materials_iridescence\": {\"iridescenceFactor\": 0.75, \"iridescenceIor\": 1.8, "
                                              "\"iridescenceThicknessMinimum\": 250, \"iridescenceThicknessMaximum\": 700, "
@@ -751,14 +753,8 @@ TEST(GltfLoaderMaterials, SpecularGlossinessIsConverted) {
     fs::create_directories(dir);
     const std::vector<unsigned char> rgba = {10, 20, 30, 0, 40, 50, 60, 64, 70, 80, 90, 200, 100, 110, 120, 255};
     std::ofstream(dir / "gloss.tga", std::ios::binary) << test::tgaOf(4, 1, 32, true, false, rgba);
-    auto document = [](const std::string& extension) {
-        std::string text = test::TransmissionQuad::gltf(0.75, "gloss.tga");
-        const std::string at = "\"KHR_materials_transmission\": {";
-        text.replace(text.find(at), at.size(), extension + ", " + at);
-        return text;
-    };
-    const std::string info = "{\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\": "
-                             "{\"rotation\": 1.5707963267948966, \"offset\": [0, 1]}}}";
+    auto document = [](const std::string& extension) { return windowWith(extension, "gloss.tga"); };
+    const std::string info = kTurnedSlot;
     ::testing::internal::CaptureStderr();
     const Scene scene = parseGltf(document("\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [0.5, 0.25, 1, 0.8], "
                                            "\"specularFactor\": [0.04, 0.5, 1], \"glossinessFactor\": 0.5, "
