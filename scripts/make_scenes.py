@@ -24,6 +24,10 @@ from geometry generated here, so that every shipped asset can be regenerated and
   J  iridescence.json  KHR_materials_iridescence (JSON iridescence, iridescence_ior,
                    iridescence_thickness): four dark spheres under films of 250 to 550 nm and two
                    anodised titanium ones
+  K  anisotropy.json  KHR_materials_anisotropy (JSON anisotropy, anisotropy_rotation): metal
+                   spheres polished, then brushed around the up axis at strengths 0.5 and 0.9,
+                   brushed along the meridians, in a spiral (gold), and a smoother copper at full
+                   strength
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -586,6 +590,32 @@ def scene_j():
     return 0
 
 
+def scene_k():
+    """Brushed metals (KHR_materials_anisotropy: JSON anisotropy, anisotropy_rotation) on sphere.obj
+    six times on slab.obj. sphere.obj has no texture coordinates, so each tangent runs around the up
+    axis (Blender's radial tangent): rotation 0 brushes along the parallels, pi / 2 along the
+    meridians."""
+    steel = [0.62, 0.62, 0.64]
+    spheres = [{"name": "polished steel", "diffuse": steel, "metallic": 1, "roughness": 0.3},
+               {"name": "brushed steel 0.5", "diffuse": steel, "metallic": 1, "roughness": 0.3, "anisotropy": 0.5},
+               {"name": "brushed steel 0.9", "diffuse": steel, "metallic": 1, "roughness": 0.3, "anisotropy": 0.9},
+               {"name": "steel brushed along the meridians", "diffuse": steel, "metallic": 1, "roughness": 0.3,
+                "anisotropy": 0.9, "anisotropy_rotation": 1.5707963},
+               {"name": "gold brushed in a spiral", "diffuse": [1.0, 0.78, 0.34], "metallic": 1, "roughness": 0.3,
+                "anisotropy": 0.8, "anisotropy_rotation": 0.7853982},
+               {"name": "copper", "diffuse": [0.95, 0.64, 0.54], "metallic": 1, "roughness": 0.15, "anisotropy": 1.0}]
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
+    for k, material in enumerate(spheres):
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2.5), 0.0, 0.0]}, "material": material})
+    write("anisotropy.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 2.2, 11.0], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 40.0},
+        "render": {"size": [720, 300], "max_bounces": 8},
+    }) + "\n")
+    return 0
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
@@ -594,7 +624,7 @@ def main():
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
                        ("H layers", scene_h), ("I volume", scene_i),
-                       ("J iridescence", scene_j)):
+                       ("J iridescence", scene_j), ("K anisotropy", scene_k)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

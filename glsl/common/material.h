@@ -48,6 +48,9 @@ struct MaterialRecord {
     float iridescence;    // glTF, KHR_materials_iridescence: the film's weight (0: none), textured
     float iridescenceIor; // its index
     float iridescenceThickness;  // and thickness (nm), textured
+    float anisotropy;     // glTF, KHR_materials_anisotropy: the strength (0: isotropic), textured
+    vec3 anisotropyDirection;  // and its direction in scene space (the tangent frame's; not yet
+                               // orthogonal to the shading normal: gltfAnisotropicFrame)
     vec3 absorption;      // glTF, KHR_materials_volume: the absorption coefficient (per unit length)
                           // of the medium the ray arrives through: the solid's, seen from inside
                           // it (materialFacing), else 0

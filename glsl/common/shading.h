@@ -75,27 +75,57 @@ GPURT_FN vec3 bentNormal(vec3 ns, vec3 ng, bool front, vec3 n, vec3 t, vec3 b, v
     return dot(bent, ng) > 0.0f ? bent : ns;
 }
 
-// The shading normal ns (facing as ng) bent by a tangent-space normal map (glTF normalTexture):
-// `texel` the map's linear value at the hit, its x and y times `scale`. The tangent frame is made
-// per triangle from its edges e1, e2 and their texture coordinate differences dt1, dt2 (image
-// coordinates, v down as glTF's): T along increasing u, made orthogonal to the front-side
-// normal, B = cross(N, T) times the handedness (B points along decreasing v, image up, unless
-// the mapping is mirrored). `front`: the ray sees the triangle's front (frontFace); the map bends
-// the front side's normal and a back hit sees it flipped. Where the frame or the result is
-// degenerate (no texture coordinates, a normal facing away), ns stays.
-GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, bool front, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, vec3 texel,
-                           float scale) {
+// The tangent frame (t, b) about the front side's unit normal n made per triangle from its edges
+// e1, e2 and their texture coordinate differences dt1, dt2 (image coordinates, v down as glTF's):
+// T along increasing u, made orthogonal to n, B = cross(N, T) times the handedness (B points along
+// decreasing v, image up, unless the mapping is mirrored). False where it is degenerate (no
+// texture coordinates).
+GPURT_FN bool generatedTangentFrame(vec3 n, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, GPURT_OUT(vec3) t,
+                                    GPURT_OUT(vec3) b) {
+    t = vec3(0.0f);
+    b = vec3(0.0f);
     float det = dt1.x * dt2.y - dt2.x * dt1.y;
-    if (!(abs(det) > 1e-12f)) return ns;
+    if (!(abs(det) > 1e-12f)) return false;
     vec3 dpdu = (e1 * dt2.y - e2 * dt1.y) / det;
     vec3 dpdv = (e2 * dt1.x - e1 * dt2.x) / det;
-    vec3 n = front ? ns : -ns;
-    vec3 t = dpdu - n * dot(n, dpdu);
+    t = dpdu - n * dot(n, dpdu);
     float tt = dot(t, t);
-    if (!(tt > 1e-24f)) return ns;
+    if (!(tt > 1e-24f)) return false;
     t = t / sqrt(tt);
-    vec3 b = cross(n, t);
+    b = cross(n, t);
     if (dot(b, dpdv) > 0.0f) b = -b;
+    return true;
+}
+
+// The tangent frame (t, b) about the front side's unit normal n from a given vertex tangent (glTF
+// TANGENT, interpolated): T the tangent made orthogonal to n (Gram-Schmidt), B = cross(N, T) times
+// the handedness (glTF: bitangent = cross(normal, tangent.xyz) * tangent.w; w below 0 is -1,
+// anything else +1, so an interpolated w of 0 between corners of both hands is +1). False for a
+// tangent of zero length (a triangle without TANGENT, or a file's zero vector), not finite (NaN or
+// infinite), or parallel to the normal at this hit (less than 1e-3 of its length left after
+// Gram-Schmidt): the hit takes the frame generated per triangle then (generatedTangentFrame).
+GPURT_FN bool givenTangentFrame(vec3 n, vec4 tangent, GPURT_OUT(vec3) t, GPURT_OUT(vec3) b) {
+    vec3 given = vec3(tangent.x, tangent.y, tangent.z);
+    float gg = dot(given, given);
+    t = given - n * dot(n, given);
+    b = vec3(0.0f);
+    float tt = dot(t, t);
+    if (!(gg > 1e-24f) || !(tt > 1e-6f * gg)) return false;
+    t = t / sqrt(tt);
+    b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    return true;
+}
+
+// The shading normal ns (facing as ng) bent by a tangent-space normal map (glTF normalTexture):
+// `texel` the map's linear value at the hit, its x and y times `scale`, in the frame generated per
+// triangle (generatedTangentFrame). `front`: the ray sees the triangle's front (frontFace); the
+// map bends the front side's normal and a back hit sees it flipped. Where the frame or the result
+// is degenerate (no texture coordinates, a normal facing away), ns stays.
+GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, bool front, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, vec3 texel,
+                           float scale) {
+    vec3 n = front ? ns : -ns;
+    vec3 t, b;
+    if (!generatedTangentFrame(n, e1, e2, dt1, dt2, t, b)) return ns;
     return bentNormal(ns, ng, front, n, t, b, texel, scale);
 }
 
@@ -106,24 +136,35 @@ GPURT_FN vec4 interpolateTangent(vec4 t0, vec4 t1, vec4 t2, float u, float v) {
     return t0 * (1.0f - u - v) + t1 * u + t2 * v;
 }
 
-// normalMapped in the frame of a given vertex tangent (glTF TANGENT, interpolated): T the tangent
-// made orthogonal to the front side's shading normal N (Gram-Schmidt), B = cross(N, T) times the
-// handedness (glTF: bitangent = cross(normal, tangent.xyz) * tangent.w; w below 0 is -1, anything
-// else +1, so an interpolated w of 0 between corners of both hands is +1). A tangent of zero
-// length (a triangle without TANGENT, or a file's zero vector), not finite (NaN or infinite), or
-// parallel to the normal at this hit (less than 1e-3 of its length left after Gram-Schmidt) has
-// no frame: the hit falls back to the tangents generated per triangle (normalMapped).
+// normalMapped in the frame of a given vertex tangent (givenTangentFrame), or where it has none,
+// the generated one (normalMapped).
 GPURT_FN vec3 normalMappedTangent(vec3 ns, vec3 ng, bool front, vec4 tangent, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2,
                                   vec3 texel, float scale) {
     vec3 n = front ? ns : -ns;
-    vec3 given = vec3(tangent.x, tangent.y, tangent.z);
-    float gg = dot(given, given);
-    vec3 t = given - n * dot(n, given);
-    float tt = dot(t, t);
-    if (!(gg > 1e-24f) || !(tt > 1e-6f * gg)) return normalMapped(ns, ng, front, e1, e2, dt1, dt2, texel, scale);
-    t = t / sqrt(tt);
-    vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    vec3 t, b;
+    if (!givenTangentFrame(n, tangent, t, b)) return normalMapped(ns, ng, front, e1, e2, dt1, dt2, texel, scale);
     return bentNormal(ns, ng, front, n, t, b, texel, scale);
+}
+
+// KHR_materials_anisotropy's direction in scene space at a hit (the record's anisotropyDirection):
+// `direction` (tangent space) in the frame of the vertex tangent where there is one
+// (`hasTangent`, givenTangentFrame), else in the one generated from the texture coordinates, else
+// (no texture coordinates either) in the frame whose tangent runs around the scene's up axis +y
+// (T = +y x n: Blender's radial tangent), about the front side's shading normal n; zero where n is
+// along the axis there.
+GPURT_FN vec3 anisotropyFrameDirection(vec3 n, bool hasTangent, vec4 tangent, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2,
+                                       vec2 direction) {
+    vec3 t, b;
+    bool framed = hasTangent && givenTangentFrame(n, tangent, t, b);
+    if (!framed) framed = generatedTangentFrame(n, e1, e2, dt1, dt2, t, b);
+    if (!framed) {
+        t = cross(vec3(0.0f, 1.0f, 0.0f), n);
+        float tt = dot(t, t);
+        if (!(tt > 1e-12f)) return vec3(0.0f);
+        t = t / sqrt(tt);
+        b = cross(n, t);
+    }
+    return t * direction.x + b * direction.y;
 }
 
 // Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both

@@ -155,10 +155,51 @@ vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
 #endif
 }
 
+// KHR_materials_anisotropy's direction in scene space of triangle `id` at barycentrics uv
+// (common/shading.h anisotropyFrameDirection): `direction` in the frame of its vertex tangent
+// (SCENE_VERTEX_TANGENTS) or of its texture coordinates (SCENE_TEXTURES) or around the up axis,
+// about the front side's shading normal (MaterialRecord.cpp anisotropyDirectionAt).
+vec3 fetchAnisotropyDirection(int id, vec2 uv, vec2 direction) {
+    vec3 v0, e1, e2;
+    int material;
+    fetchTriangle(id, v0, e1, e2, material);
+    vec3 ns = fetchShadingNormal(id, uv.x, uv.y, facingNormal(e1, e2, -cross(e1, e2)));
+    vec2 dt1 = vec2(0.0f), dt2 = vec2(0.0f);
+#ifdef SCENE_TEXTURES
+    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangleTexcoords, at, 0);
+    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+    dt1 = a.zw - a.xy;
+    dt2 = b.xy - a.xy;
+#endif
+    vec4 tangent = vec4(0.0f);
+    bool hasTangent = false;
+#ifdef SCENE_VERTEX_TANGENTS
+    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
+                                 texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
+    hasTangent = true;
+#endif
+    return anisotropyFrameDirection(ns, hasTangent, tangent, e1, e2, dt1, dt2, direction);
+}
+
 // The layers of glTF's extensions of the record r of the material at texel `at` (fetchMaterialRecord):
-// KHR_materials_specular, _sheen, _clearcoat and _iridescence, and KHR_materials_volume's medium, each compiled in
-// for scenes that have it.
+// KHR_materials_specular, _sheen, _clearcoat, _iridescence and _anisotropy, and KHR_materials_volume's
+// medium, each compiled in for scenes that have it.
 void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2 t) {
+#ifdef SCENE_ANISOTROPY  // KHR_materials_anisotropy: the strength (B of its map) and the direction (RG, turned)
+    vec4 an = texelFetch(materials, at + ivec2(15, 0), 0);
+    vec3 texel = vec3(1.0f, 0.5f, 1.0f);
+#ifdef SCENE_TEXTURES
+    if (an.w >= 0.0f) texel = textureLinear(int(an.w), t);
+#endif
+    vec3 anisotropy = gltfAnisotropyAt(an.x, an.yz, texel);
+    r.anisotropy = anisotropy.z;
+    if (r.anisotropy > 0.0f) {
+        r.anisotropyDirection = fetchAnisotropyDirection(id, uv, vec2(anisotropy.x, anisotropy.y));
+        if (r.anisotropyDirection == vec3(0.0f)) r.anisotropy = 0.0f;  // no tangent (n along the up axis): isotropic
+    }
+#endif
 #ifdef SCENE_VOLUME  // KHR_materials_volume: the absorption coefficient (Material::absorption)
     r.absorption = texelFetch(materials, at + ivec2(13, 0), 0).xyz;
 #endif
@@ -230,6 +271,8 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.iridescence = 0.0f;
     r.iridescenceIor = 1.3f;
     r.iridescenceThickness = 0.0f;
+    r.anisotropy = 0.0f;
+    r.anisotropyDirection = vec3(1.0f, 0.0f, 0.0f);
     r.absorption = vec3(0.0f);
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);

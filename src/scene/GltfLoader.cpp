@@ -71,7 +71,8 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_materials_transmission", "KHR_materials_ior",     "KHR_texture_transform",
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
     "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
-    "KHR_materials_volume",       "KHR_materials_iridescence", "KHR_materials_pbrSpecularGlossiness"};
+    "KHR_materials_volume",       "KHR_materials_iridescence", "KHR_materials_anisotropy",
+    "KHR_materials_pbrSpecularGlossiness"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -640,6 +641,7 @@ class GltfReader {
         const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
         const std::vector<glm::vec4> tangents = primitiveTangents(prim, at, matrices, vertices, material, normals, scene);
         const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
+        if (scene.materials[material].hasAnisotropy() && tangents.empty() && texcoords.empty()) warnNoTangentFrame(at);
         // The glTF spec: a node whose world transform has a negative determinant (a mirror)
         // turns its primitives' front faces clockwise; the scene's triangles are counter-clockwise
         // at the front (Material::doubleSided), so such a primitive's corners 1 and 2 swap. (A
@@ -797,22 +799,23 @@ class GltfReader {
         return colors;
     }
 
-    // TANGENT in world space, for the normal map of the primitive's material: VEC4 of FLOAT or of
+    // TANGENT in world space, for the normal map or the anisotropy of the primitive's material: VEC4 of FLOAT or of
     // normalized BYTE / SHORT (KHR_mesh_quantization), from its Draco data when compressed; any
     // other type or count is an error. xyz goes through the linear part of the node's (or the
     // skinned vertex's) transform and is normalised, zero where it is zero or not finite (such
     // corners fall back to generated tangents, glsl/common/shading.h normalMappedTangent); w is
     // its sign (0 and NaN: +1), turned over by a mirroring transform (as the bitangent
     // cross(normal, tangent) * w must follow the mirror image). None without TANGENT or for a
-    // material without a normal map (the texture coordinates' sets the materials do not use are
-    // not named either), and none, with a warning, without NORMAL (the spec: tangents are then
-    // ignored, as the normals are made flat).
+    // material without a normal map or anisotropy (the texture coordinates' sets the materials do
+    // not use are not named either), and none, with a warning, without NORMAL (the spec: tangents
+    // are then ignored, as the normals are made flat).
     std::vector<glm::vec4> primitiveTangents(const tinygltf::Primitive& prim, const std::string& at,
                                              const VertexMatrices& matrices, size_t vertices, uint32_t material,
                                              const std::vector<glm::vec3>& normals, const Scene& scene) {
         std::vector<glm::vec4> tangents;
         const auto attribute = prim.attributes.find("TANGENT");
-        if (attribute == prim.attributes.end() || scene.materials[material].normalTexture < 0) return tangents;
+        const Material& m = scene.materials[material];
+        if (attribute == prim.attributes.end() || (m.normalTexture < 0 && !m.hasAnisotropy())) return tangents;
         if (normals.empty()) {
             warnOnce("TANGENT without NORMAL",
                      at + ": TANGENT is not used (no NORMAL: glTF ignores tangents then; the normal map uses "
@@ -845,6 +848,15 @@ class GltfReader {
             tangents[v] = glm::vec4(unit, float((t[4 * v + 3] < 0.0 ? -1.0 : 1.0) * hand));
         }
         return tangents;
+    }
+
+    // A primitive of an anisotropic material without TANGENT (with NORMAL) and without texture
+    // coordinates, which KHR_materials_anisotropy does not allow: its tangent runs around the up axis
+    // (glsl/common/shading.h anisotropyFrameDirection).
+    void warnNoTangentFrame(const std::string& at) {
+        warnOnce("anisotropy without a frame " + at,
+                 at + ": no TANGENT (with NORMAL) and no texture coordinates of the material's textures for "
+                      "KHR_materials_anisotropy's tangent frame: its direction runs around the up axis");
     }
 
     // The primitive's indices (unsigned integers below `vertices`), or 0, 1, ... without.
@@ -1097,6 +1109,7 @@ class GltfReader {
         readSheen(g, at, named, m, uv, scene);
         readVolume(g, at, named, m);
         readIridescence(g, at, named, m, uv, scene);
+        readAnisotropy(g, at, named, m, uv, scene);
     }
 
     // KHR_materials_pbrSpecularGlossiness's glossiness map, the A of specularGlossinessTexture
@@ -1149,6 +1162,24 @@ class GltfReader {
         if (weight >= 0) m.iridescenceTexture = {weight, 0};  // R
         const int thickness = extensionTexture(ext, "iridescenceThicknessTexture", named, uv, scene);
         if (thickness >= 0) m.iridescenceThicknessTexture = {thickness, 1};  // G
+    }
+
+    // KHR_materials_anisotropy (glsl/common/materials/gltf.h gltfAnisotropyAt): the strength in
+    // [0, 1], the rotation (radians, finite) and anisotropyTexture (linear RGB: the direction in RG,
+    // the strength's factor in B); strength 0: isotropic, the map unread. The direction lies in the
+    // tangent frame (primitiveTangents, or the texture coordinates'; a primitive with neither, which
+    // the extension does not allow, is a warning: its tangent runs around the up axis).
+    void readAnisotropy(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m,
+                        MaterialUv& uv, Scene& scene) {
+        const auto found = g.extensions.find("KHR_materials_anisotropy");
+        if (found == g.extensions.end()) return;
+        const tinygltf::Value& ext = found->second;
+        const double strength = number(ext, "anisotropyStrength", 0.0), rotation = number(ext, "anisotropyRotation", 0.0);
+        if (!(strength >= 0.0 && strength <= 1.0)) fail(at + ": anisotropyStrength must be in [0, 1]");
+        if (!std::isfinite(rotation)) fail(at + ": anisotropyRotation must be finite");
+        m.anisotropyStrength = float(strength);
+        m.anisotropyRotation = float(rotation);
+        if (strength > 0.0) m.anisotropyTexture = extensionTexture(ext, "anisotropyTexture", named, uv, scene);
     }
 
     // KHR_materials_volume (glsl/common/material.h materialTransmittance): the thickness (0: a thin

@@ -511,13 +511,15 @@ class SceneReader {
     // "specular_factor" and "specular_color" (KHR_materials_specular), "sheen_color" and
     // "sheen_roughness" (KHR_materials_sheen), each a factor in [0, 1] but the specular colour;
     // "attenuation_color" and "attenuation_distance" (KHR_materials_volume: the solid's medium);
-    // "iridescence" (a factor), "iridescence_ior" (>= 1) and "iridescence_thickness" (nm >= 0)
-    // (KHR_materials_iridescence: a thin film of that one thickness).
+    // "iridescence" (a factor), "iridescence_ior" and "iridescence_thickness" (readIridescence);
+    // "anisotropy" (a factor) and "anisotropy_rotation" (radians) (KHR_materials_anisotropy, in the
+    // tangent frame of the mesh's texture coordinates).
     void readGltfFactors(const json& value, const Pointer& at, Material& material) const {
         const std::pair<const char*, float*> factors[] = {
             {"metallic", &material.metallic}, {"roughness", &material.roughness}, {"clearcoat", &material.clearcoat},
             {"clearcoat_roughness", &material.clearcoatRoughness}, {"specular_factor", &material.specularFactor},
-            {"sheen_roughness", &material.sheenRoughness}, {"iridescence", &material.iridescenceFactor}};
+            {"sheen_roughness", &material.sheenRoughness}, {"iridescence", &material.iridescenceFactor},
+            {"anisotropy", &material.anisotropyStrength}};
         for (const auto& [key, field] : factors) {
             const json* given = find(value, key);
             if (!given) continue;
@@ -538,6 +540,16 @@ class SceneReader {
             material.model = GPURT_MODEL_GLTF;
         }
         readVolume(value, at, material);
+        readIridescence(value, at, material);
+        if (const json* rotation = find(value, "anisotropy_rotation")) {
+            material.anisotropyRotation = static_cast<float>(number(*rotation, at / "anisotropy_rotation"));
+            material.model = GPURT_MODEL_GLTF;
+        }
+    }
+
+    // KHR_materials_iridescence's "iridescence_ior" (>= 1) and "iridescence_thickness" (nm >= 0): a
+    // thin film of that one thickness.
+    void readIridescence(const json& value, const Pointer& at, Material& material) const {
         if (const json* ior = find(value, "iridescence_ior")) {
             const double n = numberAtLeast(*ior, at / "iridescence_ior", 1.0);
             if (n > 1e3) fail(at / "iridescence_ior", "must be <= 1000, got " + formatNumber(n));
@@ -604,7 +616,7 @@ class SceneReader {
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
                                   "specular_color", "sheen_color", "sheen_roughness", "attenuation_color",
                                   "attenuation_distance", "iridescence", "iridescence_ior", "iridescence_thickness",
-                                  "doubleSided"});
+                                  "anisotropy", "anisotropy_rotation", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {

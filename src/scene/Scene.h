@@ -119,6 +119,13 @@ struct Material {
     float iridescenceThicknessMin = 100.0f;
     float iridescenceThicknessMax = 400.0f;
     TextureChannel iridescenceThicknessTexture;
+    // glTF model, KHR_materials_anisotropy: the base's specular lobe rougher along a direction in
+    // the tangent frame (TANGENT, or the one the texture coordinates make), of strength
+    // anisotropyStrength (times anisotropyTexture's B), anisotropyRotation radians counter-clockwise
+    // from the tangent (turning the map's RG direction); strength 0: isotropic.
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;
+    int anisotropyTexture = -1;  // linear RGB
     // glTF model, KHR_materials_volume: behind a transmissive surface, a solid whose medium absorbs
     // (Beer-Lambert) so that light travelling attenuationDistance inside it (scene units; infinite:
     // nothing absorbed) keeps attenuationColor of itself. thickness 0 is the extension's thin wall
@@ -137,6 +144,11 @@ struct Material {
     bool hasClearcoat() const { return clearcoat > 0.0f; }
     bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
     bool hasIridescence() const { return model == GPURT_MODEL_GLTF && iridescenceFactor > 0.0f; }
+    bool hasAnisotropy() const { return model == GPURT_MODEL_GLTF && anisotropyStrength > 0.0f; }
+    // The rotation as (cos, sin), as both backends read it (glsl/common/materials/gltf.h gltfAnisotropyAt).
+    glm::vec2 anisotropyTurn() const {
+        return {float(std::cos(double(anisotropyRotation))), float(std::sin(double(anisotropyRotation)))};
+    }
     // Whether the volume behind it absorbs: a glTF material that transmits (the extension needs
     // one that does), KHR_materials_volume's thickness > 0 and an attenuation.
     bool hasVolume() const {

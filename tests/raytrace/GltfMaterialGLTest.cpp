@@ -278,8 +278,11 @@ TEST_F(GltfMaterials, FilmsAndVolumesKeepTheFurnaceAtOrBelowOne) {
     dielectricFilm.iridescence = metalFilm.iridescence = 1.0;
     dielectricFilm.iridescenceIor = metalFilm.iridescenceIor = 1.8;
     dielectricFilm.iridescenceThickness = metalFilm.iridescenceThickness = 380.0;
+    GltfParams brushed{glm::dvec3(1.0), 1.0, 0.3};  // KHR_materials_anisotropy, around the up axis (no texture coordinates)
+    brushed.anisotropy = 0.9;
     for (const Case& c : {Case{"white dielectric under a film", dielectricFilm, glm::vec3(1.0f), false, false},
                           Case{"white metal under a film", metalFilm, glm::vec3(1.0f), false, false},
+                          Case{"brushed white metal", brushed, glm::vec3(1.0f), false, false},
                           Case{"absorbing glass", clear, glm::vec3(0.6f, 0.8f, 0.9f), true, false},
                           Case{"glass of a white volume", clear, glm::vec3(1.0f), true, true}}) {
         SCOPED_TRACE(c.name);
@@ -763,6 +766,73 @@ TEST_F(GltfMaterials, IridescenceWithItsMapsAgreesAcrossBackends) {
     double change = 0.0;
     for (size_t k = 0; k < plain.gl.color.size(); ++k) change += glm::length(plain.gl.color[k] - whitted.gl.color[k]);
     EXPECT_GT(change / double(plain.gl.color.size()), 1e-3);
+}
+
+// The largest difference of two pictures' channels over all pixels, relative where above 1.
+double largestDifference(const RenderOutput& a, const RenderOutput& b) {
+    double worst = 0.0;
+    for (size_t k = 0; k < a.color.size(); ++k)
+        for (int c = 0; c < 3; ++c) {
+            const double x = a.color[k][c], y = b.color[k][c];
+            worst = std::max(worst, std::abs(x - y) / std::max(1.0, std::abs(y)));
+        }
+    return worst;
+}
+
+// KHR_materials_anisotropy in the tangent frame, on both backends, Whitted under a point light (a
+// brushed metal quad, its highlight stretched along the direction) and path traced under a sky:
+//  - the frame's directions: the texture coordinates' frame (T = +x) turned by a rotation of 90
+//    degrees shows the picture of a quad whose vertex tangents are +y (glTF TANGENT) without a
+//    rotation, and both differ from the unturned one and from the isotropic lobe;
+//  - the map: a texel whose RG points along (1, 0.0039) and whose B is 128/255 shows the picture of
+//    the strength times 128/255 and the rotation atan(0.0039) without a map;
+//  - the backends agree pixel for pixel, path traced too.
+TEST_F(GltfMaterials, AnisotropyFollowsTheTangentFrameAndItsMap) {
+    enum class Frame { Generated, Tangents };
+    auto scene = [](float strength, float rotation, Frame frame, int texel) {
+        Scene s;
+        const uint32_t quad = addGltfMaterial(s, GltfParams{glm::dvec3(0.9, 0.8, 0.6), 1.0, 0.25});
+        s.materials[quad].anisotropyStrength = strength;
+        s.materials[quad].anisotropyRotation = rotation;
+        if (texel >= 0) s.materials[quad].anisotropyTexture = addFlatTexture(s, uint32_t(texel) | 0xff000000u);
+        addTexturedQuad(s, quad);
+        const glm::vec3 n(0.0f, 0.0f, 1.0f);
+        s.normals.assign(2, TriangleNormals{n, n, n});
+        if (frame == Frame::Tangents) {
+            const glm::vec4 y(0.0f, 1.0f, 0.0f, 1.0f);
+            s.tangents.assign(2, TriangleTangents{y, y, y});
+        }
+        s.lights.push_back({glm::vec3(0.6f, -0.4f, 1.2f), glm::vec3(1.0f), 3.0f});
+        s.background = glm::vec3(0.0f);
+        return s;
+    };
+    const float quarter = float(gltfref::kPi / 2.0);
+    auto whitted = [](const Scene& s, const char* what) {
+        const Both both = renderBoth(s, quadView(false), 40, 40, 1, 2, Integrator::Whitted);
+        expectSamePictures(both.gl, both.cpu, what);
+        EXPECT_LT(largestDifference(both.gl, both.cpu), 2e-3) << what;
+        return both.gl;
+    };
+    const RenderOutput turned = whitted(scene(0.9f, quarter, Frame::Generated, -1), "turned");
+    const RenderOutput tangents = whitted(scene(0.9f, 0.0f, Frame::Tangents, -1), "vertex tangents");
+    const RenderOutput along = whitted(scene(0.9f, 0.0f, Frame::Generated, -1), "along u");
+    const RenderOutput isotropic = whitted(scene(0.0f, 0.0f, Frame::Generated, -1), "isotropic");
+    EXPECT_LT(largestDifference(turned, tangents), 2e-3);
+    EXPECT_GT(largestDifference(turned, along), 0.05) << "the direction must show";
+    EXPECT_GT(largestDifference(along, isotropic), 0.05) << "the anisotropy must show";
+    const RenderOutput mapped = whitted(scene(0.9f, 0.0f, Frame::Generated, 255 | (128 << 8) | (128 << 16)), "map");
+    const float x = 1.0f, y = 2.0f * 128.0f / 255.0f - 1.0f;
+    const RenderOutput folded = whitted(scene(0.9f * 128.0f / 255.0f, std::atan2(y, x), Frame::Generated, -1), "folded");
+    EXPECT_LT(largestDifference(mapped, folded), 2e-3);
+    EXPECT_GT(largestDifference(mapped, along), 0.02) << "the map's strength must show";
+
+    Scene sky = scene(0.9f, 0.6f, Frame::Tangents, 200 | (90 << 8) | (230 << 16));
+    sky.lights.clear();
+    sky.environment = environmentThroughFile(makeMap(32, 16, [](glm::vec3 d) {
+        return glm::vec3(0.3f, 0.5f, 1.0f) * (0.5f + 0.5f * d.y) + glm::vec3(3.0f * std::max(0.0f, d.x));
+    }), "sky.hdr");
+    const Both path = renderBoth(sky, quadView(false), 40, 40, 8, 4, Integrator::Path, 5);
+    expectSamePictures(path.gl, path.cpu, "anisotropy, path");
 }
 
 // KHR_materials_volume: a smooth slab of thickness L (ior 1: the rays go straight through and

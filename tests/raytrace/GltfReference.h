@@ -32,6 +32,10 @@ struct GltfParams {
     double sheenRoughness = 0.0;
     // KHR_materials_iridescence: the film's weight (0: none), index and thickness (nm).
     double iridescence = 0.0, iridescenceIor = 1.3, iridescenceThickness = 400.0;
+    // KHR_materials_anisotropy: the strength (0: isotropic) and the direction (any vector not
+    // along n: the tangent is its part orthogonal to n).
+    double anisotropy = 0.0;
+    glm::dvec3 anisotropyDirection{1.0, 0.0, 0.0};
 };
 
 namespace gltfref {
@@ -151,6 +155,24 @@ inline double visibility(double a2, double nl, double nv) {
     return 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
 }
 
+// KHR_materials_anisotropy's lobe D V as the extension's "Implementation" section writes it
+// (D_GGX_anisotropic, V_GGX_anisotropic without its clamp), alpha_t = mix(alpha, 1, strength^2)
+// along T = the direction made orthogonal to n, alpha_b = alpha along B = n x T.
+inline double anisotropicLobe(const GltfParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::dvec3 h) {
+    const glm::dvec3 t = glm::normalize(p.anisotropyDirection - n * glm::dot(n, p.anisotropyDirection));
+    const glm::dvec3 b = glm::normalize(glm::cross(n, t));
+    const double alpha = p.roughness * p.roughness, s = p.anisotropy;
+    const double at = alpha * (1.0 - s * s) + s * s, ab = alpha;
+    const double a2 = at * ab;
+    const glm::dvec3 f(ab * glm::dot(t, h), at * glm::dot(b, h), a2 * glm::dot(n, h));
+    const double w2 = a2 / glm::dot(f, f);
+    const double d = a2 * w2 * w2 / kPi;
+    const double nl = glm::dot(n, l), nv = glm::dot(n, v);
+    const double ggxV = nl * glm::length(glm::dvec3(at * glm::dot(t, v), ab * glm::dot(b, v), nv));
+    const double ggxL = nv * glm::length(glm::dvec3(at * glm::dot(t, l), ab * glm::dot(b, l), nl));
+    return d * 0.5 / (ggxV + ggxL);
+}
+
 }  // namespace gltfref
 
 // f(l, v) at normal n (all unit; zero when l or v is below the surface); without the smooth
@@ -162,7 +184,9 @@ inline glm::dvec3 gltfReferenceBrdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     const glm::dvec3 h = glm::normalize(l + v);
     const double vh = std::abs(glm::dot(v, h));
     glm::dvec3 f = diffuseWeight(p, vh) / kPi;
-    if (p.roughness > 0.0) {
+    if (p.anisotropy > 0.0) {
+        f += specularWeight(p, vh) * anisotropicLobe(p, n, v, l, h);
+    } else if (p.roughness > 0.0) {
         const double a2 = std::pow(p.roughness, 4.0);
         f += specularWeight(p, vh) * (ggx(a2, glm::dot(n, h)) * visibility(a2, nl, nv));
     }
@@ -197,9 +221,19 @@ inline glm::dvec3 gltfReferenceBtdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     const double vh = glm::dot(v, h), lh = glm::dot(l, h);
     if (vh <= 0.0 || lh >= 0.0) return glm::dvec3(0.0);
     const double a2 = std::pow(p.roughness, 4.0);
-    const double g2 = 1.0 / (1.0 + lambda(a2, nv) + lambda(a2, -nl));
+    double g2 = 1.0 / (1.0 + lambda(a2, nv) + lambda(a2, -nl)), d = ggx(a2, glm::dot(n, h));
+    if (p.anisotropy > 0.0) {  // KHR_materials_anisotropy: D and G2 = 4 V |n.l| n.v of the same lobe
+        const double dv = anisotropicLobe(p, n, v, -l, glm::dvec3(h.x, h.y, h.z));
+        const glm::dvec3 t = glm::normalize(p.anisotropyDirection - n * glm::dot(n, p.anisotropyDirection));
+        const glm::dvec3 b = glm::cross(n, t);
+        const double alpha = p.roughness * p.roughness, s = p.anisotropy;
+        const double at = alpha * (1.0 - s * s) + s * s, ab = alpha;
+        const double x = glm::dot(t, h) / at, y = glm::dot(b, h) / ab, k = x * x + y * y + glm::dot(n, h) * glm::dot(n, h);
+        d = 1.0 / (kPi * at * ab * k * k);
+        g2 = dv / d * 4.0 * (-nl) * nv;
+    }
     const double denom = p.ior * lh + vh;
-    return transmissionWeight(p, vh) * (std::abs(lh) * vh / (-nl * nv) * g2 * ggx(a2, glm::dot(n, h)) / (denom * denom));
+    return transmissionWeight(p, vh) * (std::abs(lh) * vh / (-nl * nv) * g2 * d / (denom * denom));
 }
 
 // The directional albedo at view cosine mu (n = +z, v in the xz plane).

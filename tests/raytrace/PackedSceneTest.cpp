@@ -241,6 +241,9 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
                     a.iridescenceThicknessTexture.texture == b.iridescenceThicknessTexture.texture &&
                     a.iridescenceThicknessTexture.channel == b.iridescenceThicknessTexture.channel)
             << m;  // IRID
+        EXPECT_TRUE(sameBits(a.anisotropyStrength, b.anisotropyStrength) &&
+                    sameBits(a.anisotropyRotation, b.anisotropyRotation) && a.anisotropyTexture == b.anisotropyTexture)
+            << m;  // ANIS
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -945,6 +948,38 @@ TEST_F(PackedSceneTest, FilmsTravelInTheirOwnSection) {
                    "material 2: texture " + std::to_string(textures) + " out of range");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 20, 4); }), "material 2: texture channel 4");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, irid.offset, materials + 1); }), "section IRID");
+}
+
+// KHR_materials_anisotropy (ANIS: strength, rotation, texture per material): only when some
+// material has anisotropy; kept bit for bit; out of range values and textures refused.
+TEST_F(PackedSceneTest, AnisotropyTravelsInItsOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "ANIS")) << "a scene without anisotropy";
+    LoadedScene brushed = source_;
+    ASSERT_GE(brushed.scene.textures.size(), 2u);
+    Material& m = brushed.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.anisotropyStrength = 0.5f;
+    m.anisotropyRotation = -2.0f;
+    m.anisotropyTexture = 1;
+    const size_t materials = brushed.scene.materials.size();
+    const Bytes b = encodePackedScene(brushed, *makeStructure(grid_), "brushed");
+    const Entry anis = section(b, "ANIS");
+    EXPECT_EQ(anis.size, 8 + 12 * materials);
+    EXPECT_EQ(get64(b, anis.offset), materials);
+    const size_t at = anis.offset + 8 + 12 * 2;  // material 2's record
+    EXPECT_EQ(get32(b, at), 0x3f000000u);        // 0.5f
+    EXPECT_EQ(get32(b, at + 4), 0xc0000000u);    // -2.0f
+    EXPECT_EQ(get32(b, at + 8), 1u);             // texture 1
+    const LoadedScene packed = decodePackedScene(b, "brushed.gpscene");
+    expectSameScene(brushed, packed);
+    EXPECT_TRUE(packed.scene.materials[2].hasAnisotropy());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    const uint32_t textures = uint32_t(brushed.scene.textures.size());
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 0x40000000u); }), "material 2: the anisotropy strength must be in [0, 1]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 4, 0x7f800000u); }), "its rotation finite");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 8, textures); }),
+                   "material 2: texture " + std::to_string(textures) + " out of range");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, anis.offset, materials + 1); }), "section ANIS");
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

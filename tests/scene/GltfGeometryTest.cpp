@@ -651,7 +651,7 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
         "\"KHR_materials_ior\", "
         "\"KHR_texture_transform\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\", "
         "\"KHR_draco_mesh_compression\", "
-        "\"EXT_mesh_gpu_instancing\", \"KHR_materials_anisotropy\"], \"extensionsRequired\": "
+        "\"EXT_mesh_gpu_instancing\", \"KHR_materials_dispersion\"], \"extensionsRequired\": "
         "[\"EXT_mesh_gpu_instancing\"], "
         "\"animations\": [{\"channels\": [], \"samplers\": []}], "
         "\"scenes\": [{\"nodes\": [0, 1]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 0}], \"meshes\": "
@@ -677,7 +677,7 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     const std::vector<std::string> expected = {
         "scene.gltf: warning: extension EXT_mesh_gpu_instancing is not used (the file requires it: "
         "the picture may be wrong)\n",
-        "scene.gltf: warning: extension KHR_materials_anisotropy is not used\n",
+        "scene.gltf: warning: extension KHR_materials_dispersion is not used\n",
         "scene.gltf: warning: 1 animation is not used; the scene is drawn at rest (its nodes' own "
         "transforms)\n",
         "scene.gltf: warning: mesh 0: morph targets are not used; meshes are drawn in their base "

@@ -742,6 +742,57 @@ TEST(GltfLoaderMaterials, IridescenceIsRead) {
     fs::remove_all(dir);
 }
 
+// KHR_materials_anisotropy: the strength, the rotation and the map (a whole texture, linear RGB);
+// strength 0 leaves the map unread; a strength outside [0, 1] is refused naming the material. The direction needs a tangent frame: TANGENT is kept for an
+// anisotropic material without a normal map, and a primitive with neither TANGENT nor texture
+// coordinates is a warning (its lobe is isotropic).
+TEST(GltfLoaderMaterials, AnisotropyIsRead) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-anisotropy-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(windowWith("\"KHR_materials_anisotropy\": {\"anisotropyStrength\": 0.75, "
+                                             "\"anisotropyRotation\": 1.25, \"anisotropyTexture\": " + kTurnedSlot + "}"),
+                                  "window.gltf", dir);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    for (const char* name : {"anisotropy", "not used", "not read"}) EXPECT_EQ(warnings.find(name), std::string::npos) << warnings;
+    const Material& m = scene.materials[1];
+    EXPECT_EQ(m.anisotropyStrength, 0.75f);
+    EXPECT_EQ(m.anisotropyRotation, 1.25f);
+    EXPECT_EQ(m.anisotropyTexture, 0);
+    EXPECT_TRUE(m.hasAnisotropy());
+    EXPECT_EQ(scene.textures.size(), 1u);  // the window's image, its coordinates shared
+    const Material off = parseGltf(windowWith("\"KHR_materials_anisotropy\": {\"anisotropyTexture\": " + kTurnedSlot + "}"),
+                                   "window.gltf", dir).materials[1];
+    EXPECT_FALSE(off.hasAnisotropy());
+    EXPECT_EQ(off.anisotropyTexture, -1);
+    for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
+             {"\"KHR_materials_anisotropy\": {\"anisotropyStrength\": 1.5}", "material 0: anisotropyStrength must be in [0, 1]"},
+             {"\"KHR_materials_anisotropy\": {\"anisotropyStrength\": -0.1}", "anisotropyStrength must be in [0, 1]"}}) {
+        const std::string message = test::refusalOf([&] { parseGltf(windowWith(bad), "window.gltf", dir); }, "window.gltf: ");
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+    fs::remove_all(dir);
+
+    // The frame: a quad with TANGENT keeps it for the anisotropic material; one without TANGENT and
+    // without textures (so without texture coordinates) is said to take the up axis's, once.
+    Gltf g;
+    const TangentQuad quad(g);
+    const int tangent = g.accessor(g.view(std::vector<float>{0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1}), 5126, 4, "VEC4");
+    ::testing::internal::CaptureStderr();
+    const Scene framed = parse(g.json(
+        "\"scenes\": [{\"nodes\": [0, 1]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 1}], \"meshes\": [" +
+        quad.mesh(tangent, 0) + ", " + quad.mesh(-1, 0) +
+        "], \"materials\": [{\"extensions\": {\"KHR_materials_anisotropy\": {\"anisotropyStrength\": 0.5}}}]"));
+    const std::string said = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(framed.tangents.size(), 4u);
+    EXPECT_EQ(framed.tangents[0].t0, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(framed.tangents[2].t0, glm::vec4(0.0f));
+    EXPECT_NE(said.find("mesh 1 primitive 0: no TANGENT (with NORMAL) and no texture coordinates"), std::string::npos) << said;
+    EXPECT_NE(said.find("its direction runs around the up axis"), std::string::npos) << said;
+    EXPECT_EQ(said.find("mesh 0"), std::string::npos) << said;
+}
+
 // KHR_materials_pbrSpecularGlossiness becomes the metallic-roughness model with
 // KHR_materials_specular (as Khronos' tools convert it): the base colour is diffuseFactor with
 // diffuseTexture, metallic 0, F0 = 0.04 x specular colour = specularFactor with

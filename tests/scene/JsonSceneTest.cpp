@@ -441,6 +441,24 @@ TEST_F(JsonSceneTest, IridescenceMakesAFilm) {
                 {"/meshes/0/material/iridescence_thickness: must be >= 0"});
 }
 
+// KHR_materials_anisotropy's keys: "anisotropy" (a factor) and "anisotropy_rotation" (radians)
+// make glTF's model; bad values name the key.
+TEST_F(JsonSceneTest, AnisotropyStretchesTheLobe) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj", "material": {"metallic": 1, "roughness": 0.3, "anisotropy": 0.75, "anisotropy_rotation": -1.5}}]})"));
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.model, GPURT_MODEL_GLTF);
+    EXPECT_TRUE(m.hasAnisotropy());
+    EXPECT_EQ(m.anisotropyStrength, 0.75f);
+    EXPECT_EQ(m.anisotropyRotation, -1.5f);
+    EXPECT_EQ(m.anisotropyTexture, -1);
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"anisotropy": 1.5}}]})",
+                {"/meshes/0/material/anisotropy: must be <= 1"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"anisotropy_rotation": "left"}}]})",
+                {"/meshes/0/material/anisotropy_rotation: expected a number"});
+}
+
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});

@@ -27,6 +27,9 @@
 // by their weights at it; a refracted direction's pdf is reported as 0 (a delta for MIS: light
 // sampling never goes through the surface). Whitted: the refracted ray is spawned as through a
 // smooth surface (Whitted cannot blur), with the mirror ray where the surface is smooth.
+// The extensions' layers follow below, each where it enters: KHR_materials_specular, _clearcoat,
+// _sheen, _iridescence (thin_film.h) and _anisotropy (the base's lobe, reflection and
+// transmission, stretched along a direction: anisotropic_ggx.h, gltfSpecularLobe).
 #ifndef GPURT_MATERIALS_GLTF_H
 #define GPURT_MATERIALS_GLTF_H
 
@@ -56,8 +59,82 @@ GPURT_FN float smithVisibility(float a2, float nl, float nv) {
     return s > 0.0f ? 0.5f / s : 0.0f;
 }
 
+// GGX's microfacet lobe D V of alpha at cosines nh, nl, nv.
+GPURT_FN float ggxLobe(float alpha, float nh, float nl, float nv) {
+    float a2 = alpha * alpha;
+    return ggxDistribution(a2, nh) * smithVisibility(a2, nl, nv);
+}
+
 // Smith's masking G1 of the view at n.v for alpha^2 = a2.
 GPURT_FN float smithMasking(float a2, float nv) { return 2.0f * nv / (nv + sqrt(a2 + (1.0f - a2) * nv * nv)); }
+
+// KHR_materials_anisotropy: the base's specular lobe (reflection and transmission) stretched along
+// the record's direction, alpha_t = mix(alpha, 1, strength^2) along it and alpha_b = alpha across
+// (alpha = roughness^2, both at least GPURT_GLTF_SMOOTH^2: a rough surface, never a mirror).
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)  // SceneTextures::bind
+#include "anisotropic_ggx.h"
+#endif
+
+// Whether the record's base lobe is anisotropic (compiled only for scenes with anisotropy).
+GPURT_FN bool gltfAnisotropic(MaterialRecord m) {
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)
+    return m.anisotropy > 0.0f;
+#else
+    return false;
+#endif
+}
+
+// Whether the base's specular lobe is a perfect mirror: a roughness below GPURT_GLTF_SMOOTH,
+// without anisotropy.
+GPURT_FN bool gltfBaseSmooth(MaterialRecord m) { return gltfSmooth(m.roughness) && !gltfAnisotropic(m); }
+
+// KHR_materials_anisotropy's strength and direction in tangent space at a hit, from its map's
+// linear RGB `texel` ((1, 0.5, 1) without a map): RG mapped from [0, 1] to [-1, 1], normalized
+// and turned by the rotation (cos, sin) counter-clockwise; B times the strength. Returns (x, y,
+// strength); a texel without a direction has no anisotropy.
+GPURT_FN vec3 gltfAnisotropyAt(float strength, vec2 rotation, vec3 texel) {
+    float x = texel.x * 2.0f - 1.0f;
+    float y = texel.y * 2.0f - 1.0f;
+    float len2 = x * x + y * y;
+    if (!(len2 > 0.0f)) return vec3(1.0f, 0.0f, 0.0f);
+    float k = 1.0f / sqrt(len2);
+    x = x * k;
+    y = y * k;
+    return vec3(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y, strength * texel.z);
+}
+
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)
+// The anisotropy's frame about the shading normal n: t the record's direction made orthogonal to n
+// (any tangent where they are parallel), b = n x t; returns (alpha_t, alpha_b).
+GPURT_FN vec2 gltfAnisotropicFrame(MaterialRecord m, vec3 n, GPURT_OUT(vec3) t, GPURT_OUT(vec3) b) {
+    vec3 d = m.anisotropyDirection;
+    t = d - n * dot(n, d);
+    float tt = dot(t, t);
+    if (tt > 1e-12f) {
+        t = t / sqrt(tt);
+        b = cross(n, t);
+    } else {
+        orthonormalBasis(n, t, b);
+    }
+    float alpha = max(m.roughness * m.roughness, GPURT_GLTF_SMOOTH * GPURT_GLTF_SMOOTH);
+    return vec2(mix(alpha, 1.0f, m.anisotropy * m.anisotropy), alpha);
+}
+#endif
+
+// The base's specular microfacet lobe D V at half vector h, for the view v and the light l at
+// cosines nv, nl > 0 (for the BTDF |n.l|) about the shading normal n: GGX of alpha = roughness^2,
+// stretched along the anisotropy's direction (KHR_materials_anisotropy).
+GPURT_FN float gltfSpecularLobe(MaterialRecord m, vec3 n, vec3 v, vec3 l, vec3 h, float nl, float nv) {
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)
+    if (gltfAnisotropic(m)) {
+        vec3 t, b;
+        vec2 a = gltfAnisotropicFrame(m, n, t, b);
+        return ggxAnisotropicDistribution(a.x, a.y, dot(t, h), dot(b, h), max(dot(n, h), 0.0f)) *
+               ggxAnisotropicVisibility(a.x, a.y, dot(t, v), dot(b, v), nv, dot(t, l), dot(b, l), nl);
+    }
+#endif
+    return ggxLobe(m.roughness * m.roughness, max(dot(n, h), 0.0f), nl, nv);
+}
 
 // The dielectric's F0 for the record's (relative) ior: Appendix B's 0.04 for the default index,
 // else ((ior - 1) / (ior + 1))^2 (symmetric in ior and 1 / ior).
@@ -266,11 +343,8 @@ GPURT_FN vec3 gltfBaseBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     h = h / sqrt(hh);
     float vh = abs(dot(v, h));
     vec3 f = gltfDiffuseWeight(m, vh) * GPURT_INV_PI;
-    if (gltfSmooth(m.roughness)) return f;
-    float alpha = m.roughness * m.roughness;
-    float a2 = alpha * alpha;
-    float nh = max(dot(n, h), 0.0f);
-    return f + gltfSpecularFresnel(m, vh) * (ggxDistribution(a2, nh) * smithVisibility(a2, nl, nv));
+    if (gltfBaseSmooth(m)) return f;
+    return f + gltfSpecularFresnel(m, vh) * gltfSpecularLobe(m, n, v, l, h, nl, nv);
 }
 
 // The rough coat's microfacet lobe D V about the coat normal (its Fresnel is the weight
@@ -284,9 +358,7 @@ GPURT_FN float gltfCoatLobe(MaterialRecord m, vec3 v, vec3 l) {
     float hh = dot(h, h);
     if (!(hh > 0.0f)) return 0.0f;
     h = h / sqrt(hh);
-    float alpha = m.coatRoughness * m.coatRoughness;
-    float a2 = alpha * alpha;
-    return ggxDistribution(a2, max(dot(n, h), 0.0f)) * smithVisibility(a2, nl, nv);
+    return ggxLobe(m.coatRoughness * m.coatRoughness, max(dot(n, h), 0.0f), nl, nv);
 }
 
 // The BRDF f(l, v): the base's, under a sheen where there is one (KHR_materials_sheen: sheen colour
@@ -333,17 +405,14 @@ GPURT_FN bool gltfRefractionHalf(float ior, vec3 n, vec3 v, vec3 l, GPURT_OUT(ve
 // 1 / ior^2; 0 for a smooth surface (its refraction is a delta) or without transmission.
 GPURT_FN vec3 gltfBtdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     float anl = -dot(n, l);
-    if (!(anl > 0.0f) || gltfSmooth(m.roughness) || !(gltfTransmission(m) > 0.0f)) return vec3(0.0f);
+    if (!(anl > 0.0f) || gltfBaseSmooth(m) || !(gltfTransmission(m) > 0.0f)) return vec3(0.0f);
     vec3 h;
     float vh, lh;
     if (!gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return vec3(0.0f);
     float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
-    float alpha = m.roughness * m.roughness;
-    float a2 = alpha * alpha;
     float denom = lh + vh / m.ior;
     // G2 / (|n.l| n.v) = 4 V
-    float k = ggxDistribution(a2, max(dot(n, h), 0.0f)) * 4.0f * smithVisibility(a2, anl, nv) * (-lh) * vh /
-              (denom * denom * m.ior * m.ior);
+    float k = gltfSpecularLobe(m, n, v, l, h, anl, nv) * 4.0f * (-lh) * vh / (denom * denom * m.ior * m.ior);
     return gltfTransmissionWeight(m, vh) * (k * (1.0f - gltfCoatWeight(m, v)) * gltfSheenBase(m, nv));
 }
 
@@ -378,21 +447,34 @@ GPURT_FN float ggxVisiblePdf(float a2, vec3 n, vec3 v, vec3 h) {
     return ggxDistribution(a2, max(dot(n, h), 0.0f)) * smithMasking(a2, nv) * max(dot(v, h), 0.0f) / nv;
 }
 
+// The pdf of the base's visible normal h seen from v about the shading normal n (gltfVisibleNormal).
+GPURT_FN float gltfVisiblePdf(MaterialRecord m, vec3 n, vec3 v, vec3 h) {
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)
+    if (gltfAnisotropic(m)) {
+        vec3 t, b;
+        vec2 a = gltfAnisotropicFrame(m, n, t, b);
+        float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
+        return ggxAnisotropicDistribution(a.x, a.y, dot(t, h), dot(b, h), max(dot(n, h), 0.0f)) *
+               ggxAnisotropicMasking(a.x, a.y, dot(t, v), dot(b, v), nv) * max(dot(v, h), 0.0f) / nv;
+    }
+#endif
+    float alpha = m.roughness * m.roughness;
+    return ggxVisiblePdf(alpha * alpha, n, v, h);
+}
+
 // The solid-angle pdf of sampling l (specular lobe with probability pSpecular) above the surface:
 // the visible normal's pdf / (4 v.h) times the share that reflects (0 for a smooth surface's
 // mirror: a delta) plus the cosine lobe's; below it, the visible normal's pdf times the
 // refraction's Jacobian |l.h| / (l.h + v.h / ior)^2 and the share that refracts.
 GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
-    bool rough = !gltfSmooth(m.roughness) && pSpecular > 0.0f;
-    float alpha = m.roughness * m.roughness;
-    float a2 = alpha * alpha;
+    bool rough = !gltfBaseSmooth(m) && pSpecular > 0.0f;
     if (nl < 0.0f) {
         vec3 h;
         float vh, lh;
         if (!rough || !(gltfTransmission(m) > 0.0f) || !gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return 0.0f;
         float denom = lh + vh / m.ior;
-        return pSpecular * (1.0f - gltfReflectProbability(m, vh)) * ggxVisiblePdf(a2, n, v, h) * (-lh) / (denom * denom);
+        return pSpecular * (1.0f - gltfReflectProbability(m, vh)) * gltfVisiblePdf(m, n, v, h) * (-lh) / (denom * denom);
     }
     if (!(nl > 0.0f)) return 0.0f;
     float pdf = (1.0f - pSpecular) * nl * GPURT_INV_PI;
@@ -403,7 +485,7 @@ GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, ve
     h = h / sqrt(hh);
     float vh = max(dot(v, h), 0.0f);
     if (!(vh > 0.0f)) return pdf;
-    return pdf + pSpecular * gltfReflectProbability(m, vh) * ggxVisiblePdf(a2, n, v, h) / (4.0f * vh);
+    return pdf + pSpecular * gltfReflectProbability(m, vh) * gltfVisiblePdf(m, n, v, h) / (4.0f * vh);
 }
 
 // The probability of sampling the sheen (by the cosine, as the diffuse lobe) under the coat at
@@ -443,13 +525,11 @@ GPURT_FN float gltfPdf(MaterialRecord m, float pCoat, float pSpecular, vec3 n, v
     return pdf;
 }
 
-// A microfacet normal of GGX (alpha) visible from v, for u in [0, 1)^2 (Heitz 2018, listing 1,
-// isotropic), about the shading normal n.
-GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
-    vec3 t, b;
-    orthonormalBasis(n, t, b);
+// A microfacet normal of GGX visible from v, alpha ax along the unit tangent t and ay along b
+// (t, b, n orthonormal), for u in [0, 1)^2 (Heitz 2018, listing 1).
+GPURT_FN vec3 ggxStretchedVisibleNormal(vec3 t, vec3 b, vec3 n, vec3 v, float ax, float ay, vec2 u) {
     vec3 ve = vec3(dot(v, t), dot(v, b), max(dot(v, n), GPURT_GLTF_MIN_COS));
-    vec3 vh = contractNormalize(vec3(alpha * ve.x, alpha * ve.y, ve.z));
+    vec3 vh = contractNormalize(vec3(ax * ve.x, ay * ve.y, ve.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
     vec3 t1 = lensq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) / sqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
     vec3 t2 = cross(vh, t1);
@@ -459,8 +539,28 @@ GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
     float s = 0.5f * (1.0f + vh.z);
     float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * (r * sin(phi));
     vec3 nh = t1 * p1 + t2 * p2 + vh * sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2));
-    vec3 ne = contractNormalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0f, nh.z)));
+    vec3 ne = contractNormalize(vec3(ax * nh.x, ay * nh.y, max(0.0f, nh.z)));
     return t * ne.x + b * ne.y + n * ne.z;
+}
+
+// The same for the isotropic GGX (alpha) about the shading normal n (any tangent).
+GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
+    vec3 t, b;
+    orthonormalBasis(n, t, b);
+    return ggxStretchedVisibleNormal(t, b, n, v, alpha, alpha, u);
+}
+
+// The base's visible normal from v about the shading normal n: the isotropic GGX's of alpha =
+// roughness^2, stretched along the anisotropy's direction (KHR_materials_anisotropy).
+GPURT_FN vec3 gltfVisibleNormal(MaterialRecord m, vec3 n, vec3 v, vec2 u) {
+#if defined(__cplusplus) || defined(SCENE_ANISOTROPY)
+    if (gltfAnisotropic(m)) {
+        vec3 t, b;
+        vec2 a = gltfAnisotropicFrame(m, n, t, b);
+        return ggxStretchedVisibleNormal(t, b, n, v, a.x, a.y, u);
+    }
+#endif
+    return ggxVisibleNormal(n, v, m.roughness * m.roughness, u);
 }
 
 // The ambient albedo: the directional albedo at normal incidence, (1 - m)(1 - t) 0.96 c + F0 with
@@ -469,7 +569,7 @@ GPURT_FN vec3 ggxVisibleNormal(vec3 n, vec3 v, float alpha, vec2 u) {
 // own weight added (a smooth one's comes by the mirror ray), times the occlusion.
 GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
     vec3 albedo = gltfDiffuseWeight(m, 1.0f);
-    if (!gltfSmooth(m.roughness)) albedo = albedo + gltfSpecularFresnel(m, 1.0f);
+    if (!gltfBaseSmooth(m)) albedo = albedo + gltfSpecularFresnel(m, 1.0f);
 #if defined(__cplusplus) || defined(SCENE_SHEEN)
     if (gltfHasSheen(m)) albedo = albedo * gltfSheenBase(m, 1.0f) + m.sheenColor * sheenAlbedo(1.0f, m.sheenRoughness);
 #endif
@@ -518,7 +618,7 @@ GPURT_FN bool gltfCoatMirrors(MaterialRecord m) {
 }
 
 GPURT_FN bool gltfSpawns(MaterialRecord m) {
-    return gltfSmooth(m.roughness) || gltfTransmission(m) > 0.0f || gltfCoatMirrors(m);
+    return gltfBaseSmooth(m) || gltfTransmission(m) > 0.0f || gltfCoatMirrors(m);
 }
 
 GPURT_FN bool gltfSplits(MaterialRecord m) { return gltfTransmission(m) > 0.0f; }
@@ -535,7 +635,7 @@ GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GP
     float coat = gltfCoatWeight(m, -d);
     vec3 under = w * ((1.0f - coat) * gltfSheenBase(m, nv));
     dirA = shadingReflection(d, gltfCoatMirrors(m) ? m.coatNormal : ns, ng);
-    weightA = gltfSmooth(m.roughness) ? under * gltfSpecularFresnel(m, nv) : vec3(0.0f);
+    weightA = gltfBaseSmooth(m) ? under * gltfSpecularFresnel(m, nv) : vec3(0.0f);
     if (gltfCoatMirrors(m)) weightA = weightA + w * coat;
     sideA = 1.0f;
     dirB = dirA;
@@ -558,7 +658,7 @@ GPURT_FN bool gltfLit(MaterialRecord m) {
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     roughCoat = m.coat > 0.0f && !gltfCoatSmooth(m);
 #endif
-    return !gltfSmooth(m.roughness) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f || roughCoat || gltfHasSheen(m);
+    return !gltfBaseSmooth(m) || maxChannel(gltfDiffuseWeight(m, 1.0f)) > 0.0f || roughCoat || gltfHasSheen(m);
 }
 
 // pi times the BRDF (light sampling reaches only directions above the surface).
@@ -625,13 +725,13 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
     factor = vec3(0.0f);
     pdf = 0.0f;
     side = 1.0f;
-    bool mirror = gltfSmooth(m.roughness);
+    bool mirror = gltfBaseSmooth(m);
     vec3 under;  // the base's delta lobes' share under the coat and sheen over their probability's
     int layer = gltfSampleLayers(m, d, ng, ns, u, nv, coat, pc, lobe, dir, factor, under);
     if (layer == GPURT_LAYER_DELTA) return true;
     if (layer == GPURT_LAYER_PICKED) {  // the coat's or the sheen's direction: evaluated below as the mixture
     } else if (lobe < p) {
-        vec3 h = mirror ? ns : ggxVisibleNormal(ns, v, m.roughness * m.roughness, u);
+        vec3 h = mirror ? ns : gltfVisibleNormal(m, ns, v, u);
         float vh = mirror ? nv : max(dot(v, h), 0.0f);
         float pr = gltfReflectProbability(m, vh);
         if (lobe < p * pr) {

@@ -13,6 +13,32 @@ float channelAt(const Scene& scene, TextureChannel c, glm::vec2 t) {
     return sampleChannel(scene.textures[size_t(c.texture)], t, c.channel);
 }
 
+// KHR_materials_anisotropy's direction in scene space of triangle prim at barycentrics (u, v)
+// (common/shading.h anisotropyFrameDirection; shading.glsl fetchAnisotropyDirection): `direction`
+// in the frame of its vertex tangent or of its texture coordinates or around the up axis, about the
+// front side's shading normal.
+glm::vec3 anisotropyDirectionAt(const Scene& scene, uint32_t prim, float u, float v, glm::vec2 direction) {
+    const Triangle& tri = scene.triangles[prim];
+    const glm::vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+    glm::vec3 ns = raymath::facingNormal(e1, e2, -glm::cross(e1, e2));
+    if (!scene.normals.empty()) {
+        const TriangleNormals& n = scene.normals[prim];
+        ns = raymath::shadingNormal(n.n0, n.n1, n.n2, u, v, ns);
+    }
+    glm::vec2 dt1(0.0f), dt2(0.0f);
+    if (!scene.texcoords.empty()) {
+        const TriangleTexcoords& c = scene.texcoords[prim];
+        dt1 = c.t1 - c.t0;
+        dt2 = c.t2 - c.t0;
+    }
+    glm::vec4 tangent(0.0f);
+    if (!scene.tangents.empty()) {
+        const TriangleTangents& g = scene.tangents[prim];
+        tangent = raymath::interpolateTangent(g.t0, g.t1, g.t2, u, v);
+    }
+    return raymath::anisotropyFrameDirection(ns, !scene.tangents.empty(), tangent, e1, e2, dt1, dt2, direction);
+}
+
 }  // namespace
 
 raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float u, float v) {
@@ -34,6 +60,19 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
         r.sheenRoughness = m.sheenRoughness * channelAt(scene, m.sheenRoughnessTexture, t);  // SCENE_SHEEN
         if (m.sheenColorTexture >= 0 && !scene.texcoords.empty())
             r.sheenColor = m.sheenColor * sampleTexture(scene.textures[size_t(m.sheenColorTexture)], t);
+        if (m.hasAnisotropy()) {  // SCENE_ANISOTROPY
+            glm::vec3 texel(1.0f, 0.5f, 1.0f);
+            if (m.anisotropyTexture >= 0 && !scene.texcoords.empty()) {
+                const Texture& image = scene.textures[size_t(m.anisotropyTexture)];
+                texel = glm::vec3(sampleChannel(image, t, 0), sampleChannel(image, t, 1), sampleChannel(image, t, 2));
+            }
+            const glm::vec3 a = raymath::gltfAnisotropyAt(m.anisotropyStrength, m.anisotropyTurn(), texel);
+            r.anisotropy = a.z;
+            if (r.anisotropy > 0.0f) {
+                r.anisotropyDirection = anisotropyDirectionAt(scene, prim, u, v, glm::vec2(a.x, a.y));
+                if (r.anisotropyDirection == glm::vec3(0.0f)) r.anisotropy = 0.0f;  // n along the up axis: isotropic
+            }
+        }
         r.iridescence = r.iridescence * channelAt(scene, m.iridescenceTexture, t);  // SCENE_IRIDESCENCE
         r.iridescenceThickness = glm::mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax,
                                           channelAt(scene, m.iridescenceThicknessTexture, t));
@@ -70,6 +109,8 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.iridescence = m.hasIridescence() ? m.iridescenceFactor : 0.0f;
     r.iridescenceIor = m.iridescenceIor;
     r.iridescenceThickness = m.iridescenceThicknessMax;
+    r.anisotropy = 0.0f;  // materialRecord(scene, ...): in the tangent frame at the hit
+    r.anisotropyDirection = glm::vec3(1.0f, 0.0f, 0.0f);
     r.absorption = m.absorption();  // SCENE_VOLUME
     return r;
 }

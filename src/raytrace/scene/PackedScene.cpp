@@ -34,7 +34,8 @@ constexpr const packed::SceneSection* kSectionOrder[] = {
     &packed::kTexcoordSection,  &packed::kTextureSection,     &packed::kModelSection, &packed::kPbrSection,
     &packed::kEnvironmentSection, &packed::kColorSection,     &packed::kAlphaSection, &packed::kTangentSection,
     &packed::kSideSection,      &packed::kTransmissionMapSection, &packed::kLensSection, &packed::kGlowSection,
-    &packed::kLightKindSection, &packed::kLayerSection, &packed::kVolumeSection, &packed::kFilmSection};
+    &packed::kLightKindSection, &packed::kLayerSection, &packed::kVolumeSection, &packed::kFilmSection,
+    &packed::kAnisotropySection};
 // Where the structure's sections go: after this one.
 constexpr const packed::SceneSection* kStructureAfter = &packed::kRenderSection;
 

@@ -173,6 +173,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.model == GPURT_MODEL_GLTF && m.hasClearcoat()) hasClearcoat_ = true;
         if (m.hasVolume()) hasVolume_ = true;
         if (m.hasIridescence()) hasIridescence_ = true;
+        if (m.hasAnisotropy()) hasAnisotropy_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasSheen() && !sheenTable_)
             sheenTable_.emplace(uploadTexels(sheenTableTexels(), GPUFormat::R32F, GPUStorage::Buffer));
         if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
@@ -198,14 +199,16 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasClearcoat_) kernel.addDefine("SCENE_CLEARCOAT");
     if (hasVolume_) kernel.addDefine("SCENE_VOLUME");  // common/material.h materialTransmittance
     if (hasIridescence_) kernel.addDefine("SCENE_IRIDESCENCE");  // common/materials/gltf.h thinFilmFresnel
+    if (hasAnisotropy_) kernel.addDefine("SCENE_ANISOTROPY");  // common/materials/anisotropic_ggx.h
     if (sheenTable_) kernel.addDefine("SCENE_SHEEN").addInput(*sheenTable_, "sheenTable");  // gltf.h sheenAlbedo
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h
     if (lightKinds_) kernel.addDefine("SCENE_LIGHT_KINDS");  // common/shading.h punctualAsPoint
     if (hasVertexColors_) kernel.addDefine("SCENE_VERTEX_COLORS");
-    // The vertex tangents only where a normal map reads them (shading.glsl fetchMappedNormal): the
-    // kernels of other scenes neither declare nor bind them.
-    if (hasVertexTangents_ && hasNormalMaps_) {
+    // The vertex tangents only where a normal map or anisotropy reads them (shading.glsl
+    // fetchMappedNormal, fetchAnisotropyDirection): the kernels of other scenes neither declare nor
+    // bind them.
+    if (hasVertexTangents_ && (hasNormalMaps_ || hasAnisotropy_)) {
         kernel.addDefine("SCENE_VERTEX_TANGENTS");
         kernel.addInput(vertexTangents_, "vertexTangents");
     }

@@ -86,6 +86,7 @@ class SceneTextures {
     bool hasClearcoat_ = false;      // a glTF material with a clearcoat (SCENE_CLEARCOAT)
     bool hasVolume_ = false;         // a glTF material with an absorbing volume (SCENE_VOLUME)
     bool hasIridescence_ = false;    // a glTF material with a thin film (SCENE_IRIDESCENCE)
+    bool hasAnisotropy_ = false;     // a glTF material with anisotropy (SCENE_ANISOTROPY)
     std::optional<GPUFloatArray> sheenTable_;  // a glTF material with a sheen: its albedo table (SCENE_SHEEN)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels

@@ -1,7 +1,7 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
 // models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
-// transmission maps (TRNS), the layers of glTF's extensions (LAYR), the volumes (VOLM) and the
-// thin films (IRID).
+// transmission maps (TRNS), the layers of glTF's extensions (LAYR), the volumes (VOLM), the
+// thin films (IRID) and the anisotropy (ANIS).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -43,6 +43,8 @@ constexpr size_t kVolumeBytes = 5 * 4;
 // IRID per material: KHR_materials_iridescence's factor, index, thickness minimum and maximum (f32)
 // and maps (the factor's channel, the thickness's channel: texture, channel).
 constexpr size_t kFilmBytes = 4 * 4 + 4 * 4;
+// ANIS per material: KHR_materials_anisotropy's strength and rotation (f32) and texture (i32, -1: none).
+constexpr size_t kAnisotropyBytes = 3 * 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -398,6 +400,27 @@ void writeFilms(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
+// Each material's anisotropy (count = the materials', then kAnisotropyBytes each).
+void readAnisotropy(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kAnisotropyBytes, "materials' anisotropy", kMaxTextureMaterials,
+                               scene.materials.size(), "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        Material& m = scene.materials[size_t(k)];
+        m.anisotropyStrength = in.f32();
+        m.anisotropyRotation = in.f32();
+        m.anisotropyTexture = int(int32_t(in.u32()));
+    }
+}
+void writeAnisotropy(ByteWriter& out, const LoadedScene& loaded) {
+    out.u64(loaded.scene.materials.size());
+    for (const Material& m : loaded.scene.materials) {
+        out.f32(m.anisotropyStrength);
+        out.f32(m.anisotropyRotation);
+        out.u32(uint32_t(int32_t(m.anisotropyTexture)));
+    }
+}
+
 // Whether some material has `has`.
 template <class Has>
 bool anyMaterial(const LoadedScene& l, Has has) {
@@ -463,6 +486,11 @@ const SceneSection kFilmSection{
     "IRID", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.iridescenceFactor != 0.0f; }); },
     false, writeFilms, [](const PackedSection& s, LoadedScene& l) { readFilms(s, l.scene); }};
 
+// Only when some material has anisotropy (KHR_materials_anisotropy): likewise.
+const SceneSection kAnisotropySection{
+    "ANIS", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.anisotropyStrength != 0.0f; }); },
+    false, writeAnisotropy, [](const PackedSection& s, LoadedScene& l) { readAnisotropy(s, l.scene); }};
+
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
 // them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
@@ -487,7 +515,8 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
                             mat.transmissionTexture.texture, mat.specularTexture.texture, mat.specularColorTexture,
                             mat.clearcoatTexture.texture, mat.clearcoatRoughnessTexture.texture,
                             mat.clearcoatNormalTexture, mat.sheenColorTexture, mat.sheenRoughnessTexture.texture,
-                            mat.iridescenceTexture.texture, mat.iridescenceThicknessTexture.texture})
+                            mat.iridescenceTexture.texture, mat.iridescenceThicknessTexture.texture,
+                            mat.anisotropyTexture})
             if (texture < -1 || texture >= int(scene.textures.size()))
                 failAt(file, "material " + std::to_string(m) + ": texture " + std::to_string(texture) + " out of range (" +
                                  std::to_string(scene.textures.size()) + " textures)");
@@ -516,6 +545,8 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             !(mat.iridescenceThicknessMax >= 0.0f && mat.iridescenceThicknessMax <= 1e6f))
             failAt(file, "material " + std::to_string(m) +
                              ": the iridescence factor must be in [0, 1], its index in [1, 1000], its thicknesses in [0, 1e6] nm");
+        if (!unit(mat.anisotropyStrength) || !std::isfinite(mat.anisotropyRotation))
+            failAt(file, "material " + std::to_string(m) + ": the anisotropy strength must be in [0, 1], its rotation finite");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +

@@ -32,7 +32,8 @@ struct SceneSection {
 
 extern const SceneSection kTriangleSection, kNormalSection, kTexcoordSection, kColorSection, kTangentSection;
 extern const SceneSection kMaterialSection, kTextureSection, kModelSection, kPbrSection, kAlphaSection, kSideSection,
-    kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection, kFilmSection;
+    kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection, kFilmSection,
+    kAnisotropySection;
 extern const SceneSection kLightSection, kLightKindSection, kEnvironmentSection;
 extern const SceneSection kCameraSection, kLensSection, kAnimationSection, kBackgroundSection, kRenderSection;
 
