@@ -12,7 +12,8 @@ Render (inside Blender):
   --bounces N is gpurt's (the longest path in hits); Cycles gets max_bounces N - 1, which counts
   the scatterings after the first hit (max_bounces 0 is direct light only, gpurt's --bounces 1).
   Filter Glossy is 0 (its default 1 blurs glossy lobes after diffuse ones), clamping and
-  denoising are off. --lambert R,G,B replaces every material by a Lambert diffuse of that colour
+  denoising are off. KHR_materials_volume's absorption is turned into the extension's Beer-Lambert
+  (beer_lambert: Blender 3.4's importer absorbs 1 - attenuationColor instead). --lambert R,G,B replaces every material by a Lambert diffuse of that colour
   (light transport alone, against gpurt's classic Lambert material). The references of
   tests/assets/cycles/ were made with it (README.txt there).
 Compare (inside Blender too: it reads the EXRs):
@@ -43,6 +44,21 @@ def parse_vector(text):
 
 def to_blender(v):
     return (v[0], -v[2], v[1])
+
+
+def beer_lambert(node):
+    """KHR_materials_volume as its specification says, in a Volume Absorption node the importer made.
+    Blender 3.4's importer sets Color = attenuationColor c and Density = 1 / attenuationDistance D,
+    and Cycles absorbs sigma = (1 - Color) Density: exp(-(1 - c) d / D) over a distance d, where the
+    extension says c^(d / D) = exp(ln(c) d / D). Per channel sigma = -ln(c) / D is the same node with
+    Density = the largest sigma and Color = 1 - sigma / Density."""
+    color, density = node.inputs["Color"].default_value, node.inputs["Density"].default_value
+    sigma = [-math.log(max(c, 1e-6)) * density for c in color[:3]]
+    largest = max(sigma)
+    if largest <= 0.0:
+        return
+    node.inputs["Density"].default_value = largest
+    node.inputs["Color"].default_value = tuple(1.0 - s / largest for s in sigma) + (1.0,)
 
 
 def render(args):
@@ -115,6 +131,8 @@ def render(args):
         for node in material.node_tree.nodes if material.node_tree else []:
             if node.type == "BSDF_PRINCIPLED":
                 node.distribution = args.distribution
+            if node.type == "VOLUME_ABSORPTION" and not node.inputs["Color"].is_linked:
+                beer_lambert(node)
     if args.lambert:
         # Every material a Lambert Diffuse BSDF (roughness 0) of one colour: light transport without
         # the Principled BSDF's differences from glTF's Appendix B, to compare with gpurt's classic
