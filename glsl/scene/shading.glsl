@@ -102,22 +102,41 @@ vec3 textureLinear(int tex, vec2 t) {
     return vec3(textureChannel(4 * tex, t), textureChannel(4 * tex + 1, t), textureChannel(4 * tex + 2, t));
 }
 
+// The texture coordinates' differences along triangle `id`'s edges, t1 - t0 and t2 - t0 (0
+// without texture coordinates in the scene).
+void fetchTexcoordEdges(int id, out vec2 dt1, out vec2 dt2) {
+    dt1 = vec2(0.0f);
+    dt2 = vec2(0.0f);
+#ifdef SCENE_TEXTURES
+    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    vec4 a = texelFetch(triangleTexcoords, at, 0);
+    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+    dt1 = a.zw - a.xy;
+    dt2 = b.xy - a.xy;
+#endif
+}
+
+#ifdef SCENE_VERTEX_TANGENTS
+// Triangle `id`'s vertex tangent at barycentrics uv (common/shading.h interpolateTangent).
+vec4 fetchVertexTangent(int id, vec2 uv) {
+    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
+    return interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
+                              texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
+}
+#endif
+
 // The shading normal ns bent by normal map `map` (-1: none) of scale `scale` (fetchMappedNormal;
 // a clearcoat's normal map: fetchMaterialRecord).
 vec3 fetchNormalMapped(int map, float scale, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
 #ifdef SCENE_NORMAL_MAPS
     if (map < 0) return ns;
-    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec4 a = texelFetch(triangleTexcoords, at, 0);
-    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
+    vec2 dt1, dt2;
+    fetchTexcoordEdges(id, dt1, dt2);
 #ifdef SCENE_VERTEX_TANGENTS
-    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec4 tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
-                                      texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
-    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), tangent, e1, e2, a.zw - a.xy, b.xy - a.xy,
+    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), fetchVertexTangent(id, uv), e1, e2, dt1, dt2,
                                textureLinear(map, t), scale);
 #else
-    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, a.zw - a.xy, b.xy - a.xy, textureLinear(map, t), scale);
+    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, dt1, dt2, textureLinear(map, t), scale);
 #endif
 #else
     return ns;
@@ -164,20 +183,12 @@ vec3 fetchAnisotropyDirection(int id, vec2 uv, vec2 direction) {
     int material;
     fetchTriangle(id, v0, e1, e2, material);
     vec3 ns = fetchShadingNormal(id, uv.x, uv.y, facingNormal(e1, e2, -cross(e1, e2)));
-    vec2 dt1 = vec2(0.0f), dt2 = vec2(0.0f);
-#ifdef SCENE_TEXTURES
-    ivec2 at = ivec2(GPURT_TEXCOORD_TEXELS * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    vec4 a = texelFetch(triangleTexcoords, at, 0);
-    vec4 b = texelFetch(triangleTexcoords, at + ivec2(1, 0), 0);
-    dt1 = a.zw - a.xy;
-    dt2 = b.xy - a.xy;
-#endif
+    vec2 dt1, dt2;
+    fetchTexcoordEdges(id, dt1, dt2);
     vec4 tangent = vec4(0.0f);
     bool hasTangent = false;
 #ifdef SCENE_VERTEX_TANGENTS
-    ivec2 corner = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
-    tangent = interpolateTangent(texelFetch(vertexTangents, corner, 0), texelFetch(vertexTangents, corner + ivec2(1, 0), 0),
-                                 texelFetch(vertexTangents, corner + ivec2(2, 0), 0), uv.x, uv.y);
+    tangent = fetchVertexTangent(id, uv);
     hasTangent = true;
 #endif
     return anisotropyFrameDirection(ns, hasTangent, tangent, e1, e2, dt1, dt2, direction);

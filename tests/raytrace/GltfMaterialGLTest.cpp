@@ -935,6 +935,8 @@ TEST_F(GltfMaterials, VolumeAbsorbsAsBeerLambertOnEveryBackendAndKernel) {
 // gpurt documents (KHR_materials_volume's thicknessTexture: the rays measure the distance inside):
 //  - Khronos' AttenuationTest (KHR_materials_transmission and _volume): Whitted and path agree
 //    across the backends;
+//  - glTF-Blender-IO's cube with every factor and map of KHR_materials_clearcoat, _sheen,
+//    _specular, _ior, _transmission and _volume: read, and the backends agree;
 //  - a KHR_materials_pbrSpecularGlossiness sphere of specularFactor 1 and glossinessFactor 0: its
 //    archived BRDF is then F = 1 at every angle over GGX of alpha 1 and no diffuse (diffuse x (1 -
 //    max(specular))), the metallic-roughness model's white metal of roughness 1: the same
@@ -971,6 +973,17 @@ TEST_F(GltfMaterials, RealFilesRenderWhatTheySay) {
     expectSamePictures(whitted.gl, whitted.cpu, "AttenuationTest, Whitted");
     const Both path = renderBoth(attenuation, front, 64, 48, 4, 8, Integrator::Path, 5);
     expectSamePictures(path.gl, path.cpu, "AttenuationTest, path", false);
+
+    Scene factors = load(dir / "factors/22_factors.gltf");
+    ASSERT_EQ(factors.materials.size(), 2u);
+    const Material& every = factors.materials[1];
+    EXPECT_TRUE(every.hasClearcoat() && every.hasSheen() && every.hasSpecularLayer() && every.hasVolume() && every.hasAlpha());
+    factors.environment = environmentThroughFile(sky, "sky.hdr");
+    CameraSpec corner;
+    corner.eye = {3.0f, 2.5f, 4.0f};
+    corner.target = {0.0f, 0.0f, 0.0f};
+    const Both layered = renderBoth(factors, corner, 48, 48, 4, 4, Integrator::Path, 5);
+    expectSamePictures(layered.gl, layered.cpu, "every factor, path", false);
 
     Scene sphere = load(dir / "specular_glossiness_sphere/04_sphere_specular_glossiness.gltf");
     ASSERT_EQ(sphere.materials.size(), 2u);  // the default material and the sphere's
