@@ -155,14 +155,22 @@ inline double visibility(double a2, double nl, double nv) {
     return 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
 }
 
-// KHR_materials_anisotropy's lobe D V as the extension's "Implementation" section writes it
-// (D_GGX_anisotropic, V_GGX_anisotropic without its clamp), alpha_t = mix(alpha, 1, strength^2)
-// along T = the direction made orthogonal to n, alpha_b = alpha along B = n x T.
-inline double anisotropicLobe(const GltfParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::dvec3 h) {
+// KHR_materials_anisotropy's frame and roughnesses: T = the direction made orthogonal to n,
+// B = n x T, alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha.
+struct AnisotropicFrame {
+    glm::dvec3 t, b;
+    double at, ab;
+};
+inline AnisotropicFrame anisotropicFrame(const GltfParams& p, glm::dvec3 n) {
     const glm::dvec3 t = glm::normalize(p.anisotropyDirection - n * glm::dot(n, p.anisotropyDirection));
-    const glm::dvec3 b = glm::normalize(glm::cross(n, t));
     const double alpha = p.roughness * p.roughness, s = p.anisotropy;
-    const double at = alpha * (1.0 - s * s) + s * s, ab = alpha;
+    return {t, glm::normalize(glm::cross(n, t)), alpha * (1.0 - s * s) + s * s, alpha};
+}
+
+// Its lobe D V as the extension's "Implementation" section writes it (D_GGX_anisotropic,
+// V_GGX_anisotropic without its clamp).
+inline double anisotropicLobe(const GltfParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::dvec3 h) {
+    const auto [t, b, at, ab] = anisotropicFrame(p, n);
     const double a2 = at * ab;
     const glm::dvec3 f(ab * glm::dot(t, h), at * glm::dot(b, h), a2 * glm::dot(n, h));
     const double w2 = a2 / glm::dot(f, f);
@@ -223,11 +231,8 @@ inline glm::dvec3 gltfReferenceBtdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     const double a2 = std::pow(p.roughness, 4.0);
     double g2 = 1.0 / (1.0 + lambda(a2, nv) + lambda(a2, -nl)), d = ggx(a2, glm::dot(n, h));
     if (p.anisotropy > 0.0) {  // KHR_materials_anisotropy: D and G2 = 4 V |n.l| n.v of the same lobe
-        const double dv = anisotropicLobe(p, n, v, -l, glm::dvec3(h.x, h.y, h.z));
-        const glm::dvec3 t = glm::normalize(p.anisotropyDirection - n * glm::dot(n, p.anisotropyDirection));
-        const glm::dvec3 b = glm::cross(n, t);
-        const double alpha = p.roughness * p.roughness, s = p.anisotropy;
-        const double at = alpha * (1.0 - s * s) + s * s, ab = alpha;
+        const double dv = anisotropicLobe(p, n, v, -l, h);
+        const auto [t, b, at, ab] = anisotropicFrame(p, n);
         const double x = glm::dot(t, h) / at, y = glm::dot(b, h) / ab, k = x * x + y * y + glm::dot(n, h) * glm::dot(n, h);
         d = 1.0 / (kPi * at * ab * k * k);
         g2 = dv / d * 4.0 * (-nl) * nv;

@@ -55,17 +55,15 @@ glm::vec3 CpuScene::normalMappedAt(const TraceHit& hit, glm::vec3 d, glm::vec3 n
                                    float scale) const {
     if (map < 0 || scene_.texcoords.empty()) return ns;
     const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
-    const TriangleTexcoords& c = scene_.texcoords[size_t(hit.prim)];
-    const glm::vec2 t = raymath::interpolateTexcoord(c.t0, c.t1, c.t2, hit.u, hit.v);
-    const Texture& image = scene_.textures[size_t(map)];
-    const glm::vec3 texel(sampleChannel(image, t, 0), sampleChannel(image, t, 1), sampleChannel(image, t, 2));
+    const uint32_t prim = uint32_t(hit.prim);
+    const glm::vec3 texel = sampleLinear(scene_.textures[size_t(map)], texcoordAt(scene_, prim, hit.u, hit.v));
     const bool front = frontFace(tri.e1, tri.e2, d);
-    if (!scene_.tangents.empty()) {  // SCENE_VERTEX_TANGENTS
-        const TriangleTangents& g = scene_.tangents[size_t(hit.prim)];
-        return normalMappedTangent(ns, ng, front, interpolateTangent(g.t0, g.t1, g.t2, hit.u, hit.v), tri.e1, tri.e2,
-                                   c.t1 - c.t0, c.t2 - c.t0, texel, scale);
-    }
-    return normalMapped(ns, ng, front, tri.e1, tri.e2, c.t1 - c.t0, c.t2 - c.t0, texel, scale);
+    glm::vec2 dt1, dt2;
+    texcoordEdgesAt(scene_, prim, dt1, dt2);
+    if (!scene_.tangents.empty())  // SCENE_VERTEX_TANGENTS
+        return normalMappedTangent(ns, ng, front, vertexTangentAt(scene_, prim, hit.u, hit.v), tri.e1, tri.e2, dt1, dt2,
+                                   texel, scale);
+    return normalMapped(ns, ng, front, tri.e1, tri.e2, dt1, dt2, texel, scale);
 }
 
 }  // namespace gpurt

@@ -25,18 +25,10 @@ glm::vec3 anisotropyDirectionAt(const Scene& scene, uint32_t prim, float u, floa
         const TriangleNormals& n = scene.normals[prim];
         ns = raymath::shadingNormal(n.n0, n.n1, n.n2, u, v, ns);
     }
-    glm::vec2 dt1(0.0f), dt2(0.0f);
-    if (!scene.texcoords.empty()) {
-        const TriangleTexcoords& c = scene.texcoords[prim];
-        dt1 = c.t1 - c.t0;
-        dt2 = c.t2 - c.t0;
-    }
-    glm::vec4 tangent(0.0f);
-    if (!scene.tangents.empty()) {
-        const TriangleTangents& g = scene.tangents[prim];
-        tangent = raymath::interpolateTangent(g.t0, g.t1, g.t2, u, v);
-    }
-    return raymath::anisotropyFrameDirection(ns, !scene.tangents.empty(), tangent, e1, e2, dt1, dt2, direction);
+    glm::vec2 dt1, dt2;
+    texcoordEdgesAt(scene, prim, dt1, dt2);
+    return raymath::anisotropyFrameDirection(ns, !scene.tangents.empty(), vertexTangentAt(scene, prim, u, v), e1, e2, dt1,
+                                             dt2, direction);
 }
 
 }  // namespace
@@ -62,10 +54,8 @@ raymath::MaterialRecord materialRecord(const Scene& scene, uint32_t prim, float 
             r.sheenColor = m.sheenColor * sampleTexture(scene.textures[size_t(m.sheenColorTexture)], t);
         if (m.hasAnisotropy()) {  // SCENE_ANISOTROPY
             glm::vec3 texel(1.0f, 0.5f, 1.0f);
-            if (m.anisotropyTexture >= 0 && !scene.texcoords.empty()) {
-                const Texture& image = scene.textures[size_t(m.anisotropyTexture)];
-                texel = glm::vec3(sampleChannel(image, t, 0), sampleChannel(image, t, 1), sampleChannel(image, t, 2));
-            }
+            if (m.anisotropyTexture >= 0 && !scene.texcoords.empty())
+                texel = sampleLinear(scene.textures[size_t(m.anisotropyTexture)], t);
             const glm::vec3 a = raymath::gltfAnisotropyAt(m.anisotropyStrength, m.anisotropyTurn(), texel);
             r.anisotropy = a.z;
             if (r.anisotropy > 0.0f) {

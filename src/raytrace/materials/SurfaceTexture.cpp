@@ -61,6 +61,24 @@ glm::vec3 diffuseAt(const Scene& scene, const Material& m, uint32_t prim, float 
     return m.diffuse * sampleTexture(scene.textures[size_t(m.diffuseTexture)], t);
 }
 
+glm::vec3 sampleLinear(const Texture& texture, glm::vec2 t) {
+    return {sampleChannel(texture, t, 0), sampleChannel(texture, t, 1), sampleChannel(texture, t, 2)};
+}
+
+void texcoordEdgesAt(const Scene& scene, uint32_t prim, glm::vec2& dt1, glm::vec2& dt2) {
+    dt1 = dt2 = glm::vec2(0.0f);
+    if (scene.texcoords.empty()) return;
+    const TriangleTexcoords& c = scene.texcoords[prim];
+    dt1 = c.t1 - c.t0;
+    dt2 = c.t2 - c.t0;
+}
+
+glm::vec4 vertexTangentAt(const Scene& scene, uint32_t prim, float u, float v) {
+    if (scene.tangents.empty()) return glm::vec4(0.0f);
+    const TriangleTangents& g = scene.tangents[prim];
+    return raymath::interpolateTangent(g.t0, g.t1, g.t2, u, v);
+}
+
 glm::vec3 vertexColorAt(const Scene& scene, uint32_t prim, float u, float v) {
     if (scene.colors.empty()) return glm::vec3(1.0f);
     const TriangleColors& c = scene.colors[prim];

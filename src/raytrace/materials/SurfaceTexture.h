@@ -22,8 +22,20 @@ glm::vec3 sampleTexture(const Texture& texture, glm::vec2 t);
 // linear number in [0, 1] (glsl/scene/shading.glsl textureChannel).
 float sampleChannel(const Texture& texture, glm::vec2 t, int channel);
 
+// The linear values of `texture`'s red, green and blue channels at t (a normal or anisotropy
+// map; glsl/scene/shading.glsl textureLinear).
+glm::vec3 sampleLinear(const Texture& texture, glm::vec2 t);
+
 // The texture coordinates of triangle `prim` at barycentrics (u, v) (zeros without any).
 glm::vec2 texcoordAt(const Scene& scene, uint32_t prim, float u, float v);
+
+// The differences of triangle `prim`'s texture coordinates along its edges, t1 - t0 and t2 - t0
+// (zeros without any; shading.glsl fetchTexcoordEdges).
+void texcoordEdgesAt(const Scene& scene, uint32_t prim, glm::vec2& dt1, glm::vec2& dt2);
+
+// Triangle `prim`'s vertex tangent at barycentrics (u, v) (common/shading.h interpolateTangent;
+// zero without any; shading.glsl fetchVertexTangent).
+glm::vec4 vertexTangentAt(const Scene& scene, uint32_t prim, float u, float v);
 
 // Material m's diffuse colour at barycentrics (u, v) of triangle `prim`: m.diffuse, times its
 // texture's colour at the interpolated texture coordinates when it has one.

@@ -94,6 +94,7 @@ TextureTexels materialTexels(const Scene& scene) {
         // A texture channel as one number (glsl/scene/shading.glsl textureChannel): 4 texture +
         // channel, -1 none.
         auto channel = [](TextureChannel c) { return c.given() ? float(4 * c.texture + c.channel) : -1.0f; };
+        const glm::vec2 turn = mat.anisotropyTurn();
         const vec4 texel[GPURT_MATERIAL_TEXELS] = {
             vec4(mat.diffuse, mat.shininess),
             vec4(mat.specular, float(mat.diffuseTexture)),
@@ -116,8 +117,7 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.absorption(), channel(mat.iridescenceThicknessTexture)),
             vec4(mat.hasIridescence() ? mat.iridescenceFactor : 0.0f, mat.iridescenceIor, mat.iridescenceThicknessMin,
                  mat.iridescenceThicknessMax),
-            vec4(mat.hasAnisotropy() ? mat.anisotropyStrength : 0.0f, mat.anisotropyTurn().x, mat.anisotropyTurn().y,
-                 float(mat.anisotropyTexture))};
+            vec4(mat.hasAnisotropy() ? mat.anisotropyStrength : 0.0f, turn.x, turn.y, float(mat.anisotropyTexture))};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =
