@@ -980,6 +980,12 @@ TEST_F(PackedSceneTest, AnisotropyTravelsInItsOwnSection) {
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at + 8, textures); }),
                    "material 2: texture " + std::to_string(textures) + " out of range");
     EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, anis.offset, materials + 1); }), "section ANIS");
+    // A glTF material's index is 0 or at least 1, as JSON and glTF have it (the fuzzer's find: a
+    // transmissive one of index 1.6e-38 shaded NaN).
+    LoadedScene thin = brushed;
+    thin.scene.materials[2].ior = 1.6e-38f;
+    const std::string message = test::refusalOf([&] { encodePackedScene(thin, *makeStructure(grid_), "thin"); }, "thin: ");
+    EXPECT_NE(message.find("material 2: a glTF material's ior must be 0 or >= 1"), std::string::npos) << message;
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

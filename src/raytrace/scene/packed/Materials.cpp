@@ -507,6 +507,8 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
             failAt(file, "material " + std::to_string(m) +
                              ": colours, emission, shininess and ior must be >= 0, reflectivity and transmission in [0, 1]");
         if (!findMaterialModel(mat.model)) failAt(file, unknownModel(m, mat.model));
+        if (mat.model == GPURT_MODEL_GLTF && mat.ior != 0.0f && mat.ior < 1.0f)  // as JSON and glTF: gltf.h divides by it
+            failAt(file, "material " + std::to_string(m) + ": a glTF material's ior must be 0 or >= 1");
     }
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
