@@ -7,7 +7,7 @@ of the samplers and of adaptive sampling, on the Cornell blocks and the bunny un
 For each scene: a reference of --reference-spp samples (cpu backend, seed 99, so its noise is
 independent of the renders measured); then, on the gl backend (the default kernel), each sampler at
 16, 64 and 256 samples with 1 and 8 bounces, and adaptive sampling at thresholds 0.05, 0.02 and
-0.01 (--spp 1024) against uniform sobol sampling of the same mean samples a pixel. The error is
+0.01 (--spp 1024; --max-spp, --thresholds) against uniform sobol sampling of the same mean samples a pixel. The error is
 relMSE: the mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01); the time is gpurt's
 total_ms (load, grid, context and render). Efficiency = 1 / (relMSE x seconds). Prints Markdown.
 Needs build/gpurt; run it on a quiet machine (a second process slows llvmpipe).
@@ -52,20 +52,24 @@ def main():
     ap.add_argument("--reference-spp", type=int, default=4096)
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "bench-sampling"))
     ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--max-spp", type=int, default=1024, help="--spp of the adaptive renders")
+    ap.add_argument("--thresholds", default="0.05,0.02,0.01")
+    ap.add_argument("--adaptive-only", action="store_true", help="skip the samplers' tables and the 1-bounce reference")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     for scene in args.scenes.split(","):
         key = scene.replace(" ", "_")
-        for bounces in (8, 1):
+        for bounces in ((8,) if args.adaptive_only else (8, 1)):
             ref_name = f"{key}_ref_b{bounces}"
             ref, stats = render(scene, args.work, ref_name, args.size,
                                 ["--backend", "cpu", "--spp", str(args.reference_spp), "--seed", "99",
                                  "--bounces", str(bounces)])
             print(f"\n### {scene}, {bounces} bounce{'s' if bounces > 1 else ''}, {args.size}x{args.size} "
                   f"(reference: {args.reference_spp} spp, cpu, {stats['total_ms'] / 1e3:.0f} s)\n")
-            print("| sampler | spp | relMSE | time (s) |")
-            print("|---|---|---|---|")
-            for spp in (16, 64, 256):
+            if not args.adaptive_only:
+                print("| sampler | spp | relMSE | time (s) |")
+                print("|---|---|---|---|")
+            for spp in (() if args.adaptive_only else (16, 64, 256)):
                 for sampler in ("random", "stratified", "sobol"):
                     img, st = render(scene, args.work, f"{key}_{sampler}_{spp}_b{bounces}", args.size,
                                      ["--sampler", sampler, "--spp", str(spp), "--bounces", str(bounces)])
@@ -77,9 +81,14 @@ def main():
             print("| threshold | mean spp | relMSE | time (s) | uniform spp | relMSE | time (s) | efficiency gain "
                   "| us a pixel sample, adaptive / uniform |")
             print("|---|---|---|---|---|---|---|---|---|")
-            for t in ("0.05", "0.02", "0.01"):
+            # Warm-up: the first adaptive render of a scene compiles the kernel of its later rounds
+            # (the path megakernel over the packed list of active pixels), about a second with
+            # Mesa's shader cache cold, which would fall on the first threshold's row.
+            render(scene, args.work, f"{key}_warmup", args.size,
+                   ["--spp", "32", "--min-spp", "16", "--noise-threshold", "0.05", "--bounces", "8"])
+            for t in args.thresholds.split(","):
                 img, st = render(scene, args.work, f"{key}_adaptive_{t}", args.size,
-                                 ["--spp", "1024", "--noise-threshold", t, "--bounces", "8"])
+                                 ["--spp", str(args.max_spp), "--noise-threshold", t, "--bounces", "8"])
                 mean_spp = st["mean_spp"]
                 uspp = max(1, round(mean_spp))
                 uimg, ust = render(scene, args.work, f"{key}_uniform_{uspp}", args.size,
