@@ -72,7 +72,7 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
     "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
     "KHR_materials_volume",       "KHR_materials_iridescence", "KHR_materials_anisotropy",
-    "KHR_materials_pbrSpecularGlossiness"};
+    "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -156,6 +156,78 @@ class GltfReader {
         return t;
     }
 
+    // Where a node's mesh is drawn: at the node's world transform, or under EXT_mesh_gpu_instancing
+    // once per instance at world x T x R x S of the instance's TRANSLATION, ROTATION (a unit
+    // quaternion x, y, z, w) and SCALE (each optional, all of one count; float, or the normalized
+    // integers the extension and KHR_mesh_quantization allow). Other attributes (custom ones such
+    // as _ID) are a warning.
+    std::vector<glm::dmat4> instances(const tinygltf::Node& node, const tinygltf::Mesh& mesh, const glm::dmat4& world,
+                                      const std::string& at) {
+        const auto ext = node.extensions.find("EXT_mesh_gpu_instancing");
+        if (ext == node.extensions.end()) return {world};
+        const std::string where = at + " EXT_mesh_gpu_instancing";
+        if (!ext->second.IsObject() || !ext->second.Has("attributes") || !ext->second.Get("attributes").IsObject())
+            fail(where + ": no attributes object");
+        const tinygltf::Value& attributes = ext->second.Get("attributes");
+        const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+        const int wanted[3] = {3, 4, 3};
+        int accessors[3] = {-1, -1, -1};
+        size_t count = 0;
+        bool any = false;
+        for (const std::string& key : attributes.Keys()) {
+            const auto known = std::find_if(std::begin(names), std::end(names), [&](const char* n) { return key == n; });
+            if (known == std::end(names)) {
+                warnOnce("instancing " + key, where + ": attribute " + key + " is not used");
+                continue;
+            }
+            const size_t k = size_t(known - std::begin(names));
+            if (!wholeNumber(attributes.Get(key), accessors[k])) fail(where + ": " + key + " is not an accessor index");
+            if (accessors[k] < 0 || accessors[k] >= int(m_.accessors.size()))
+                fail(where + " " + key + ": accessor " + std::to_string(accessors[k]) + " does not exist");
+            const size_t n = m_.accessors[size_t(accessors[k])].count;
+            if (any && n != count)
+                fail(where + ": " + key + " has " + std::to_string(n) + " instances, another attribute " + std::to_string(count));
+            count = n;
+            any = true;
+        }
+        if (!any) fail(where + ": none of TRANSLATION, ROTATION, SCALE");
+        // The copies' vertices (or indices) within what one accessor may hold, so that a small file
+        // (a sparse accessor needs no data) cannot ask for more than memory holds.
+        uint64_t elements = 0;
+        for (const tinygltf::Primitive& p : mesh.primitives) {
+            const auto position = p.attributes.find("POSITION");
+            const int a = p.indices >= 0 ? p.indices : position != p.attributes.end() ? position->second : -1;
+            if (a >= 0 && a < int(m_.accessors.size())) elements += m_.accessors[size_t(a)].count;
+        }
+        if (count > 0 && elements > kMaxAccessorCount / count)
+            fail(where + ": " + std::to_string(count) + " instances of " + std::to_string(elements) + " vertices are too many");
+        std::vector<double> trs[3];
+        for (size_t k = 0; k < 3; ++k) {
+            if (accessors[k] < 0) continue;
+            int components = 0;
+            trs[k] = values(accessors[k], where + " " + names[k], components);
+            if (components != wanted[k])
+                fail(where + ": " + names[k] + " has " + std::to_string(components) + " components, not " + std::to_string(wanted[k]));
+        }
+        std::vector<glm::dmat4> placed;
+        placed.reserve(count);
+        for (size_t i = 0; i < count; ++i) {
+            glm::dmat4 t(1.0);
+            if (!trs[0].empty()) t = glm::translate(t, glm::dvec3(trs[0][3 * i], trs[0][3 * i + 1], trs[0][3 * i + 2]));
+            if (!trs[1].empty()) {
+                const glm::dquat q(trs[1][4 * i + 3], trs[1][4 * i], trs[1][4 * i + 1], trs[1][4 * i + 2]);  // w, x, y, z
+                if (!(glm::length(q) > 0.0)) fail(where + ": instance " + std::to_string(i) + "'s rotation is zero");
+                t = t * glm::mat4_cast(glm::normalize(q));
+            }
+            if (!trs[2].empty()) t = glm::scale(t, glm::dvec3(trs[2][3 * i], trs[2][3 * i + 1], trs[2][3 * i + 2]));
+            const glm::dmat4 m = world * t;
+            for (int k = 0; k < 16; ++k)
+                if (!std::isfinite(glm::value_ptr(m)[k])) fail(where + ": instance " + std::to_string(i) + "'s transform is not finite");
+            placed.push_back(m);
+        }
+        return placed;
+    }
+
     void visit(int index, const glm::dmat4& parent, Scene& scene) {
         if (index < 0 || index >= int(m_.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
         if (!onPath_.insert(index).second) fail("node " + std::to_string(index) + " is its own ancestor");
@@ -173,10 +245,11 @@ class GltfReader {
                          "mesh " + std::to_string(node.mesh) +
                              ": morph targets are not used; meshes are drawn in their base shape");
             const Skinning skinning = skinningOf(node, at);
-            for (size_t p = 0; p < mesh.primitives.size(); ++p)
-                primitive(mesh.primitives[p],
-                          "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
-                          world, skinning, scene);
+            for (const glm::dmat4& placed : instances(node, mesh, world, at))
+                for (size_t p = 0; p < mesh.primitives.size(); ++p)
+                    primitive(mesh.primitives[p],
+                              "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
+                              placed, skinning, scene);
         }
         if (node.camera >= 0) camera(node.camera, world, at, scene);
         const auto light = node.extensions.find("KHR_lights_punctual");

@@ -643,6 +643,66 @@ TEST(GltfSkin, BrokenSkinsAreErrorsNamingThePath) {
 // Extensions, morph targets, animations and attributes gpurt does not use: one warning each,
 // naming them; the extensions the materials read and the geometry ones gpurt reads: none. Points
 // and lines are left out with one warning per mode.
+// EXT_mesh_gpu_instancing: the node's mesh once per instance, at the node's world transform times
+// the instance's T R S (the extension's order), each vertex computed here by hand; ROTATION also as
+// normalized shorts (the extension allows them); a custom attribute is a warning.
+TEST(GltfInstancing, EachInstanceIsTheMeshAtTheNodeTimesItsTranslationRotationAndScale) {
+    for (const bool shorts : {false, true}) {
+        Gltf g;
+        const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        const int t = g.positions({0, 0, 0, 10, 0, 0, 0, 0, -5});
+        // Instance 0: none; 1: 90 degrees about +y; 2: 180 degrees about +z.
+        const float h = std::sqrt(0.5f);
+        int r;
+        if (shorts) {
+            const std::vector<int16_t> q = {0, 0, 0, 32767, 0, int16_t(std::lround(h * 32767)), 0,
+                                            int16_t(std::lround(h * 32767)), 0, 0, 32767, 0};
+            r = g.accessor(g.view(q), 5122, 3, "VEC4", ", \"normalized\": true");
+        } else {
+            r = g.accessor(g.view(std::vector<float>{0, 0, 0, 1, 0, h, 0, h, 0, 0, 1, 0}), 5126, 3, "VEC4");
+        }
+        const int sc = g.positions({1, 1, 1, 2, 2, 2, 1, 3, 1});
+        const std::string instancing = ", \"extensions\": {\"EXT_mesh_gpu_instancing\": {\"attributes\": "
+                                       "{\"TRANSLATION\": " + std::to_string(t) + ", \"ROTATION\": " + std::to_string(r) +
+                                       ", \"SCALE\": " + std::to_string(sc) + ", \"_ID\": " + std::to_string(t) + "}}}";
+        const std::string rest = "\"extensionsUsed\": [\"EXT_mesh_gpu_instancing\"], " +
+                                 oneMesh(p, "", ", \"translation\": [0, 100, 0]" + instancing);
+        std::string warnings;
+        ASSERT_NO_THROW(warnings = warningsOf(g.json(rest)));
+        EXPECT_EQ(warnings, "scene.gltf: warning: node 0 EXT_mesh_gpu_instancing: attribute _ID is not used\n");
+        // The triangle (0,0,0) (1,0,0) (0,1,0) under each instance, then the node's +100 y:
+        // scale, then rotate (y by 90: (x, y, z) -> (z, y, -x); z by 180: (x, y, z) -> (-x, -y, z)), then move.
+        const std::vector<Triangle> expected = {
+            {{0, 100, 0}, {1, 100, 0}, {0, 101, 0}},
+            {{10, 100, 0}, {10, 100, -2}, {10, 102, 0}},
+            {{0, 100, -5}, {-1, 100, -5}, {0, 97, -5}}};
+        expectSameTriangles(parse(g.json(rest)), expected, shorts ? 2e-4f : 1e-5f, shorts ? "shorts" : "floats");
+    }
+}
+
+TEST(GltfInstancing, BrokenInstancesAreErrorsNamingTheNode) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int two = g.positions({0, 0, 0, 1, 1, 1});
+    const int three = g.positions({0, 0, 0, 1, 1, 1, 2, 2, 2});
+    const int q = g.accessor(g.view(std::vector<float>{0, 0, 0, 0}), 5126, 1, "VEC4");
+    auto doc = [&](const std::string& attributes) {
+        return g.json(oneMesh(p, "", ", \"extensions\": {\"EXT_mesh_gpu_instancing\": {\"attributes\": {" + attributes + "}}}"));
+    };
+    EXPECT_REFUSED(doc("\"TRANSLATION\": " + std::to_string(two) + ", \"SCALE\": " + std::to_string(three)), "node 0 EXT_mesh_gpu_instancing: TRANSLATION has 2 instances, another attribute 3");
+    EXPECT_REFUSED(doc("\"ROTATION\": " + std::to_string(two)), "node 0 EXT_mesh_gpu_instancing: ROTATION has 3 components, not 4");
+    EXPECT_REFUSED(doc("\"ROTATION\": " + std::to_string(q)), "node 0 EXT_mesh_gpu_instancing: instance 0's rotation is zero");
+    EXPECT_REFUSED(doc("\"TRANSLATION\": 99"), "node 0 EXT_mesh_gpu_instancing TRANSLATION: accessor 99 does not exist");
+    EXPECT_REFUSED(doc(""), "node 0 EXT_mesh_gpu_instancing: no attributes object");
+    ::testing::internal::CaptureStderr();  // (the warning of _ID)
+    EXPECT_REFUSED(doc("\"_ID\": 0"), "node 0 EXT_mesh_gpu_instancing: none of TRANSLATION, ROTATION, SCALE");
+    ::testing::internal::GetCapturedStderr();
+    // Instances are capped with what one accessor may hold: a sparse accessor needs no data.
+    const int many = g.accessor(-1, 5126, size_t(1) << 27, "VEC3", ", \"sparse\": {\"count\": 0, \"indices\": "
+                                "{\"bufferView\": 0, \"componentType\": 5125}, \"values\": {\"bufferView\": 0}}");
+    EXPECT_REFUSED(doc("\"TRANSLATION\": " + std::to_string(many)), "node 0 EXT_mesh_gpu_instancing: 134217728 instances of 3 vertices are too many");
+}
+
 TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     Gltf g;
     const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
@@ -651,8 +711,8 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
         "\"KHR_materials_ior\", "
         "\"KHR_texture_transform\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\", "
         "\"KHR_draco_mesh_compression\", "
-        "\"EXT_mesh_gpu_instancing\", \"KHR_materials_dispersion\"], \"extensionsRequired\": "
-        "[\"EXT_mesh_gpu_instancing\"], "
+        "\"KHR_materials_variants\", \"KHR_materials_dispersion\"], \"extensionsRequired\": "
+        "[\"KHR_materials_variants\"], "
         "\"animations\": [{\"channels\": [], \"samplers\": []}], "
         "\"scenes\": [{\"nodes\": [0, 1]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 0}], \"meshes\": "
         "[{\"primitives\": ["
@@ -675,7 +735,7 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     std::string warnings;
     ASSERT_NO_THROW(warnings = warningsOf(g.json(rest)));
     const std::vector<std::string> expected = {
-        "scene.gltf: warning: extension EXT_mesh_gpu_instancing is not used (the file requires it: "
+        "scene.gltf: warning: extension KHR_materials_variants is not used (the file requires it: "
         "the picture may be wrong)\n",
         "scene.gltf: warning: extension KHR_materials_dispersion is not used\n",
         "scene.gltf: warning: 1 animation is not used; the scene is drawn at rest (its nodes' own "
