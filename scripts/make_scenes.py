@@ -28,6 +28,9 @@ from geometry generated here, so that every shipped asset can be regenerated and
                    spheres polished, then brushed around the up axis at strengths 0.5 and 0.9,
                    brushed along the meridians, in a spiral (gold), and a smoother copper at full
                    strength
+  L  thin_walls.json  KHR_materials_transmission's thin walls (JSON thin_walled) beside solids:
+                   clear glass solid and thin (a bubble), a thin tinted one, rough glass thin
+                   (frosted) and solid
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -616,6 +619,31 @@ def scene_k():
     return 0
 
 
+def scene_l():
+    """Thin walls (glTF's transmission without KHR_materials_volume, JSON thin_walled) beside
+    solids, on sphere.obj five times on slab.obj: clear glass as a solid (the sky upside down in
+    it) and as thin walls (a soap bubble's: seen through unbent), thin walls tinted blue by the base
+    colour, frosted thin walls (roughness 0.3) and the same roughness as a solid."""
+    def glass(name, thin, roughness=0.0, colour=(1.0, 1.0, 1.0)):
+        m = {"name": name, "diffuse": list(colour), "metallic": 0, "roughness": roughness, "transmission": 1, "ior": 1.5}
+        if thin:
+            m["thin_walled"] = True
+        return m
+    spheres = [glass("clear solid", False), glass("clear thin walls", True),
+               glass("blue thin walls", True, 0.0, (0.45, 0.7, 1.0)), glass("frosted thin walls", True, 0.3),
+               glass("frosted solid", False, 0.3)]
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.7, 0.7, 0.7], "metallic": 0, "roughness": 0.6}}]
+    for k, material in enumerate(spheres):
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2.0), 0.0, 0.0]}, "material": material})
+    write("thin_walls.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 1.0, "rotation": 30},
+        "camera": {"eye": [0.0, 2.2, 10.0], "target": [0.0, -0.2, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 40.0},
+        "render": {"size": [720, 300], "max_bounces": 12},
+    }) + "\n")
+    return 0
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
@@ -624,7 +652,7 @@ def main():
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
                        ("H layers", scene_h), ("I volume", scene_i),
-                       ("J iridescence", scene_j), ("K anisotropy", scene_k)):
+                       ("J iridescence", scene_j), ("K anisotropy", scene_k), ("L thin walls", scene_l)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

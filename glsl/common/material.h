@@ -33,6 +33,7 @@ struct MaterialRecord {
     vec3 reflectivity;  // mirror weight
     vec3 tf;            // transmission filter of a dielectric
     float ior;          // index of refraction; 0: not a dielectric
+    bool thin;          // glTF: a thin wall (KHR_materials_transmission without a volume): no bending
     vec3 emission;      // radiance emitted from both sides, textured at the hit
     bool emitterLight;  // its triangles are sampled as area lights (no emissive texture)
     float metallic;     // glTF: metallic and roughness, textured at the hit

@@ -26,7 +26,7 @@
 #define GPURT_TRIANGLES_PER_ROW 1024
 // Materials: RGBA32F, sixteen texels each on one row: (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
-// of refraction | 0), (metallic, roughness, normal scale, occlusion strength), (roughness channel,
+// of refraction | 0, negated for a thin wall), (metallic, roughness, normal scale, occlusion strength), (roughness channel,
 // metallic channel, normal texture | -1, emissive texture | -1), (alpha mode, alpha factor, alpha
 // cutoff, alpha channel), (transmission channel, specular channel, specular colour texture | -1,
 // specular factor), (specular colour, clearcoat), (clearcoat roughness, clearcoat channel,

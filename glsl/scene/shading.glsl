@@ -265,7 +265,8 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.ns = a.w;
     r.reflectivity = c.xyz;
     r.tf = e.xyz;
-    r.ior = e.w;
+    r.ior = abs(e.w);
+    r.thin = e.w < 0.0f;
     vec4 emission = texelFetch(materials, at + ivec2(3, 0), 0);
     r.emission = emission.xyz;
     r.emitterLight = true;

@@ -1103,12 +1103,8 @@ class GltfReader {
                 if (!(m.ior > 0.0f)) m.ior = 1.5f;
                 m.transmission = glm::vec3(float(t));
                 const auto volume = g.extensions.find("KHR_materials_volume");
-                const bool thin = volume == g.extensions.end() || !(number(volume->second, "thicknessFactor", 0.0) > 0.0);
-                if (thin && !thinWalledWarned_) {
-                    warn(at + ": KHR_materials_transmission without KHR_materials_volume (or with its thicknessFactor 0) is "
-                              "thin-walled in glTF; gpurt renders solids of index ior");
-                    thinWalledWarned_ = true;
-                }
+                // Without KHR_materials_volume (or with its thicknessFactor 0) the surface is a thin wall.
+                m.thinWalled = volume == g.extensions.end() || !(number(volume->second, "thicknessFactor", 0.0) > 0.0);
             }
         }
     }
@@ -1573,8 +1569,7 @@ class GltfReader {
     std::string name_;
     std::vector<int> materialIds_;
     std::vector<MaterialUv> uvs_;  // per scene material: the texture coordinates of its textures
-    bool thinWalledWarned_ = false;
-    std::map<std::pair<int, float>, int> roughnessFromGloss_;  // readGlossiness's textures, by source and factor  // the thin-walled transmission's warning is said once per file
+    std::map<std::pair<int, float>, int> roughnessFromGloss_;  // readGlossiness's textures, by source and factor
     std::map<std::pair<int, int>, int> textures_;  // (image, sampler) -> scene texture | -1
     DecodedImages& images_;
     std::set<int> onPath_;

@@ -603,6 +603,15 @@ class SceneReader {
                 material.transmission = glm::vec3(float(t));
                 if (t > 0.0 && material.ior == 0.0f) material.ior = 1.5f;
             }
+            if (const json* thin = find(value, "thin_walled")) {  // KHR_materials_transmission's thin wall
+                if (!thin->is_boolean()) fail(at / "thin_walled", std::string("expected true or false, got ") + thin->type_name());
+                if (!(material.transmission.x > 0.0f)) fail(at / "thin_walled", "needs a transmission above 0");
+                if (find(value, "attenuation_color") || find(value, "attenuation_distance"))
+                    fail(at / "thin_walled", "a thin wall has no volume: no attenuation_color or attenuation_distance");
+                material.thinWalled = thin->get<bool>();
+            }
+        } else if (find(value, "thin_walled")) {
+            fail(at / "thin_walled", "goes with glTF's model (metallic and roughness) and its transmission");
         } else if (const json* transmission = find(value, "transmission")) {
             material.transmission = color(*transmission, at / "transmission");
             for (int i = 0; i < 3; ++i)
@@ -616,7 +625,7 @@ class SceneReader {
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
                                   "specular_color", "sheen_color", "sheen_roughness", "attenuation_color",
                                   "attenuation_distance", "iridescence", "iridescence_ior", "iridescence_thickness",
-                                  "anisotropy", "anisotropy_rotation", "doubleSided"});
+                                  "anisotropy", "anisotropy_rotation", "thin_walled", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {

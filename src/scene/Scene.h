@@ -132,6 +132,11 @@ struct Material {
     // (no volume). The rays measure the distance they travel inside, so the thickness's value (and
     // thicknessTexture: the glTF reader warns) is needed only to tell a volume from a thin wall.
     float thickness = 0.0f;
+    // glTF model, KHR_materials_transmission's thin wall (no KHR_materials_volume, or its
+    // thicknessFactor 0): light passes the surface without bending, as through an infinitely thin
+    // sheet (the reflection's lobe mirrored through the surface), and no medium lies behind it. A
+    // JSON material's transmission is a solid unless "thin_walled" says so.
+    bool thinWalled = false;
     glm::vec3 attenuationColor{1.0f};
     float attenuationDistance = std::numeric_limits<float>::infinity();
 
@@ -152,7 +157,7 @@ struct Material {
     // Whether the volume behind it absorbs: a glTF material that transmits (the extension needs
     // one that does), KHR_materials_volume's thickness > 0 and an attenuation.
     bool hasVolume() const {
-        return model == GPURT_MODEL_GLTF && transmits() && thickness > 0.0f && attenuationDistance < std::numeric_limits<float>::infinity() &&
+        return model == GPURT_MODEL_GLTF && transmits() && !thinWalled && thickness > 0.0f && attenuationDistance < std::numeric_limits<float>::infinity() &&
                attenuationColor != glm::vec3(1.0f);
     }
     // The medium's absorption coefficient -ln(attenuationColor) / attenuationDistance per channel
@@ -164,6 +169,8 @@ struct Material {
     // Whether rays pass into it: classic glass (ior > 0), the glTF model's transmission (ior > 0
     // and a factor transmission.x > 0; ior alone is KHR_materials_ior's F0).
     bool transmits() const { return ior > 0.0f && (model != GPURT_MODEL_GLTF || transmission.x > 0.0f); }
+    // Whether it transmits through a thin wall (the kernels' record: thin).
+    bool thin() const { return model == GPURT_MODEL_GLTF && thinWalled && transmits(); }
     // Whether the traversals cull the back faces: single-sided and not transmissive. A dielectric
     // is never culled, as the rays inside a solid meet its back faces.
     bool cullsBackFaces() const { return !doubleSided && !transmits(); }

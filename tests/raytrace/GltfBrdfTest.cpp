@@ -43,6 +43,7 @@ MaterialRecord record(const GltfParams& p) {
         m.ior = float(p.ior);
         m.tf = glm::vec3(float(p.transmission));
     }
+    m.thin = p.thin;
     return m;
 }
 
@@ -570,6 +571,69 @@ TEST(GltfBrdf, TransmissionIsWaltersBtdfMixedAsTheExtensionSays) {
     EXPECT_GT(below, 200);  // the BTDF was compared where it is not 0 (331 of ~2000 below)
 }
 
+// A thin wall (KHR_materials_transmission without a volume): gltfBtdf is the extension's
+// specular_btdf written again (the reflection's D V at the light's mirror image), also stretched by
+// anisotropy; it is reciprocal (f(l, v) seen from the other side is f(v, l)); a smooth wall passes
+// the ray straight on with the weight T at n.v and nothing divided by ior^2, and Whitted's child
+// ray does too.
+TEST(GltfBrdf, ThinWallIsTheReflectionsLobeMirroredThroughTheSurface) {
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const glm::dvec3 n(0.0, 0.0, 1.0);
+    int below = 0;
+    for (int k = 0; k < 4000; ++k) {
+        GltfParams p = randomTransmissive(rng, false);
+        p.thin = true;
+        if (k % 3 == 0) {
+            p.anisotropy = u(rng);
+            p.anisotropyDirection = glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, 0.0);
+        }
+        const MaterialRecord m = record(p);
+        const glm::dvec3 v = hemisphere(rng), l = onSphere(rng);
+        if (l.z > -0.02) continue;
+        const glm::vec3 f = raymath::gltfBtdf(m, glm::vec3(n), glm::vec3(v), glm::vec3(l));
+        const glm::dvec3 expected = gltfReferenceThinBtdf(p, n, v, l);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], expected[c], 2e-4 + 2e-4 * expected[c]) << k;
+        below += expected[0] + expected[1] + expected[2] > 1e-3;
+        // Reciprocity: the view l and the light v, about the normal facing l.
+        if (p.anisotropy == 0.0) {
+            const glm::vec3 back = raymath::gltfBtdf(m, glm::vec3(-n), glm::vec3(l), glm::vec3(v));
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(back[c], f[c], 1e-4f + 1e-3f * f[c]) << k;
+        }
+    }
+    EXPECT_GT(below, 500);
+    // Smooth: straight on, T at n.v, and the mirror of the rest (the sampler's delta lobes).
+    GltfParams p;
+    p.base = glm::dvec3(0.9, 0.6, 0.3);
+    p.roughness = 0.0;
+    p.transmission = 1.0;
+    p.ior = 1.5;
+    p.thin = true;
+    const MaterialRecord m = record(p);
+    const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+    const float nv = -d.z;
+    int through = 0;
+    for (int s = 0; s < 64; ++s) {
+        glm::vec3 dir, factor;
+        float pdf, side;
+        ASSERT_TRUE(raymath::materialSample(m, d, glm::vec3(n), glm::vec3(n), true, glm::vec2(0.5f), (s + 0.5f) / 64.0f, dir,
+                                            factor, pdf, side));
+        if (side > 0.0f) continue;
+        ++through;
+        EXPECT_NEAR(glm::length(dir - d), 0.0f, 1e-6f);
+        const float pSpecular = raymath::gltfSpecularProbability(m, nv), pr = raymath::gltfReflectProbability(m, nv);
+        const glm::dvec3 weight = gltfref::transmissionWeight(p, nv) / (double(pSpecular) * (1.0 - pr));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(factor[c], weight[c], 1e-5) << s;
+    }
+    EXPECT_GT(through, 32);
+    glm::vec3 dirA, weightA, dirB, weightB;
+    float sideA;
+    raymath::gltfChildren(m, d, glm::vec3(n), glm::vec3(n), glm::vec3(1.0f), dirA, weightA, sideA, dirB, weightB);
+    EXPECT_EQ(sideA, -1.0f);
+    EXPECT_NEAR(glm::length(dirA - d), 0.0f, 1e-6f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(weightA[c], gltfref::transmissionWeight(p, nv)[c], 1e-5);
+}
+
 // The sampler of a transmissive material: the mean of its throughput factor is the integral of
 // f |cos| over the sphere (quadrature of the reference), and its directions follow its pdf over
 // the sphere (chi-square as above); a refracted direction reports pdf 0 (light sampling never
@@ -583,16 +647,23 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
         {glm::dvec3(0.8), 0.0, 0.0, 1.0, 1.0 / 1.5},
         {glm::dvec3(0.9, 0.8, 0.7), 0.0, 0.4, 1.0, 1.5},        {glm::dvec3(1.0), 0.0, 0.5, 1.0, 1.0 / 1.5},
     };
-    // The last two stretched (KHR_materials_anisotropy): the BTDF shares the reflection's lobe.
-    GltfParams anisotropic[7];
+    // Two stretched (KHR_materials_anisotropy): the BTDF shares the reflection's lobe; three thin
+    // walls (KHR_materials_transmission without a volume), rough, stretched and smooth.
+    GltfParams anisotropic[10];
     std::copy(std::begin(cases), std::end(cases), anisotropic);
     anisotropic[5].anisotropy = 0.8;
     anisotropic[6].anisotropy = 0.6;
     anisotropic[6].anisotropyDirection = glm::dvec3(1.0, 1.0, 0.0);
+    anisotropic[7] = cases[0];
+    anisotropic[8] = cases[1];
+    anisotropic[8].anisotropy = 0.7;
+    anisotropic[9] = cases[3];
+    for (int k = 7; k < 10; ++k) anisotropic[k].thin = true;
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     for (const GltfParams& p : anisotropic) {
         for (const double mu : {0.9, 0.5, 0.2}) {
-            SCOPED_TRACE("roughness " + std::to_string(p.roughness) + " ior " + std::to_string(p.ior) + " mu " + std::to_string(mu));
+            SCOPED_TRACE("roughness " + std::to_string(p.roughness) + " ior " + std::to_string(p.ior) + " mu " +
+                         std::to_string(mu) + (p.thin ? " thin" : ""));
             const MaterialRecord m = record(p);
             const glm::dvec3 vd(std::sqrt(1.0 - mu * mu), 0.0, mu);
             const glm::vec3 v(vd);
@@ -612,7 +683,8 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
             } else {
                 const bool refracts = (1.0 - mu * mu) < p.ior * p.ior;
                 albedo = gltfref::specularWeight(p, mu) + gltfref::diffuseWeight(p, mu) +
-                         (refracts ? gltfref::transmissionWeight(p, mu) / (p.ior * p.ior) : glm::dvec3(0.0));
+                         (p.thin ? gltfref::transmissionWeight(p, mu)
+                                 : refracts ? gltfref::transmissionWeight(p, mu) / (p.ior * p.ior) : glm::dvec3(0.0));
             }
             const int samples = 300000, cosCells = 48, phiCells = 48;
             std::vector<double> histogram(size_t(cosCells * phiCells), 0.0), expected(histogram.size(), 0.0);

@@ -224,7 +224,8 @@ TEST_F(GltfMaterials, FurnaceSpheresWithLayersShowTheirDirectionalAlbedo) {
 // KHR_materials_transmission on both backends. A smooth white solid (metallic 0, transmission 1)
 // in a uniform environment of radiance 1 conserves energy: every interface reflects F and
 // transmits 1 - F (ior^2 scaled in and out again), so every pixel is 1 but for the light of paths
-// still inside after the last bounce. A rough one (single-scattering microfacets lose some) is
+// still inside after the last bounce; so does a smooth sphere of thin walls (glTF's transmission
+// without a volume: F and 1 - F, unbent). A rough one (single-scattering microfacets lose some) is
 // rendered the same by both backends, Whitted and path, and is below 1.
 TEST_F(GltfMaterials, TransmissiveSpheresConserveTheFurnaceAndAgreeAcrossBackends) {
     const EnvironmentImage white = makeMap(16, 8, [](glm::vec3) { return glm::vec3(1.0f); });
@@ -233,12 +234,13 @@ TEST_F(GltfMaterials, TransmissiveSpheresConserveTheFurnaceAndAgreeAcrossBackend
     spec.target = {0.0f, 0.0f, 0.0f};
     spec.fovy = 45.0f;
     const int size = 32;
-    for (const double roughness : {0.0, 0.4}) {
-        SCOPED_TRACE("roughness " + std::to_string(roughness));
+    for (const auto& [roughness, thin] : {std::pair{0.0, false}, {0.4, false}, {0.0, true}, {0.4, true}}) {
+        SCOPED_TRACE("roughness " + std::to_string(roughness) + (thin ? ", thin walls" : ""));
         Scene scene;
         const uint32_t glass = addGltfMaterial(scene, GltfParams{glm::dvec3(1.0), 0.0, roughness});
         scene.materials[glass].ior = 1.5f;
         scene.materials[glass].transmission = glm::vec3(1.0f);
+        scene.materials[glass].thinWalled = thin;
         addIcosphere(scene, glm::vec3(0.0f), 1.0f, 3, glass);
         scene.environment = environmentThroughFile(white, "white.hdr");
         const Both both = renderBoth(scene, spec, size, size, 16, 24, Integrator::Path, 3);

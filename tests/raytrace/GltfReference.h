@@ -36,6 +36,8 @@ struct GltfParams {
     // along n: the tangent is its part orthogonal to n).
     double anisotropy = 0.0;
     glm::dvec3 anisotropyDirection{1.0, 0.0, 0.0};
+    // KHR_materials_transmission's thin wall (no KHR_materials_volume): no bending.
+    bool thin = false;
 };
 
 namespace gltfref {
@@ -214,6 +216,22 @@ inline glm::dvec3 gltfReferenceBrdf(const GltfParams& p, glm::dvec3 n, glm::dvec
     return f;
 }
 
+// A thin wall's BTDF for l below the surface, as KHR_materials_transmission's specular_btdf: the
+// reflection's microfacet lobe D V evaluated at l's mirror image l' = l - 2 (n.l) n through the
+// surface (h = normalize(v + l')), times the transmission's weight T at v.h.
+inline glm::dvec3 gltfReferenceThinBtdf(const GltfParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l) {
+    using namespace gltfref;
+    const double nl = glm::dot(n, l), nv = glm::dot(n, v);
+    if (nl >= 0.0 || nv <= 0.0 || p.roughness <= 0.0 || p.transmission <= 0.0) return glm::dvec3(0.0);
+    const glm::dvec3 mirrored = l - 2.0 * nl * n;
+    const glm::dvec3 h = glm::normalize(v + mirrored);
+    const double vh = glm::dot(v, h);
+    if (vh <= 0.0) return glm::dvec3(0.0);
+    const double a2 = std::pow(p.roughness, 4.0);
+    const double lobe = p.anisotropy > 0.0 ? anisotropicLobe(p, n, v, mirrored, h) : ggx(a2, glm::dot(n, h)) * visibility(a2, -nl, nv);
+    return transmissionWeight(p, vh) * lobe;
+}
+
 // The rough dielectric's BTDF for l below the surface, as Walter et al. (2007, eq. 21) write it
 // with l the incident direction (index ior) and v the outgoing one (index 1):
 //   f = |l.h| |v.h| / (|n.l| |n.v|) 1^2 T G2 D / (ior l.h + v.h)^2, h = -(ior l + v) / |...|
@@ -221,6 +239,7 @@ inline glm::dvec3 gltfReferenceBrdf(const GltfParams& p, glm::dvec3 n, glm::dvec
 inline glm::dvec3 gltfReferenceBtdf(const GltfParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l) {
     using namespace gltfref;
     const double nl = glm::dot(n, l), nv = glm::dot(n, v);
+    if (p.thin) return gltfReferenceThinBtdf(p, n, v, l);
     if (nl >= 0.0 || nv <= 0.0 || p.roughness <= 0.0 || p.transmission <= 0.0) return glm::dvec3(0.0);
     glm::dvec3 h = -(p.ior * l + v);
     if (glm::dot(h, h) <= 0.0) return glm::dvec3(0.0);

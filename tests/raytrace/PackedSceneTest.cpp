@@ -244,6 +244,7 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
         EXPECT_TRUE(sameBits(a.anisotropyStrength, b.anisotropyStrength) &&
                     sameBits(a.anisotropyRotation, b.anisotropyRotation) && a.anisotropyTexture == b.anisotropyTexture)
             << m;  // ANIS
+        EXPECT_EQ(a.thinWalled, b.thinWalled) << m;  // THIN
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -986,6 +987,33 @@ TEST_F(PackedSceneTest, AnisotropyTravelsInItsOwnSection) {
     thin.scene.materials[2].ior = 1.6e-38f;
     const std::string message = test::refusalOf([&] { encodePackedScene(thin, *makeStructure(grid_), "thin"); }, "thin: ");
     EXPECT_NE(message.find("material 2: a glTF material's ior must be 0 or >= 1"), std::string::npos) << message;
+}
+
+// Thin walls (THIN, one u32 per material: glTF's transmission without a volume): written only when
+// some material is one (a file without keeps its solids, as before the section existed); kept
+// through the round trip; a value other than 0 or 1 and a count that is not the materials' refused.
+TEST_F(PackedSceneTest, ThinWallsTravelInTheirOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "THIN")) << "a scene without thin walls";
+    LoadedScene windows = source_;
+    Material& m = windows.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.ior = 1.5f;
+    m.transmission = glm::vec3(0.8f);
+    m.thinWalled = true;
+    const size_t materials = windows.scene.materials.size();
+    const Bytes b = encodePackedScene(windows, *makeStructure(grid_), "windows");
+    const Entry thin = section(b, "THIN");
+    EXPECT_EQ(thin.size, 8 + 4 * materials);
+    EXPECT_EQ(get64(b, thin.offset), materials);
+    const size_t at = thin.offset + 8 + 4 * 2;  // material 2's
+    EXPECT_EQ(get32(b, at), 1u);
+    EXPECT_EQ(get32(b, at - 4), 0u);
+    const LoadedScene packed = decodePackedScene(b, "windows.gpscene");
+    expectSameScene(windows, packed);
+    EXPECT_TRUE(packed.scene.materials[2].thin());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 2u); }), "material 2: thin wall 2 (0 or 1)");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, thin.offset, materials + 1); }), "section THIN");
 }
 
 // Material models (MODL, one u32 per material): written only when some material is not of the

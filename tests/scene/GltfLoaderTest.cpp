@@ -658,7 +658,8 @@ TEST(GltfLoaderMaterials, ClearcoatSpecularAndSheenAreRead) {
 }
 
 // KHR_materials_volume: thicknessFactor, attenuationColor and attenuationDistance are read (the
-// defaults without: a thin wall, white, infinite), the absorption is -ln(colour) / distance, the
+// defaults without: a thin wall, white, infinite; the transmission a thin wall's without a
+// thickness above 0), the absorption is -ln(colour) / distance, the
 // thicknessTexture is a warning naming the material (rays measure the distance inside), and bad
 // values are refused naming the material.
 TEST(GltfLoaderMaterials, VolumeIsRead) {
@@ -686,6 +687,12 @@ TEST(GltfLoaderMaterials, VolumeIsRead) {
     EXPECT_EQ(thin.attenuationDistance, std::numeric_limits<float>::infinity());
     EXPECT_FALSE(thin.hasVolume());
     EXPECT_EQ(thin.absorption(), glm::vec3(0.0f));
+    // Transmission is through a thin wall without a volume of thickness above 0 (the extensions'
+    // default), a solid with one.
+    EXPECT_FALSE(m.thinWalled);
+    EXPECT_TRUE(thin.thinWalled && thin.thin());
+    const Material bare = parseGltf(test::TransmissionQuad::gltf(0.75, "bands.bmp"), "window.gltf", dir).materials[1];
+    EXPECT_TRUE(bare.thinWalled && bare.thin());
     for (const auto& [bad, part] : std::vector<std::pair<std::string, std::string>>{
              {"\"KHR_materials_volume\": {\"thicknessFactor\": -1}", "material 0: thicknessFactor must be a number >= 0"},
              {"\"KHR_materials_volume\": {\"attenuationDistance\": 0}", "material 0: attenuationDistance must be a number > 0"},

@@ -420,6 +420,30 @@ TEST_F(JsonSceneTest, AttenuationMakesAVolume) {
                 {"/meshes/0/material/attenuation_color/1: must be >= 0"});
 }
 
+// "thin_walled": glTF's model's transmission through a thin wall (a JSON solid otherwise); it
+// needs a transmission, has no volume and no classic material.
+TEST_F(JsonSceneTest, ThinWalledTransmissionIsAThinWall) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj", "material": {"metallic": 0, "roughness": 0, "transmission": 1}},
+        {"file": "tri.obj", "material": {"metallic": 0, "roughness": 0.2, "transmission": 0.5, "thin_walled": true}},
+        {"file": "tri.obj", "material": {"metallic": 0, "roughness": 0.2, "transmission": 0.5, "thin_walled": false}}]})"));
+    ASSERT_EQ(scene.materials.size(), 3u);
+    EXPECT_FALSE(scene.materials[0].thin());
+    EXPECT_TRUE(scene.materials[1].thin());
+    EXPECT_EQ(scene.materials[1].ior, 1.5f);
+    EXPECT_FALSE(scene.materials[2].thin());
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"metallic": 0, "thin_walled": true}}]})",
+                {"/meshes/0/material/thin_walled: needs a transmission above 0"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"metallic": 0, "transmission": 1, "thin_walled": 1}}]})",
+                {"/meshes/0/material/thin_walled: expected true or false"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"metallic": 0, "transmission": 1, "thin_walled": true,
+                                                               "attenuation_distance": 2}}]})",
+                {"/meshes/0/material/thin_walled: a thin wall has no volume"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"diffuse": [1, 1, 1], "thin_walled": true}}]})",
+                {"/meshes/0/material/thin_walled: goes with glTF's model"});
+}
+
 // KHR_materials_iridescence's keys: "iridescence" (a factor), "iridescence_ior" and
 // "iridescence_thickness" (one thickness, nm) make glTF's model; bad values name the key.
 TEST_F(JsonSceneTest, IridescenceMakesAFilm) {

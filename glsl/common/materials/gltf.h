@@ -23,7 +23,9 @@
 // with f_t Walter et al.'s (2007) microfacet BTDF (GGX, the same alpha, height-correlated Smith)
 // for a solid of index ior (the record's ior is relative across the boundary in the ray's
 // direction: materialFacing); leaving the solid, Fd is Schlick's at the transmitted angle and 1
-// past the critical angle. Path: the specular lobe's visible normal reflects or refracts, chosen
+// past the critical angle. A thin wall (record thin: glTF's transmission without
+// KHR_materials_volume, the extension's default) bends nothing: f_t is the reflection's D V at the
+// light's mirror image through the surface, and a smooth wall passes the ray straight on. Path: the specular lobe's visible normal reflects or refracts, chosen
 // by their weights at it; a refracted direction's pdf is reported as 0 (a delta for MIS: light
 // sampling never goes through the surface). Whitted: the refracted ray is spawned as through a
 // smooth surface (Whitted cannot blur), with the mirror ray where the surface is smooth.
@@ -348,19 +350,56 @@ GPURT_FN bool gltfRefractionHalf(float ior, vec3 n, vec3 v, vec3 l, GPURT_OUT(ve
     return vh > 0.0f && lh < 0.0f;
 }
 
+// Whether the record is a thin wall: compiled in only for scenes that have one (SceneTextures::bind
+// defines SCENE_THIN_WALLS; llvmpipe would run the branches of every transmissive hit otherwise).
+GPURT_FN bool gltfThin(MaterialRecord m) {
+#if defined(__cplusplus) || defined(SCENE_THIN_WALLS)
+    return m.thin;
+#else
+    return false;
+#endif
+}
+
+// A thin wall's transmission (KHR_materials_transmission without a volume: record thin): the light
+// passes an infinitely thin sheet unbent, so l below the surface is the reflection's lobe at l's
+// mirror image through the surface, l - 2 (n.l) n, above it.
+GPURT_FN vec3 gltfThinMirror(vec3 n, vec3 l) { return l - 2.0f * dot(n, l) * n; }
+
+// The half vector of v and the mirror image of l below the surface through a thin wall, with v.h;
+// false where none.
+GPURT_FN bool gltfThinHalf(vec3 n, vec3 v, vec3 l, GPURT_OUT(vec3) h, GPURT_OUT(float) vh) {
+    h = v + gltfThinMirror(n, l);
+    vh = 0.0f;
+    float hh = dot(h, h);
+    if (!(hh > 0.0f)) return false;
+    h = h / sqrt(hh);
+    vh = dot(v, h);
+    return vh > 0.0f;
+}
+
+// What a delta refraction divides radiance by: ior^2 into a solid, 1 through a thin wall.
+GPURT_FN float gltfRadianceDivisor(MaterialRecord m) { return gltfThin(m) ? 1.0f : m.ior * m.ior; }
+
 // The rough dielectric's BTDF f(l, v) for l below the surface (Walter et al. 2007; pbrt-v4's
 // DielectricBxDF): weight D G2 |l.h| v.h / ((l.h + v.h / ior)^2 |n.l| n.v), radiance scaled by
-// 1 / ior^2; 0 for a smooth surface (its refraction is a delta) or without transmission.
+// 1 / ior^2; through a thin wall the reflection's D V at l's mirror image (the extension's
+// specular_btdf); 0 for a smooth surface (its refraction is a delta) or without transmission.
 GPURT_FN vec3 gltfBtdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     float anl = -dot(n, l);
     if (!(anl > 0.0f) || gltfBaseSmooth(m) || !(gltfTransmission(m) > 0.0f)) return vec3(0.0f);
     vec3 h;
     float vh, lh;
-    if (!gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return vec3(0.0f);
     float nv = max(dot(n, v), GPURT_GLTF_MIN_COS);
-    float denom = lh + vh / m.ior;
-    // G2 / (|n.l| n.v) = 4 V
-    float k = gltfSpecularLobe(m, n, v, l, h, anl, nv) * 4.0f * (-lh) * vh / (denom * denom * m.ior * m.ior);
+    float k;
+    if (gltfThin(m)) {
+        if (!gltfThinHalf(n, v, l, h, vh)) return vec3(0.0f);
+        k = gltfSpecularLobe(m, n, v, gltfThinMirror(n, l), h, anl, nv);
+    } else {
+        if (!gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return vec3(0.0f);
+        float denom = lh + vh / m.ior;
+        // G2 / (|n.l| n.v) = 4 V
+        k = gltfSpecularLobe(m, n, v, l, h, anl, nv) * 4.0f * (-lh) * vh / (denom * denom * m.ior * m.ior);
+    }
     return gltfTransmissionWeight(m, vh) * (k * (1.0f - gltfCoatWeight(m, v)) * gltfSheenBase(m, nv));
 }
 
@@ -413,14 +452,20 @@ GPURT_FN float gltfVisiblePdf(MaterialRecord m, vec3 n, vec3 v, vec3 h) {
 // The solid-angle pdf of sampling l (specular lobe with probability pSpecular) above the surface:
 // the visible normal's pdf / (4 v.h) times the share that reflects (0 for a smooth surface's
 // mirror: a delta) plus the cosine lobe's; below it, the visible normal's pdf times the
-// refraction's Jacobian |l.h| / (l.h + v.h / ior)^2 and the share that refracts.
+// refraction's Jacobian |l.h| / (l.h + v.h / ior)^2 and the share that refracts (through a thin
+// wall the reflection's pdf at l's mirror image).
 GPURT_FN float gltfBasePdf(MaterialRecord m, float pSpecular, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     bool rough = !gltfBaseSmooth(m) && pSpecular > 0.0f;
     if (nl < 0.0f) {
         vec3 h;
         float vh, lh;
-        if (!rough || !(gltfTransmission(m) > 0.0f) || !gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return 0.0f;
+        if (!rough || !(gltfTransmission(m) > 0.0f)) return 0.0f;
+        if (gltfThin(m)) {
+            if (!gltfThinHalf(n, v, l, h, vh)) return 0.0f;
+            return pSpecular * (1.0f - gltfReflectProbability(m, vh)) * gltfVisiblePdf(m, n, v, h) / (4.0f * vh);
+        }
+        if (!gltfRefractionHalf(m.ior, n, v, l, h, vh, lh)) return 0.0f;
         float denom = lh + vh / m.ior;
         return pSpecular * (1.0f - gltfReflectProbability(m, vh)) * gltfVisiblePdf(m, n, v, h) * (-lh) / (denom * denom);
     }
@@ -531,10 +576,11 @@ GPURT_FN vec3 gltfAmbientAlbedo(MaterialRecord m) {
 }
 
 // The record as a ray meets the surface: a transmissive material's index becomes relative across
-// the boundary in the ray's direction (1 / ior leaving the solid: `entering` false), and a volume's
-// absorption is the medium the ray came through only when it leaves the solid.
+// the boundary in the ray's direction (1 / ior leaving the solid: `entering` false; a thin wall has
+// the same outside on both sides), and a volume's absorption is the medium the ray came through
+// only when it leaves the solid.
 GPURT_FN MaterialRecord gltfFacing(MaterialRecord m, bool entering) {
-    if (m.ior > 0.0f && !entering) m.ior = 1.0f / m.ior;
+    if (m.ior > 0.0f && !entering && !gltfThin(m)) m.ior = 1.0f / m.ior;
     if (entering) m.absorption = vec3(0.0f);  // the volume's medium is behind the front face
     return m;
 }
@@ -589,12 +635,12 @@ GPURT_FN int gltfChildren(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec3 w, GP
     dirB = dirA;
     weightB = vec3(0.0f);
     vec3 tw = gltfTransmissionWeight(m, nv);
-    if (maxChannel(tw) > 0.0f && (1.0f - nv * nv) < m.ior * m.ior) {
-        vec3 t = refractedDirection(d, ns, m.ior, nv);
+    if (maxChannel(tw) > 0.0f && (gltfThin(m) || (1.0f - nv * nv) < m.ior * m.ior)) {
+        vec3 t = gltfThin(m) ? d : refractedDirection(d, ns, m.ior, nv);  // a thin wall does not bend it
         if (dot(t, ng) < 0.0f) {
             weightB = weightA;
             dirA = t;
-            weightA = under * tw / (m.ior * m.ior);
+            weightA = under * tw / gltfRadianceDivisor(m);
             sideA = -1.0f;
         }
     }
@@ -688,14 +734,18 @@ GPURT_FN bool gltfSample(MaterialRecord m, vec3 d, vec3 ng, vec3 ns, vec2 u, flo
                 return true;
             }
             dir = mirrorDirection(d, h);
-        } else {  // refraction through the microfacet h
-            if (!((1.0f - vh * vh) < m.ior * m.ior)) return false;
-            dir = refractedDirection(d, h, m.ior, vh);
+        } else {  // refraction through the microfacet h; through a thin wall its reflection mirrored
+            if (gltfThin(m)) {
+                dir = mirror ? d : gltfThinMirror(ns, mirrorDirection(d, h));
+            } else {
+                if (!((1.0f - vh * vh) < m.ior * m.ior)) return false;
+                dir = refractedDirection(d, h, m.ior, vh);
+            }
             float cosT = -dot(ns, dir);
             if (!(dot(dir, ng) < 0.0f) || !(cosT > 0.0f)) return false;
             side = -1.0f;
             if (mirror) {  // a delta lobe
-                factor = gltfTransmissionWeight(m, nv) / (m.ior * m.ior * p * (1.0f - pr)) * under;
+                factor = gltfTransmissionWeight(m, nv) / (gltfRadianceDivisor(m) * p * (1.0f - pr)) * under;
                 return true;
             }
             float tpdf = gltfPdf(m, pc, p, ns, v, dir);

@@ -83,6 +83,7 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.reflectivity = m.reflectivity;
     r.tf = m.transmission;
     r.ior = m.ior;
+    r.thin = m.thin();
     r.emission = m.emission;
     r.emitterLight = true;
     r.metallic = m.model == GPURT_MODEL_GLTF ? m.metallic : 0.0f;

@@ -100,7 +100,7 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.specular, float(mat.diffuseTexture)),
             vec4(mat.reflectivity, float(mat.model)),
             vec4(mat.emission, channel(mat.occlusionTexture)),
-            vec4(mat.transmission, mat.ior),
+            vec4(mat.transmission, mat.thin() ? -mat.ior : mat.ior),  // a thin wall's index negated
             vec4(mat.metallic, mat.roughness, mat.normalScale, mat.occlusionStrength),
             vec4(channel(mat.roughnessTexture), channel(mat.metallicTexture), float(mat.normalTexture),
                  float(mat.emissiveTexture)),

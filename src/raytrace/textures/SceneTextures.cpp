@@ -172,6 +172,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.model == GPURT_MODEL_GLTF && m.hasSpecularLayer()) hasSpecularLayer_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasClearcoat()) hasClearcoat_ = true;
         if (m.hasVolume()) hasVolume_ = true;
+        if (m.thin()) hasThinWalls_ = true;
         if (m.hasIridescence()) hasIridescence_ = true;
         if (m.hasAnisotropy()) hasAnisotropy_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasSheen() && !sheenTable_)
@@ -198,6 +199,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasSpecularLayer_) kernel.addDefine("SCENE_SPECULAR_LAYER");  // common/materials/gltf.h
     if (hasClearcoat_) kernel.addDefine("SCENE_CLEARCOAT");
     if (hasVolume_) kernel.addDefine("SCENE_VOLUME");  // common/material.h materialTransmittance
+    if (hasThinWalls_) kernel.addDefine("SCENE_THIN_WALLS");  // common/materials/gltf.h gltfThin
     if (hasIridescence_) kernel.addDefine("SCENE_IRIDESCENCE");  // common/materials/gltf.h thinFilmFresnel
     if (hasAnisotropy_) kernel.addDefine("SCENE_ANISOTROPY");  // common/materials/anisotropic_ggx.h
     if (sheenTable_) kernel.addDefine("SCENE_SHEEN").addInput(*sheenTable_, "sheenTable");  // gltf.h sheenAlbedo

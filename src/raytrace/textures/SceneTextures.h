@@ -85,6 +85,7 @@ class SceneTextures {
     bool hasSpecularLayer_ = false;  // a glTF material with KHR_materials_specular (SCENE_SPECULAR_LAYER)
     bool hasClearcoat_ = false;      // a glTF material with a clearcoat (SCENE_CLEARCOAT)
     bool hasVolume_ = false;         // a glTF material with an absorbing volume (SCENE_VOLUME)
+    bool hasThinWalls_ = false;      // a glTF material transmitting through a thin wall (SCENE_THIN_WALLS)
     bool hasIridescence_ = false;    // a glTF material with a thin film (SCENE_IRIDESCENCE)
     bool hasAnisotropy_ = false;     // a glTF material with anisotropy (SCENE_ANISOTROPY)
     std::optional<GPUFloatArray> sheenTable_;  // a glTF material with a sheen: its albedo table (SCENE_SHEEN)

@@ -1,7 +1,7 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
 // models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
 // transmission maps (TRNS), the layers of glTF's extensions (LAYR), the volumes (VOLM), the
-// thin films (IRID) and the anisotropy (ANIS).
+// thin films (IRID), the anisotropy (ANIS) and the thin walls (THIN).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -29,6 +29,8 @@ constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 constexpr size_t kAlphaBytes = 5 * 4;
 // SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
 constexpr size_t kSidedBytes = 4;
+// THIN per material: u32 1 a thin wall (KHR_materials_transmission without a volume), 0 a solid.
+constexpr size_t kThinBytes = 4;
 constexpr size_t kGlowBytes = 4;
 // TRNS per material: the transmission map's channel (texture, channel; -1: none).
 constexpr size_t kTransmissionMapBytes = 2 * 4;
@@ -249,6 +251,27 @@ void writeSided(ByteWriter& out, const LoadedScene& loaded) {
     const Scene& scene = loaded.scene;
     out.u64(scene.materials.size());
     for (const Material& m : scene.materials) out.u32(m.doubleSided ? 1u : 0u);
+}
+
+// Whether each material's transmission is through a thin wall (count = the materials', then
+// kThinBytes each: 1 thin, 0 a solid, nothing else). Read after the materials.
+void readThin(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kThinBytes, "materials' walls", kMaxTextureMaterials, scene.materials.size(),
+                               "materials");
+    for (uint64_t k = 0; k < n; ++k) {
+        const uint32_t thin = in.u32();
+        if (thin > 1)
+            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": thin wall " + std::to_string(thin) +
+                   " (0 or 1)");
+        scene.materials[size_t(k)].thinWalled = thin == 1;
+    }
+}
+
+void writeThin(ByteWriter& out, const LoadedScene& loaded) {
+    const Scene& scene = loaded.scene;
+    out.u64(scene.materials.size());
+    for (const Material& m : scene.materials) out.u32(m.thinWalled ? 1u : 0u);
 }
 
 // Whether each material's emission is a light of the scene (count = the materials', then
@@ -485,6 +508,12 @@ const SceneSection kVolumeSection{
 const SceneSection kFilmSection{
     "IRID", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.iridescenceFactor != 0.0f; }); },
     false, writeFilms, [](const PackedSection& s, LoadedScene& l) { readFilms(s, l.scene); }};
+
+// Only when some material is a thin wall (KHR_materials_transmission without a volume): likewise
+// (a file of an older gpurt, which had none, keeps its solids).
+const SceneSection kThinSection{
+    "THIN", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.thinWalled; }); },
+    false, writeThin, [](const PackedSection& s, LoadedScene& l) { readThin(s, l.scene); }};
 
 // Only when some material has anisotropy (KHR_materials_anisotropy): likewise.
 const SceneSection kAnisotropySection{

@@ -1,5 +1,6 @@
 // The scene's sections of a packed file (docs/PACKED_FORMAT.md), one group a file: Geometry
-// (TRIS, NRML, TXCO, VCOL, TANG), Materials (MATS, TEXS, MODL, PBRM, ALPH, SIDE, GLOW, TRNS, LAYR), Lights
+// (TRIS, NRML, TXCO, VCOL, TANG), Materials (MATS, TEXS, MODL, PBRM, ALPH, SIDE, GLOW, TRNS, LAYR, VOLM, IRID,
+// ANIS, THIN), Lights
 // (LGTS, LGTX, ENVM) and View (CAMR, LENS, ANIM, BKGD, RNDR). Each section says when the writer
 // stores it, how to write it and how to read it; each group the checks of validateScene that
 // concern it. scene/PackedScene.cpp lays the sections out and reads the table; the acceleration
@@ -33,7 +34,7 @@ struct SceneSection {
 extern const SceneSection kTriangleSection, kNormalSection, kTexcoordSection, kColorSection, kTangentSection;
 extern const SceneSection kMaterialSection, kTextureSection, kModelSection, kPbrSection, kAlphaSection, kSideSection,
     kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection, kFilmSection,
-    kAnisotropySection;
+    kAnisotropySection, kThinSection;
 extern const SceneSection kLightSection, kLightKindSection, kEnvironmentSection;
 extern const SceneSection kCameraSection, kLensSection, kAnimationSection, kBackgroundSection, kRenderSection;
 
