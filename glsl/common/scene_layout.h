@@ -26,17 +26,17 @@
 #define GPURT_TRIANGLES_PER_ROW 1024
 // Materials: RGBA32F, sixteen texels each on one row: (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
-// of refraction | 0, negated for a thin wall), (metallic, roughness, normal scale, occlusion strength), (roughness channel,
-// metallic channel, normal texture | -1, emissive texture | -1), (alpha mode, alpha factor, alpha
-// cutoff, alpha channel), (transmission channel, specular channel, specular colour texture | -1,
-// specular factor), (specular colour, clearcoat), (clearcoat roughness, clearcoat channel,
-// clearcoat roughness channel, clearcoat normal texture | -1), (clearcoat normal scale, sheen
-// roughness, sheen colour texture | -1, sheen roughness channel), (sheen colour, iridescence
-// channel), (volume absorption coefficient: Material::absorption, iridescence thickness channel),
-// (iridescence factor, its index, its thickness's minimum and maximum, nm), (anisotropy strength,
-// the cosine and sine of its rotation, its texture | -1); a channel is
-// 4 texture + channel (0 R .. 3 A), or -1. Back-face culling is in the accelerators' triangle
-// lists (coverage flags: common/alpha.h GPURT_COVER_*).
+// of refraction | 0, negated for a thin wall), (metallic, roughness, normal scale, occlusion
+// strength), (roughness channel, metallic channel, normal texture | -1, emissive texture | -1),
+// (alpha mode, alpha factor, alpha cutoff, alpha channel), (transmission channel, specular channel,
+// specular colour texture | -1, specular factor), (specular colour, clearcoat), (clearcoat
+// roughness, clearcoat channel, clearcoat roughness channel, clearcoat normal texture | -1),
+// (clearcoat normal scale, sheen roughness, sheen colour texture | -1, sheen roughness channel),
+// (sheen colour, iridescence channel), (volume absorption coefficient: Material::absorption,
+// iridescence thickness channel), (iridescence factor, its index, its thickness's minimum and
+// maximum, nm), (anisotropy strength, the cosine and sine of its rotation, its texture | -1); a
+// channel is 4 texture + channel (0 R .. 3 A), or -1. Back-face culling is in the accelerators'
+// triangle lists (coverage flags: common/alpha.h GPURT_COVER_*).
 #define GPURT_MATERIAL_TEXELS 16
 // The sheen's directional albedo E(n.v, roughness) (KHR_materials_sheen's albedo scaling;
 // materials/SheenTable.cpp): R32F, GPURT_SHEEN_TABLE x GPURT_SHEEN_TABLE values, sqrt(n.v) along a

@@ -606,7 +606,7 @@ class SceneReader {
             if (const json* thin = find(value, "thin_walled")) {  // KHR_materials_transmission's thin wall
                 if (!thin->is_boolean()) fail(at / "thin_walled", std::string("expected true or false, got ") + thin->type_name());
                 if (!(material.transmission.x > 0.0f)) fail(at / "thin_walled", "needs a transmission above 0");
-                if (find(value, "attenuation_color") || find(value, "attenuation_distance"))
+                if (thin->get<bool>() && (find(value, "attenuation_color") || find(value, "attenuation_distance")))
                     fail(at / "thin_walled", "a thin wall has no volume: no attenuation_color or attenuation_distance");
                 material.thinWalled = thin->get<bool>();
             }

@@ -25,10 +25,11 @@
 // direction: materialFacing); leaving the solid, Fd is Schlick's at the transmitted angle and 1
 // past the critical angle. A thin wall (record thin: glTF's transmission without
 // KHR_materials_volume, the extension's default) bends nothing: f_t is the reflection's D V at the
-// light's mirror image through the surface, and a smooth wall passes the ray straight on. Path: the specular lobe's visible normal reflects or refracts, chosen
-// by their weights at it; a refracted direction's pdf is reported as 0 (a delta for MIS: light
-// sampling never goes through the surface). Whitted: the refracted ray is spawned as through a
-// smooth surface (Whitted cannot blur), with the mirror ray where the surface is smooth.
+// light's mirror image through the surface, and a smooth wall passes the ray straight on. Path:
+// the specular lobe's visible normal reflects or refracts, chosen by their weights at it; a
+// refracted direction's pdf is reported as 0 (a delta for MIS: light sampling never goes through
+// the surface). Whitted: the refracted ray is spawned as through a smooth surface (Whitted cannot
+// blur), with the mirror ray where the surface is smooth.
 // The extensions' layers follow below, each where it enters: KHR_materials_specular, _clearcoat,
 // _sheen, _iridescence (thin_film.h) and _anisotropy (the base's lobe, reflection and
 // transmission, stretched along a direction: anisotropic_ggx.h, gltfSpecularLobe).
