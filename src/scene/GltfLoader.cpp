@@ -239,17 +239,13 @@ class GltfReader {
         if (node.mesh >= 0) {
             if (node.mesh >= int(m_.meshes.size())) fail(at + ": mesh " + std::to_string(node.mesh) + " does not exist");
             const tinygltf::Mesh& mesh = m_.meshes[size_t(node.mesh)];
-            if (std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
-                            [](const tinygltf::Primitive& p) { return !p.targets.empty(); }))
-                warnOnce("targets",
-                         "mesh " + std::to_string(node.mesh) +
-                             ": morph targets are not used; meshes are drawn in their base shape");
             const Skinning skinning = skinningOf(node, at);
+            const std::vector<double> weights = morphWeights(node, mesh, at);
             for (const glm::dmat4& placed : instances(node, mesh, world, at))
                 for (size_t p = 0; p < mesh.primitives.size(); ++p)
                     primitive(mesh.primitives[p],
                               "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
-                              placed, skinning, scene);
+                              placed, skinning, weights, scene);
         }
         if (node.camera >= 0) camera(node.camera, world, at, scene);
         const auto light = node.extensions.find("KHR_lights_punctual");
@@ -484,8 +480,8 @@ class GltfReader {
     }
 
     // Primitive attributes gpurt does not use, each named once: JOINTS_n and WEIGHTS_n of a node
-    // without a skin, and names glTF does not define. (TANGENT, COLOR_n and TEXCOORD_n belong to
-    // the materials.)
+    // without a skin, names glTF does not define, and morph targets' attributes other than POSITION,
+    // NORMAL and TANGENT. (TANGENT, COLOR_n and TEXCOORD_n belong to the materials.)
     void warnUnusedAttributes(const tinygltf::Primitive& prim, const std::string& at,
                               const Skinning& skinning) {
         for (const auto& attribute : prim.attributes) {
@@ -503,6 +499,12 @@ class GltfReader {
             }
             warnOnce("attribute " + name, at + ": attribute " + name + " is not used");
         }
+        // Morph targets displace POSITION, NORMAL and TANGENT (morph); others (TEXCOORD_n, COLOR_n) not.
+        for (const auto& target : prim.targets)
+            for (const auto& attribute : target)
+                if (attribute.first != "POSITION" && attribute.first != "NORMAL" && attribute.first != "TANGENT")
+                    warnOnce("target attribute " + attribute.first,
+                             at + ": morph target attribute " + attribute.first + " is not used");
     }
 
     // Points and lines (left out): one warning per mode, naming the first primitive.
@@ -683,8 +685,45 @@ class GltfReader {
     // Draco-compressed one from its decoded faces), with its vertex normals, and texture
     // coordinates when its material has a texture. A skinned node's primitive is posed by its
     // joints (vertexMatrices). Points and lines are left out, with a warning at the end.
+    // The weights of a mesh's morph targets at rest (the glTF spec, "Morph Targets"): the node's
+    // `weights`, else the mesh's, else none (every target at 0); each finite.
+    std::vector<double> morphWeights(const tinygltf::Node& node, const tinygltf::Mesh& mesh, const std::string& at) const {
+        const std::vector<double>& weights = !node.weights.empty() ? node.weights : mesh.weights;
+        for (double w : weights)
+            if (!std::isfinite(w)) fail(at + ": a morph target weight is not finite");
+        return weights;
+    }
+
+    // Adds a primitive's morph targets' displacements of attribute `name` (VEC3, one per vertex),
+    // each times its weight, to `data` (`stride` numbers per vertex, the first three displaced; the
+    // spec's morphing, before skinning). A target without `name` displaces nothing; a weight count
+    // other than the targets' is refused. Draco-compressed vertices may be reordered against the
+    // targets' accessors: a warning, not morphed.
+    void morph(const tinygltf::Primitive& prim, const std::string& at, const std::vector<double>& weights,
+               const std::string& name, size_t stride, std::vector<double>& data) {
+        if (prim.targets.empty() || std::all_of(weights.begin(), weights.end(), [](double w) { return w == 0.0; })) return;
+        if (weights.size() != prim.targets.size())
+            fail(at + ": " + std::to_string(weights.size()) + " morph target weights for " +
+                 std::to_string(prim.targets.size()) + " targets");
+        if (dracoOf(prim, at)) {
+            warnOnce("draco targets " + at, at + ": morph targets of a Draco-compressed primitive are not applied");
+            return;
+        }
+        const size_t vertices = data.size() / stride;
+        for (size_t t = 0; t < prim.targets.size(); ++t) {
+            const auto found = prim.targets[t].find(name);
+            if (found == prim.targets[t].end() || weights[t] == 0.0) continue;
+            const std::string where = at + " target " + std::to_string(t) + " " + name;
+            int components = 0;
+            const std::vector<double> d = values(found->second, where, components);
+            if (components != 3 || d.size() != 3 * vertices) fail(where + ": not VEC3 of one per vertex");
+            for (size_t v = 0; v < vertices; ++v)
+                for (size_t c = 0; c < 3; ++c) data[stride * v + c] += weights[t] * d[3 * v + c];
+        }
+    }
+
     void primitive(const tinygltf::Primitive& prim, const std::string& at, const glm::dmat4& world,
-                   const Skinning& skinning, Scene& scene) {
+                   const Skinning& skinning, const std::vector<double>& weights, Scene& scene) {
         int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
             fail(at + ": mode " + std::to_string(mode) + " is no glTF primitive mode");
@@ -704,15 +743,16 @@ class GltfReader {
                      "TRIANGLE_STRIP)");
             mode = TINYGLTF_MODE_TRIANGLES;
         }
-        const std::vector<double> position = positionValues(prim, at);
+        std::vector<double> position = positionValues(prim, at);
+        morph(prim, at, weights, "POSITION", 3, position);
         const size_t vertices = position.size() / 3;
         const VertexMatrices matrices = vertexMatrices(prim, at, world, skinning, vertices);
         const std::vector<glm::vec3> positions = primitivePositions(position, at, matrices);
-        const std::vector<glm::vec3> normals = primitiveNormals(prim, at, matrices, vertices);
+        const std::vector<glm::vec3> normals = primitiveNormals(prim, at, matrices, vertices, weights);
         const uint32_t material = materialOf(prim.material, scene);
         const std::vector<glm::vec2> texcoords = primitiveTexcoords(prim, at, material, vertices);
         const std::vector<glm::vec3> colors = primitiveColors(prim, at, vertices);
-        const std::vector<glm::vec4> tangents = primitiveTangents(prim, at, matrices, vertices, material, normals, scene);
+        const std::vector<glm::vec4> tangents = primitiveTangents(prim, at, matrices, vertices, material, normals, weights, scene);
         const std::vector<uint32_t> index = primitiveIndices(prim, at, vertices);
         if (scene.materials[material].hasAnisotropy() && tangents.empty() && texcoords.empty()) warnNoTangentFrame(at);
         // The glTF spec: a node whose world transform has a negative determinant (a mirror)
@@ -788,12 +828,14 @@ class GltfReader {
 
     // NORMAL in world space (through the inverse transpose), unit length or 0; none without.
     std::vector<glm::vec3> primitiveNormals(const tinygltf::Primitive& prim, const std::string& at,
-                                            const VertexMatrices& matrices, size_t vertices) const {
+                                            const VertexMatrices& matrices, size_t vertices,
+                                            const std::vector<double>& weights) {
         std::vector<glm::vec3> normals;
         if (!prim.attributes.count("NORMAL")) return normals;
         int components = 0;
-        const std::vector<double> n = attributeValues(prim, "NORMAL", at, components);
+        std::vector<double> n = attributeValues(prim, "NORMAL", at, components);
         if (components != 3 || n.size() != 3 * vertices) fail(at + ": NORMAL is not VEC3 of one per vertex");
+        morph(prim, at, weights, "NORMAL", 3, n);
         const glm::dmat3 worldNormals = glm::transpose(glm::inverse(glm::dmat3(matrices.world)));
         normals.resize(vertices);
         for (size_t v = 0; v < vertices; ++v) {
@@ -884,7 +926,8 @@ class GltfReader {
     // are then ignored, as the normals are made flat).
     std::vector<glm::vec4> primitiveTangents(const tinygltf::Primitive& prim, const std::string& at,
                                              const VertexMatrices& matrices, size_t vertices, uint32_t material,
-                                             const std::vector<glm::vec3>& normals, const Scene& scene) {
+                                             const std::vector<glm::vec3>& normals, const std::vector<double>& weights,
+                                             const Scene& scene) {
         std::vector<glm::vec4> tangents;
         const auto attribute = prim.attributes.find("TANGENT");
         const Material& m = scene.materials[material];
@@ -906,9 +949,10 @@ class GltfReader {
             fail(at + ": TANGENT (accessor " + std::to_string(index) + ") of component type " +
                  std::to_string(a.componentType) + " (not FLOAT or normalized BYTE or SHORT)");
         int components = 0;
-        const std::vector<double> t = attributeValues(prim, "TANGENT", at, components);  // Draco or the accessor
+        std::vector<double> t = attributeValues(prim, "TANGENT", at, components);  // Draco or the accessor
         if (components != 4 || t.size() != 4 * vertices)
             fail(at + ": TANGENT (accessor " + std::to_string(index) + ") is not VEC4 of one per vertex");
+        morph(prim, at, weights, "TANGENT", 4, t);  // the targets' TANGENT are VEC3 (xyz)
         const glm::dmat3 worldTangents(matrices.world);
         const double worldHand = glm::determinant(worldTangents) < 0.0 ? -1.0 : 1.0;
         tangents.resize(vertices);

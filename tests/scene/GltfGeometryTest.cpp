@@ -703,6 +703,38 @@ TEST(GltfInstancing, BrokenInstancesAreErrorsNamingTheNode) {
     EXPECT_REFUSED(doc("\"TRANSLATION\": " + std::to_string(many)), "node 0 EXT_mesh_gpu_instancing: 134217728 instances of 3 vertices are too many");
 }
 
+// Morph targets at rest (the glTF spec, "Morph Targets"): each vertex's POSITION and NORMAL plus
+// the targets' displacements times the weights, the node's `weights` over the mesh's, written by
+// hand here; a weight count other than the targets' is refused.
+TEST(GltfMorph, TargetsDisplaceTheMeshByTheirDefaultWeights) {
+    Gltf g;
+    const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int n = g.positions({0, 0, 1, 0, 0, 1, 0, 0, 1});
+    const int up = g.positions({0, 0, 2, 0, 0, 2, 0, 0, 2});       // target 0: +2 z everywhere
+    const int stretch = g.positions({0, 0, 0, 4, 0, 0, 0, 0, 0});  // target 1: vertex 1 +4 x
+    const int tilt = g.positions({2, 0, 0, 2, 0, 0, 2, 0, 0});     // target 1's NORMAL: +2 x
+    auto doc = [&](const std::string& meshWeights, const std::string& nodeWeights) {
+        return g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0" + nodeWeights +
+                      "}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(p) +
+                      ", \"NORMAL\": " + std::to_string(n) + "}, \"targets\": [{\"POSITION\": " + std::to_string(up) +
+                      "}, {\"POSITION\": " + std::to_string(stretch) + ", \"NORMAL\": " + std::to_string(tilt) + "}]}]" +
+                      meshWeights + "}]");
+    };
+    // Mesh weights (0.5, 0.25): z + 1, vertex 1's x + 1, normals (0.5, 0, 1) normalized.
+    const Scene mesh = parse(doc(", \"weights\": [0.5, 0.25]", ""));
+    expectSameTriangles(mesh, {{{0, 0, 1}, {2, 0, 1}, {0, 1, 1}}}, 1e-6f, "mesh weights");
+    const glm::vec3 tilted = glm::normalize(glm::vec3(0.5f, 0.0f, 1.0f));
+    ASSERT_EQ(mesh.normals.size(), 1u);
+    EXPECT_NEAR(glm::length(mesh.normals[0].n0 - tilted), 0.0f, 1e-6f);
+    // The node's weights (0, 1) over the mesh's: vertex 1's x + 4, normals (2, 0, 1) normalized.
+    const Scene node = parse(doc(", \"weights\": [0.5, 0.25]", ", \"weights\": [0, 1]"));
+    expectSameTriangles(node, {{{0, 0, 0}, {5, 0, 0}, {0, 1, 0}}}, 1e-6f, "node weights");
+    EXPECT_NEAR(glm::length(node.normals[0].n2 - glm::normalize(glm::vec3(2.0f, 0.0f, 1.0f))), 0.0f, 1e-6f);
+    // No weights: the base shape.
+    expectSameTriangles(parse(doc("", "")), {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, 0.0f, "no weights");
+    EXPECT_REFUSED(doc(", \"weights\": [1]", ""), "mesh 0 primitive 0: 1 morph target weights for 2 targets");
+}
+
 TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     Gltf g;
     const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
@@ -719,7 +751,7 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
         "{\"attributes\": {\"POSITION\": " +
         std::to_string(p) + ", \"_BATCHID\": " + std::to_string(p) +
         ", \"TANGENT\": " + std::to_string(p) +
-        "}, \"targets\": [{\"POSITION\": " + std::to_string(p) +
+        "}, \"targets\": [{\"POSITION\": " + std::to_string(p) + ", \"TEXCOORD_0\": " + std::to_string(p) +
         "}]},"
         "{\"attributes\": {\"POSITION\": " +
         std::to_string(p) +
@@ -740,9 +772,8 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
         "scene.gltf: warning: extension KHR_materials_dispersion is not used\n",
         "scene.gltf: warning: 1 animation is not used; the scene is drawn at rest (its nodes' own "
         "transforms)\n",
-        "scene.gltf: warning: mesh 0: morph targets are not used; meshes are drawn in their base "
-        "shape\n",
         "scene.gltf: warning: mesh 0 primitive 0: attribute _BATCHID is not used\n",
+        "scene.gltf: warning: mesh 0 primitive 0: morph target attribute TEXCOORD_0 is not used\n",
         "scene.gltf: warning: mesh 0 primitive 3: mode POINTS is not triangles and is left out "
         "(gpurt draws triangles); so is 1 more primitive of that mode\n",
         "scene.gltf: warning: mesh 0 primitive 1: mode LINES is not triangles and is left out "
