@@ -464,6 +464,17 @@ class GltfReader {
         if (warned_.insert(key).second) warn(what);
     }
 
+    // What leaving out an extension gpurt knows of but does not read changes in the picture.
+    static std::string whatIsLeftOut(const std::string& extension) {
+        static const std::map<std::string, std::string> kLeftOut = {
+            {"KHR_materials_variants", "each primitive's default material is drawn, not its variants"},
+            {"KHR_materials_dispersion", "the index of refraction is the same for every wavelength"},
+            {"KHR_materials_diffuse_transmission", "no light passes through surfaces diffusely"},
+            {"KHR_animation_pointer", "the scene is drawn at rest"}};
+        const auto found = kLeftOut.find(extension);
+        return found == kLeftOut.end() ? std::string() : ": " + found->second;
+    }
+
     // Every extension the file uses or requires that gpurt does not read: one warning each.
     void warnUnusedExtensions() {
         std::vector<std::string> named = m_.extensionsUsed;
@@ -475,7 +486,7 @@ class GltfReader {
                 m_.extensionsRequired.end();
             warnOnce("extension " + extension,
                      "extension " + extension + " is not used" +
-                         (required ? " (the file requires it: the picture may be wrong)" : ""));
+                         (required ? " (the file requires it: the picture may be wrong)" : "") + whatIsLeftOut(extension));
         }
     }
 

@@ -768,8 +768,9 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     ASSERT_NO_THROW(warnings = warningsOf(g.json(rest)));
     const std::vector<std::string> expected = {
         "scene.gltf: warning: extension KHR_materials_variants is not used (the file requires it: "
-        "the picture may be wrong)\n",
-        "scene.gltf: warning: extension KHR_materials_dispersion is not used\n",
+        "the picture may be wrong): each primitive's default material is drawn, not its variants\n",
+        "scene.gltf: warning: extension KHR_materials_dispersion is not used: the index of refraction is the "
+        "same for every wavelength\n",
         "scene.gltf: warning: 1 animation is not used; the scene is drawn at rest (its nodes' own "
         "transforms)\n",
         "scene.gltf: warning: mesh 0 primitive 0: attribute _BATCHID is not used\n",
