@@ -484,9 +484,11 @@ class GltfReader {
             const bool required =
                 std::find(m_.extensionsRequired.begin(), m_.extensionsRequired.end(), extension) !=
                 m_.extensionsRequired.end();
-            warnOnce("extension " + extension,
-                     "extension " + extension + " is not used" +
-                         (required ? " (the file requires it: the picture may be wrong)" : "") + whatIsLeftOut(extension));
+            const std::string leftOut = whatIsLeftOut(extension);
+            const std::string requiredNote = !required       ? std::string()
+                                             : leftOut.empty() ? " (the file requires it: the picture may be wrong)"
+                                                               : " (the file requires it)";
+            warnOnce("extension " + extension, "extension " + extension + " is not used" + requiredNote + leftOut);
         }
     }
 
