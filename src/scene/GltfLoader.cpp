@@ -193,12 +193,7 @@ class GltfReader {
         if (!any) fail(where + ": none of TRANSLATION, ROTATION, SCALE");
         // The copies' vertices (or indices) within what one accessor may hold, so that a small file
         // (a sparse accessor needs no data) cannot ask for more than memory holds.
-        uint64_t elements = 0;
-        for (const tinygltf::Primitive& p : mesh.primitives) {
-            const auto position = p.attributes.find("POSITION");
-            const int a = p.indices >= 0 ? p.indices : position != p.attributes.end() ? position->second : -1;
-            if (a >= 0 && a < int(m_.accessors.size())) elements += m_.accessors[size_t(a)].count;
-        }
+        const uint64_t elements = meshElements(mesh);
         if (count > 0 && elements > kMaxAccessorCount / count)
             fail(where + ": " + std::to_string(count) + " instances of " + std::to_string(elements) + " vertices are too many");
         std::vector<double> trs[3];
@@ -212,20 +207,37 @@ class GltfReader {
         std::vector<glm::dmat4> placed;
         placed.reserve(count);
         for (size_t i = 0; i < count; ++i) {
-            glm::dmat4 t(1.0);
-            if (!trs[0].empty()) t = glm::translate(t, glm::dvec3(trs[0][3 * i], trs[0][3 * i + 1], trs[0][3 * i + 2]));
-            if (!trs[1].empty()) {
-                const glm::dquat q(trs[1][4 * i + 3], trs[1][4 * i], trs[1][4 * i + 1], trs[1][4 * i + 2]);  // w, x, y, z
-                if (!(glm::length(q) > 0.0)) fail(where + ": instance " + std::to_string(i) + "'s rotation is zero");
-                t = t * glm::mat4_cast(glm::normalize(q));
-            }
-            if (!trs[2].empty()) t = glm::scale(t, glm::dvec3(trs[2][3 * i], trs[2][3 * i + 1], trs[2][3 * i + 2]));
-            const glm::dmat4 m = world * t;
+            placed.push_back(world * instanceTransform(trs, i, where));
             for (int k = 0; k < 16; ++k)
-                if (!std::isfinite(glm::value_ptr(m)[k])) fail(where + ": instance " + std::to_string(i) + "'s transform is not finite");
-            placed.push_back(m);
+                if (!std::isfinite(glm::value_ptr(placed.back())[k]))
+                    fail(where + ": instance " + std::to_string(i) + "'s transform is not finite");
         }
         return placed;
+    }
+
+    // The vertices (or indices, where indexed) of a mesh's primitives.
+    uint64_t meshElements(const tinygltf::Mesh& mesh) const {
+        uint64_t elements = 0;
+        for (const tinygltf::Primitive& p : mesh.primitives) {
+            const auto position = p.attributes.find("POSITION");
+            const int a = p.indices >= 0 ? p.indices : position != p.attributes.end() ? position->second : -1;
+            if (a >= 0 && a < int(m_.accessors.size())) elements += m_.accessors[size_t(a)].count;
+        }
+        return elements;
+    }
+
+    // Instance i's T x R x S of its TRANSLATION, ROTATION (x, y, z, w) and SCALE values (each
+    // empty when not given).
+    glm::dmat4 instanceTransform(const std::vector<double> (&trs)[3], size_t i, const std::string& where) const {
+        glm::dmat4 t(1.0);
+        if (!trs[0].empty()) t = glm::translate(t, glm::dvec3(trs[0][3 * i], trs[0][3 * i + 1], trs[0][3 * i + 2]));
+        if (!trs[1].empty()) {
+            const glm::dquat q(trs[1][4 * i + 3], trs[1][4 * i], trs[1][4 * i + 1], trs[1][4 * i + 2]);  // w, x, y, z
+            if (!(glm::length(q) > 0.0)) fail(where + ": instance " + std::to_string(i) + "'s rotation is zero");
+            t = t * glm::mat4_cast(glm::normalize(q));
+        }
+        if (!trs[2].empty()) t = glm::scale(t, glm::dvec3(trs[2][3 * i], trs[2][3 * i + 1], trs[2][3 * i + 2]));
+        return t;
     }
 
     void visit(int index, const glm::dmat4& parent, Scene& scene) {
