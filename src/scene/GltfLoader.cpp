@@ -739,6 +739,10 @@ class GltfReader {
             const auto found = prim.targets[t].find(name);
             if (found == prim.targets[t].end() || weights[t] == 0.0) continue;
             const std::string where = at + " target " + std::to_string(t) + " " + name;
+            // Its count checked before it is read (a sparse accessor of any count needs no data).
+            if (found->second >= 0 && found->second < int(m_.accessors.size()) &&
+                m_.accessors[size_t(found->second)].count != vertices)
+                fail(where + ": not VEC3 of one per vertex");
             int components = 0;
             const std::vector<double> d = values(found->second, where, components);
             if (components != 3 || d.size() != 3 * vertices) fail(where + ": not VEC3 of one per vertex");

@@ -733,6 +733,13 @@ TEST(GltfMorph, TargetsDisplaceTheMeshByTheirDefaultWeights) {
     // No weights: the base shape.
     expectSameTriangles(parse(doc("", "")), {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, 0.0f, "no weights");
     EXPECT_REFUSED(doc(", \"weights\": [1]", ""), "mesh 0 primitive 0: 1 morph target weights for 2 targets");
+    // A target of another count is refused before it is read: a sparse one of 2^27 needs no data.
+    const int huge = g.accessor(-1, 5126, size_t(1) << 27, "VEC3", ", \"sparse\": {\"count\": 0, \"indices\": "
+                                "{\"bufferView\": 0, \"componentType\": 5125}, \"values\": {\"bufferView\": 0}}");
+    const std::string text = g.json("\"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": "
+                                    "[{\"attributes\": {\"POSITION\": " + std::to_string(p) + "}, \"targets\": [{\"POSITION\": " +
+                                    std::to_string(huge) + "}]}], \"weights\": [1]}]");
+    EXPECT_REFUSED(text, "mesh 0 primitive 0 target 0 POSITION: not VEC3 of one per vertex");
 }
 
 TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
