@@ -27,11 +27,10 @@ constexpr size_t kModelBytes = 4;
 constexpr size_t kPbrBytes = 4 * 4 + 8 * 4;
 // ALPH per material: alpha mode (u32), factor, cutoff (f32), the alpha channel (texture, channel).
 constexpr size_t kAlphaBytes = 5 * 4;
-// SIDE per material: u32 1 double-sided, 0 single-sided (back faces culled).
-constexpr size_t kSidedBytes = 4;
-// THIN per material: u32 1 a thin wall (KHR_materials_transmission without a volume), 0 a solid.
-constexpr size_t kThinBytes = 4;
-constexpr size_t kGlowBytes = 4;
+// SIDE, GLOW and THIN per material: u32 1 or 0 (double-sided or single-sided, back faces culled;
+// the emission a light or only a glow; a thin wall, KHR_materials_transmission without a volume,
+// or a solid).
+constexpr size_t kFlagBytes = 4;
 // TRNS per material: the transmission map's channel (texture, channel; -1: none).
 constexpr size_t kTransmissionMapBytes = 2 * 4;
 // LAYR per material: KHR_materials_specular's factor, colour (f32) and maps (the factor's channel:
@@ -232,67 +231,26 @@ void writeAlpha(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
-// Each material's sidedness (count = the materials', then kSidedBytes each: 1 double-sided, 0
-// single-sided, nothing else). Read after the materials.
-void readSided(const PackedSection& s, Scene& scene) {
+// A flag per material (SIDE, GLOW, THIN: count = the materials', then kFlagBytes each, 1 or 0,
+// nothing else; `what` names the count, `flag` the value in a refusal). Read after the materials.
+template <bool Material::*Flag>
+void readFlags(const PackedSection& s, Scene& scene, const char* what, const char* flag) {
     ByteReader in = s.reader();
-    const uint64_t n = oneEach(in, s, kSidedBytes, "materials' sides", kMaxTextureMaterials, scene.materials.size(),
-                               "materials");
+    const uint64_t n = oneEach(in, s, kFlagBytes, what, kMaxTextureMaterials, scene.materials.size(), "materials");
     for (uint64_t k = 0; k < n; ++k) {
-        const uint32_t doubleSided = in.u32();
-        if (doubleSided > 1)
-            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": double-sided " +
-                 std::to_string(doubleSided) + " (0 or 1)");
-        scene.materials[size_t(k)].doubleSided = doubleSided == 1;
-    }
-}
-
-void writeSided(ByteWriter& out, const LoadedScene& loaded) {
-    const Scene& scene = loaded.scene;
-    out.u64(scene.materials.size());
-    for (const Material& m : scene.materials) out.u32(m.doubleSided ? 1u : 0u);
-}
-
-// Whether each material's transmission is through a thin wall (count = the materials', then
-// kThinBytes each: 1 thin, 0 a solid, nothing else). Read after the materials.
-void readThin(const PackedSection& s, Scene& scene) {
-    ByteReader in = s.reader();
-    const uint64_t n = oneEach(in, s, kThinBytes, "materials' walls", kMaxTextureMaterials, scene.materials.size(),
-                               "materials");
-    for (uint64_t k = 0; k < n; ++k) {
-        const uint32_t thin = in.u32();
-        if (thin > 1)
-            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": thin wall " + std::to_string(thin) +
+        const uint32_t value = in.u32();
+        if (value > 1)
+            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": " + flag + " " + std::to_string(value) +
                    " (0 or 1)");
-        scene.materials[size_t(k)].thinWalled = thin == 1;
+        scene.materials[size_t(k)].*Flag = value == 1;
     }
 }
 
-void writeThin(ByteWriter& out, const LoadedScene& loaded) {
+template <bool Material::*Flag>
+void writeFlags(ByteWriter& out, const LoadedScene& loaded) {
     const Scene& scene = loaded.scene;
     out.u64(scene.materials.size());
-    for (const Material& m : scene.materials) out.u32(m.thinWalled ? 1u : 0u);
-}
-
-// Whether each material's emission is a light of the scene (count = the materials', then
-// kGlowBytes each: 1 a light, 0 it only glows).
-void readGlow(const PackedSection& s, Scene& scene) {
-    ByteReader in = s.reader();
-    const uint64_t n = oneEach(in, s, kGlowBytes, "materials' emission", kMaxTextureMaterials, scene.materials.size(),
-                               "materials");
-    for (uint64_t k = 0; k < n; ++k) {
-        const uint32_t light = in.u32();
-        if (light > 1)
-            s.fail("section " + s.tag + ": material " + std::to_string(k) + ": emission light " + std::to_string(light) +
-                 " (0 or 1)");
-        scene.materials[size_t(k)].emissionIsLight = light == 1;
-    }
-}
-
-void writeGlow(ByteWriter& out, const LoadedScene& loaded) {
-    const Scene& scene = loaded.scene;
-    out.u64(scene.materials.size());
-    for (const Material& m : scene.materials) out.u32(m.emissionIsLight ? 1u : 0u);
+    for (const Material& m : scene.materials) out.u32(m.*Flag ? 1u : 0u);
 }
 
 // Each material's transmission map (count = the materials', then kTransmissionMapBytes each;
@@ -478,11 +436,14 @@ const SceneSection kAlphaSection{
 // Only when some material is single-sided (glTF doubleSided false): likewise.
 const SceneSection kSideSection{
     "SIDE", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.doubleSided; }); },
-    false, writeSided, [](const PackedSection& s, LoadedScene& l) { readSided(s, l.scene); }};
+    false, writeFlags<&Material::doubleSided>,
+    [](const PackedSection& s, LoadedScene& l) { readFlags<&Material::doubleSided>(s, l.scene, "materials' sides", "double-sided"); }};
 // Only when some material's emission only glows (glTF's): likewise.
 const SceneSection kGlowSection{
     "GLOW", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.emissionIsLight; }); },
-    false, writeGlow, [](const PackedSection& s, LoadedScene& l) { readGlow(s, l.scene); }};
+    false, writeFlags<&Material::emissionIsLight>, [](const PackedSection& s, LoadedScene& l) {
+        readFlags<&Material::emissionIsLight>(s, l.scene, "materials' emission", "emission light");
+    }};
 // Only when some material has a transmission map (glTF transmissionTexture): likewise.
 const SceneSection kTransmissionMapSection{
     "TRNS",
@@ -513,7 +474,8 @@ const SceneSection kFilmSection{
 // (a file of an older gpurt, which had none, keeps its solids).
 const SceneSection kThinSection{
     "THIN", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.thinWalled; }); },
-    false, writeThin, [](const PackedSection& s, LoadedScene& l) { readThin(s, l.scene); }};
+    false, writeFlags<&Material::thinWalled>,
+    [](const PackedSection& s, LoadedScene& l) { readFlags<&Material::thinWalled>(s, l.scene, "materials' walls", "thin wall"); }};
 
 // Only when some material has anisotropy (KHR_materials_anisotropy): likewise.
 const SceneSection kAnisotropySection{
