@@ -28,7 +28,7 @@
 // (ray: its watertightRay): the closest hit in the cell nearer than bestT replaces (bestT, bestId,
 // bestU, bestV); with anyHit the first hit nearer than bestT. tests counts the triangle tests.
 // Entries are in ascending id order and the test is strict, so the lowest id wins a tie.
-GPURT_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit,
+GPURT_INLINE_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit,
                            GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU,
                            GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
     for (uint k = range.x; k < range.x + range.y; ++k) {
@@ -55,7 +55,7 @@ GPURT_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec
 // One cell of the traversal of o + t d (limit tLimit): its triangles, then the step to the next
 // cell (cell and tMax, the DDA's state). False when the ray is done: it hit (bestId >= 0), the
 // next cell starts beyond its limit, or it left the grid.
-GPURT_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, float tLimit, bool anyHit,
+GPURT_INLINE_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, float tLimit, bool anyHit,
                         GPURT_INOUT(ivec3) cell, GPURT_INOUT(vec3) tMax, GPURT_INOUT(float) bestT,
                         GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV,
                         GPURT_INOUT(int) tests) {
@@ -71,7 +71,7 @@ GPURT_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, flo
 // triangle id or -1, with t (tLimit when none), u, v; steps counts the cells visited (at most
 // maxSteps), tests the triangle tests, state is RAY_INACTIVE (the ray misses the box), RAY_DEAD,
 // or RAY_OVERFLOW (maxSteps cells visited: a bug or a damaged grid, reported, never a hang).
-GPURT_FN int gridTrace(GPURT_GRID_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
+GPURT_INLINE_FN int gridTrace(GPURT_GRID_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
                        GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV, GPURT_OUT(int) steps,
                        GPURT_OUT(int) tests, GPURT_OUT(int) state) {
     bestT = tLimit;

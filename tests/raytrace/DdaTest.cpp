@@ -237,24 +237,30 @@ TEST(DdaTest, SkippingVisitsEveryNonEmptyCellOfThePlainWalk) {
             std::vector<glm::ivec3> plainFull;
             for (glm::ivec3 c : plain.cells)
                 if (counts[size_t(grid.cellIndex(c))]) plainFull.push_back(c);
-            glm::ivec3 voxel;
-            glm::vec3 tMax;
-            raymath::ddaSetup(o, d, tEnter, g.min, g.cellSize, g.res, voxel, tMax);
-            std::vector<glm::ivec3> skipFull;
-            size_t steps = 0;
-            for (; steps < 1000; ++steps) {
-                const size_t c = size_t(grid.cellIndex(voxel));
-                if (counts[c]) skipFull.push_back(voxel);
-                const int k = counts[c] ? 1 : grid.skipDistance(c);
-                if (!raymath::ddaAdvance(o, d, g.min, g.cellSize, g.res, k, voxel, tMax)) break;
+            for (const bool kernelsForm : {false, true}) {  // ddaAdvance as the cpu runs it, as llvmpipe does
+                glm::ivec3 voxel;
+                glm::vec3 tMax;
+                raymath::ddaSetup(o, d, tEnter, g.min, g.cellSize, g.res, voxel, tMax);
+                std::vector<glm::ivec3> skipFull;
+                size_t steps = 0;
+                for (; steps < 1000; ++steps) {
+                    const size_t c = size_t(grid.cellIndex(voxel));
+                    if (counts[c]) skipFull.push_back(voxel);
+                    const int skip = counts[c] ? 1 : grid.skipDistance(c);
+                    const bool inside = kernelsForm
+                                            ? raymath::ddaLeaveCube(o, d, g.min, g.cellSize, g.res, skip, voxel, tMax)
+                                            : raymath::ddaAdvance(o, d, g.min, g.cellSize, g.res, skip, voxel, tMax);
+                    if (!inside) break;
+                }
+                ASSERT_EQ(skipFull, plainFull) << "trial " << trial << " ray " << k << " kernels' form " << kernelsForm;
+                EXPECT_LE(steps + 1, plain.cells.size()) << "trial " << trial << " ray " << k;
             }
-            ASSERT_EQ(skipFull, plainFull) << "trial " << trial << " ray " << k;
-            EXPECT_LE(steps + 1, plain.cells.size()) << "trial " << trial << " ray " << k;
         }
     }
 }
 
-// ddaAdvance with distance 1 is exactly one ddaStep.
+// Leaving a cube of distance 1 is exactly one ddaStep: the kernels' form of a step (ddaLeaveCube for
+// every k) and the cpu's (ddaStep for k = 1) visit the same cells with the same tMax.
 TEST(DdaTest, AdvanceByOneIsDdaStep) {
     const TestGrid g;
     std::mt19937 rng(3);
@@ -268,7 +274,7 @@ TEST(DdaTest, AdvanceByOneIsDdaStep) {
         b = a, tb = ta;
         for (int s = 0; s < 30; ++s) {
             const bool okA = raymath::ddaStep(o, d, g.min, g.cellSize, g.res, a, ta);
-            const bool okB = raymath::ddaAdvance(o, d, g.min, g.cellSize, g.res, 1, b, tb);
+            const bool okB = raymath::ddaLeaveCube(o, d, g.min, g.cellSize, g.res, 1, b, tb);
             ASSERT_EQ(okA, okB);
             if (!okA) break;
             ASSERT_EQ(a, b);
