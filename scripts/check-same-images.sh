@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders every scene of scenes/, ../shared/models and the textured test assets with two gpurt
 # binaries, on both backends, Whitted and path, at 1 and 4 samples a pixel (with every AOV at 1)
-# and as a tile (--tile 1/3, 2 samples; its PNG and sidecar),
+# and as a tile (--tile 1/3, 2 samples; its PNG and sidecar), and path traced with each accelerator
+# by name (--accel grid, --accel bvh: the PNG, its prim and steps AOVs),
 # and compares the files byte for byte: a refactoring must leave every picture as it was.
 #   scripts/check-same-images.sh OLD_GPURT NEW_GPURT [WORKDIR]
 # Prints one line per differing file and exits 1 if any differ.
@@ -32,6 +33,13 @@ render() {  # BIN DIR
                 "$bin" render "$s" -o "$dir/$name-$backend-$integrator-tile.png" --size 96x72 --backend "$backend" \
                     --integrator "$integrator" --spp 2 --tile 1/3 2>/dev/null ||
                     echo "render failed: $bin $s $backend $integrator tile" >"$dir/$name-$backend-$integrator-tile.failed"
+            done
+            # Each accelerator by name (the renders above take --accel auto's choice).
+            for accel in grid bvh; do
+                local out="$dir/$name-$backend-$accel"
+                "$bin" render "$s" -o "$out.png" --size 96x72 --backend "$backend" --accel "$accel" \
+                    --integrator path --spp 2 --aov "prim=$out.prim.pfm" --aov "steps=$out.steps.pfm" 2>/dev/null ||
+                    echo "render failed: $bin $s $backend $accel" >"$out.failed"
             done
         done
     done

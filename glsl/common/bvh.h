@@ -1,7 +1,8 @@
 // The BVH traversal (accel/bvh/Bvh.h), shared word for word by the kernel
 // (glsl/accel/bvh/trace.frag) and the cpu backend (accel/bvh/BvhCpu.cpp), after raymath.h.
 // The includer defines how the tree is read:
-//   GPURT_BVH_PARAMS    leading parameters of bvhTrace (empty in GLSL: the samplers are uniforms)
+//   GPURT_BVH_PARAMS    leading parameters of the functions (empty in GLSL: the samplers are
+//                       uniforms), GPURT_BVH_ARGS the matching arguments
 //   GPURT_BVH_NODE(i)   texel i (uvec4) of the nodes: two a node, one per child (bvhChildTexel)
 //   GPURT_BVH_TRI(i)    texel i (vec4) of the leaf-ordered triangle list: three an entry, (v0, id),
 //                       (v1, coverage flags), (v2, 0), as the grid's cell lists
@@ -37,13 +38,42 @@ GPURT_FN vec2 bvhSlabs(vec3 o, vec3 invD, vec3 boxMin, vec3 boxMax) {
     return vec2(max(max(tNear.x, tNear.y), max(tNear.z, 0.0f)), min(tFar.x, min(tFar.y, tFar.z)));
 }
 
+// The triangles of two leaves, count0 from entry first0 of the list and then count1 from first1,
+// against the ray o + t d (ray: its watertightRay): a hit nearer than bestT replaces (bestT, bestId,
+// bestU, bestV); with anyHit the first such hit ends the loop. tests counts the triangle tests.
+// One loop over both lists, for the SIMD lanes of a kernel to share however many are leaves.
+GPURT_INLINE_FN void bvhLeafHits(GPURT_BVH_PARAMS int first0, int count0, int first1, int count1, WatertightRay ray,
+                                 vec3 d, bool anyHit, GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId,
+                                 GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
+    for (int i = 0; i < count0 + count1; ++i) {
+        int k = i < count0 ? first0 + i : first1 + (i - count0);
+        tests += 1;
+        vec4 tri = GPURT_BVH_TRI(3 * k);
+        vec4 v1Flags = GPURT_BVH_TRI(3 * k + 1);
+        vec3 v0 = vec3(tri);
+        vec3 v1 = vec3(v1Flags);
+        vec3 v2 = vec3(GPURT_BVH_TRI(3 * k + 2));
+        float t;
+        float u;
+        float v;
+        if (intersectTriangle(ray, v0, v1, v2, t, u, v) && t > 0.0f && t < bestT &&
+            GPURT_BVH_COVERED(int(tri.w), v1Flags.w, u, v, d, v1 - v0, v2 - v0, anyHit)) {
+            bestT = t;
+            bestU = u;
+            bestV = v;
+            bestId = int(tri.w);
+            if (anyHit) break;
+        }
+    }
+}
+
 // The closest hit of o + t d with 0 < t < tLimit (any hit with anyHit): the triangle id or -1,
 // with t, u, v; steps counts the nodes visited, tests the triangle tests, state is RAY_DEAD, or
 // RAY_OVERFLOW when the ray visited maxSteps nodes or the stack ran out (a bug or a damaged tree:
 // reported, never a hang; steps is then maxSteps).
-GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
-                      GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV,
-                      GPURT_OUT(int) steps, GPURT_OUT(int) tests, GPURT_OUT(int) state) {
+GPURT_INLINE_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
+                             GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV,
+                             GPURT_OUT(int) steps, GPURT_OUT(int) tests, GPURT_OUT(int) state) {
     vec3 invD = 1.0f / mix(d, vec3(1e-30f), equal(d, vec3(0.0f)));
     WatertightRay ray = watertightRay(o, d);  // the triangle test's per-ray part
     int stack[GPURT_BVH_STACK];
@@ -76,8 +106,7 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
         int countB = int(tb.w & 15u);
         bool enterA = a.x <= a.y && a.x < bestT;
         bool enterB = b.x <= b.y && b.x < bestT;
-        // Leaf children now, the nearer first, in one loop over both lists (one loop for the
-        // SIMD lanes of a kernel to share, however many of the two are leaves).
+        // Leaf children now, the nearer first.
         bool aFirst = a.x <= b.x;
         int leafA = enterA ? countA : 0;
         int leafB = enterB ? countB : 0;
@@ -85,26 +114,8 @@ GPURT_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit
         int count0 = aFirst ? leafA : leafB;
         int first1 = aFirst ? refB : refA;
         int count1 = aFirst ? leafB : leafA;
-        for (int i = 0; i < count0 + count1; ++i) {
-            int k = i < count0 ? first0 + i : first1 + (i - count0);
-            tests += 1;
-            vec4 tri = GPURT_BVH_TRI(3 * k);
-            vec4 v1Flags = GPURT_BVH_TRI(3 * k + 1);
-            vec3 v0 = vec3(tri);
-            vec3 v1 = vec3(v1Flags);
-            vec3 v2 = vec3(GPURT_BVH_TRI(3 * k + 2));
-            float t;
-            float u;
-            float v;
-            if (intersectTriangle(ray, v0, v1, v2, t, u, v) && t > 0.0f && t < bestT &&
-                GPURT_BVH_COVERED(int(tri.w), v1Flags.w, u, v, d, v1 - v0, v2 - v0, anyHit)) {
-                bestT = t;
-                bestU = u;
-                bestV = v;
-                bestId = int(tri.w);
-                if (anyHit) break;
-            }
-        }
+        bvhLeafHits(GPURT_BVH_ARGS first0, count0, first1, count1, ray, d, anyHit, bestT, bestId, bestU, bestV,
+                    tests);
         if (anyHit && bestId >= 0) break;
         // Inner children still in front of the best hit.
         enterA = enterA && countA == 0 && refA > 0 && a.x < bestT;

@@ -21,6 +21,7 @@ uniform samplerBuffer bvhTriangles;  // the leaves' triangles: v0 + id, v1 + cov
 uniform int maxNodeSteps;            // more nodes than a ray can visit: RAY_OVERFLOW
 
 #define GPURT_BVH_PARAMS
+#define GPURT_BVH_ARGS
 #define GPURT_BVH_NODE(i) texelFetch(bvhNodes, i)
 #define GPURT_BVH_TRI(i) texelFetch(bvhTriangles, i)
 #define GPURT_BVH_BOX_MIN bvhBoxMin

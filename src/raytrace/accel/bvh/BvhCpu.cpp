@@ -23,6 +23,7 @@ struct BvhTexels {
 };
 
 #define GPURT_BVH_PARAMS const BvhTexels &bvh,
+#define GPURT_BVH_ARGS bvh,
 #define GPURT_BVH_NODE(i) bvh.nodes[i]
 #define GPURT_BVH_TRI(i) bvh.triangles[i]
 #define GPURT_BVH_BOX_MIN bvh.boxMin
@@ -53,12 +54,16 @@ BvhCpu::BvhCpu(const Scene& scene, const Bvh& bvh)
     bvh.quantisation(boxMin_, boxStep_);
 }
 
-TraceHit BvhCpu::trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit, uint32_t coverageKey) const {
+template <bool AnyHit>
+TraceHit BvhCpu::trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const {
     const BvhTexels texels{nodes_.data(), triangles_.data(), boxMin_, boxStep_, coverage_.get(), coverageKey};
     TraceHit hit{};
-    hit.prim = bvhTrace(texels, o, d, tLimit, anyHit, maxSteps_, hit.t, hit.u, hit.v, hit.steps, hit.tests, hit.state);
+    hit.prim = bvhTrace(texels, o, d, tLimit, AnyHit, maxSteps_, hit.t, hit.u, hit.v, hit.steps, hit.tests, hit.state);
     if (hit.prim < 0) hit.t = std::numeric_limits<float>::infinity();
     return hit;
 }
+
+template TraceHit BvhCpu::trace<false>(glm::vec3, glm::vec3, float, uint32_t) const;
+template TraceHit BvhCpu::trace<true>(glm::vec3, glm::vec3, float, uint32_t) const;
 
 }  // namespace gpurt

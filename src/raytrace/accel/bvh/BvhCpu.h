@@ -19,14 +19,15 @@ class BvhCpu final : public CpuAccelerator {
     BvhCpu(const Scene& scene, const Bvh& bvh);
 
     TraceHit closestHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
-        return trace(o, d, tLimit, false, coverageKey);
+        return trace<false>(o, d, tLimit, coverageKey);
     }
     TraceHit anyHit(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const override {
-        return trace(o, d, tLimit, true, coverageKey);
+        return trace<true>(o, d, tLimit, coverageKey);
     }
 
   private:
-    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, bool anyHit, uint32_t coverageKey) const;
+    template <bool AnyHit>  // one copy of the traversal each, with anyHit a constant
+    TraceHit trace(glm::vec3 o, glm::vec3 d, float tLimit, uint32_t coverageKey) const;
 
     std::unique_ptr<const AlphaCoverage> coverage_;  // null: the scene has no alpha
 
