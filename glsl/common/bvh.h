@@ -38,13 +38,35 @@ GPURT_FN vec2 bvhSlabs(vec3 o, vec3 invD, vec3 boxMin, vec3 boxMax) {
     return vec2(max(max(tNear.x, tNear.y), max(tNear.z, 0.0f)), min(tFar.x, min(tFar.y, tFar.z)));
 }
 
-// The triangles of two leaves, count0 from entry first0 of the list and then count1 from first1,
-// against the ray o + t d (ray: its watertightRay): a hit nearer than bestT replaces (bestT, bestId,
-// bestU, bestV); with anyHit the first such hit ends the loop. tests counts the triangle tests.
-// One loop over both lists, for the SIMD lanes of a kernel to share however many are leaves.
-GPURT_INLINE_FN void bvhLeafHits(GPURT_BVH_PARAMS int first0, int count0, int first1, int count1, WatertightRay ray,
-                                 vec3 d, bool anyHit, GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId,
-                                 GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
+// The two children of node: where o + t d enters and leaves each one's box (bvhSlabs), and their
+// w fields (ref << 4 | count, bvhChildBox).
+GPURT_INLINE_FN void bvhChildren(GPURT_BVH_PARAMS int node, vec3 o, vec3 invD, GPURT_OUT(vec2) a, GPURT_OUT(vec2) b,
+                                 GPURT_OUT(uint) wA, GPURT_OUT(uint) wB) {
+    uvec4 ta = GPURT_BVH_NODE(2 * node);
+    uvec4 tb = GPURT_BVH_NODE(2 * node + 1);
+    vec3 lo;
+    vec3 hi;
+    bvhChildBox(ta, GPURT_BVH_BOX_MIN, GPURT_BVH_BOX_STEP, lo, hi);
+    a = bvhSlabs(o, invD, lo, hi);
+    bvhChildBox(tb, GPURT_BVH_BOX_MIN, GPURT_BVH_BOX_STEP, lo, hi);
+    b = bvhSlabs(o, invD, lo, hi);
+    wA = ta.w;
+    wB = tb.w;
+}
+
+// The triangles of two leaves, countA from entry refA of the list and countB from refB (0: not a
+// leaf, or not entered), A's first when aFirst, against the ray o + t d (ray: its watertightRay): a
+// hit nearer than bestT replaces (bestT, bestId, bestU, bestV); with anyHit the first such hit ends
+// the loop. tests counts the triangle tests. One loop over both lists, for the SIMD lanes of a
+// kernel to share however many of the two are leaves.
+GPURT_INLINE_FN void bvhLeafHits(GPURT_BVH_PARAMS bool aFirst, int refA, int countA, int refB, int countB,
+                                 WatertightRay ray, vec3 d, bool anyHit, GPURT_INOUT(float) bestT,
+                                 GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV,
+                                 GPURT_INOUT(int) tests) {
+    int first0 = aFirst ? refA : refB;
+    int count0 = aFirst ? countA : countB;
+    int first1 = aFirst ? refB : refA;
+    int count1 = aFirst ? countB : countA;
     for (int i = 0; i < count0 + count1; ++i) {
         int k = i < count0 ? first0 + i : first1 + (i - count0);
         tests += 1;
@@ -92,30 +114,20 @@ GPURT_INLINE_FN int bvhTrace(GPURT_BVH_PARAMS vec3 o, vec3 d, float tLimit, bool
             break;
         }
         steps += 1;
-        uvec4 ta = GPURT_BVH_NODE(2 * node);
-        uvec4 tb = GPURT_BVH_NODE(2 * node + 1);
-        vec3 lo;
-        vec3 hi;
-        bvhChildBox(ta, GPURT_BVH_BOX_MIN, GPURT_BVH_BOX_STEP, lo, hi);
-        vec2 a = bvhSlabs(o, invD, lo, hi);
-        bvhChildBox(tb, GPURT_BVH_BOX_MIN, GPURT_BVH_BOX_STEP, lo, hi);
-        vec2 b = bvhSlabs(o, invD, lo, hi);
-        int refA = int(ta.w >> 4u);
-        int countA = int(ta.w & 15u);
-        int refB = int(tb.w >> 4u);
-        int countB = int(tb.w & 15u);
+        vec2 a;
+        vec2 b;
+        uint wA;
+        uint wB;
+        bvhChildren(GPURT_BVH_ARGS node, o, invD, a, b, wA, wB);
+        int refA = int(wA >> 4u);
+        int countA = int(wA & 15u);
+        int refB = int(wB >> 4u);
+        int countB = int(wB & 15u);
         bool enterA = a.x <= a.y && a.x < bestT;
         bool enterB = b.x <= b.y && b.x < bestT;
-        // Leaf children now, the nearer first.
         bool aFirst = a.x <= b.x;
-        int leafA = enterA ? countA : 0;
-        int leafB = enterB ? countB : 0;
-        int first0 = aFirst ? refA : refB;
-        int count0 = aFirst ? leafA : leafB;
-        int first1 = aFirst ? refB : refA;
-        int count1 = aFirst ? leafB : leafA;
-        bvhLeafHits(GPURT_BVH_ARGS first0, count0, first1, count1, ray, d, anyHit, bestT, bestId, bestU, bestV,
-                    tests);
+        bvhLeafHits(GPURT_BVH_ARGS aFirst, refA, enterA ? countA : 0, refB, enterB ? countB : 0, ray, d, anyHit,
+                    bestT, bestId, bestU, bestV, tests);  // leaf children, the nearer first
         if (anyHit && bestId >= 0) break;
         // Inner children still in front of the best hit.
         enterA = enterA && countA == 0 && refA > 0 && a.x < bestT;
