@@ -13,7 +13,9 @@ Render (inside Blender):
   the scatterings after the first hit (max_bounces 0 is direct light only, gpurt's --bounces 1).
   Filter Glossy is 0 (its default 1 blurs glossy lobes after diffuse ones), clamping and
   denoising are off. KHR_materials_volume's absorption is turned into the extension's Beer-Lambert
-  (beer_lambert: Blender 3.4's importer absorbs 1 - attenuationColor instead). --lambert R,G,B replaces every material by a Lambert diffuse of that colour
+  (beer_lambert: Blender 3.4's importer absorbs 1 - attenuationColor instead), and
+  KHR_materials_clearcoat into the extension's layering (glTF_clearcoat: Blender 3.4's Principled
+  coat is Disney's, a quarter as strong, over an undimmed base). --lambert R,G,B replaces every material by a Lambert diffuse of that colour
   (light transport alone, against gpurt's classic Lambert material). The references of
   tests/assets/cycles/ were made with it (README.txt there).
 Compare (inside Blender too: it reads the EXRs):
@@ -59,6 +61,55 @@ def beer_lambert(node):
         return
     node.inputs["Density"].default_value = largest
     node.inputs["Color"].default_value = tuple(1.0 - s / largest for s in sigma) + (1.0,)
+
+
+def glTF_clearcoat(material, principled):
+    """KHR_materials_clearcoat as its specification layers it: the coat's GGX lobe weighted by
+    clearcoat x Fresnel (ior 1.5) over the base scaled by 1 - clearcoat x Fresnel. Blender 3.4's
+    Principled BSDF has Disney's coat instead (Cycles weights it 0.25 x clearcoat and leaves the base
+    as it is), so the importer's Clearcoat inputs are moved into a Glossy BSDF (GGX, the same
+    roughness mapping) mixed over the Principled BSDF by clearcoat x a Fresnel node (evaluated at the
+    coat's normal and the view: the specification's Fresnel at the half vector for the coat, at the
+    normal for the base; the same for a smooth coat)."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    factor, roughness, normal = (principled.inputs[name] for name in
+                                 ("Clearcoat", "Clearcoat Roughness", "Clearcoat Normal"))
+    if not factor.is_linked and factor.default_value <= 0.0:
+        return
+    outputs = [link for link in links if link.from_node == principled and link.to_node.type == "OUTPUT_MATERIAL"]
+    if not outputs:
+        return
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    fresnel = nodes.new("ShaderNodeFresnel")
+    fresnel.inputs["IOR"].default_value = 1.5
+    weight = nodes.new("ShaderNodeMath")
+    weight.operation = "MULTIPLY"
+    mix = nodes.new("ShaderNodeMixShader")
+
+    def move(socket, targets):  # the importer's value or link, onto each of targets
+        source = socket.links[0].from_socket if socket.is_linked else None
+        for target in targets:
+            if source is not None:
+                links.new(source, target)
+            else:
+                target.default_value = socket.default_value
+        for link in list(socket.links):
+            links.remove(link)
+
+    move(factor, [weight.inputs[0]])
+    move(roughness, [glossy.inputs["Roughness"]])
+    move(normal, [glossy.inputs["Normal"], fresnel.inputs["Normal"]])
+    factor.default_value = 0.0
+    links.new(fresnel.outputs["Fac"], weight.inputs[1])
+    links.new(weight.outputs["Value"], mix.inputs["Fac"])
+    links.new(principled.outputs["BSDF"], mix.inputs[1])
+    links.new(glossy.outputs["BSDF"], mix.inputs[2])
+    for link in outputs:
+        surface = link.to_socket
+        links.remove(link)
+        links.new(mix.outputs["Shader"], surface)
 
 
 def render(args):
@@ -133,6 +184,9 @@ def render(args):
                 node.distribution = args.distribution
             if node.type == "VOLUME_ABSORPTION" and not node.inputs["Color"].is_linked:
                 beer_lambert(node)
+        for node in list(material.node_tree.nodes) if material.node_tree else []:
+            if node.type == "BSDF_PRINCIPLED":
+                glTF_clearcoat(material, node)
     if args.lambert:
         # Every material a Lambert Diffuse BSDF (roughness 0) of one colour: light transport without
         # the Principled BSDF's differences from glTF's Appendix B, to compare with gpurt's classic

@@ -29,9 +29,9 @@ MaterialRecord record(const GltfParams& p) {
     m.emitterLight = true;
     m.specularColor = glm::vec3(p.specularColor);  // KHR_materials_specular
     m.specularWeight = float(p.specularFactor);
-    m.coat = float(p.clearcoat);  // KHR_materials_clearcoat, its normal the tests' n
+    m.coat = float(p.clearcoat);  // KHR_materials_clearcoat
     m.coatRoughness = float(p.clearcoatRoughness);
-    m.coatNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+    m.coatNormal = glm::vec3(glm::normalize(p.clearcoatNormal));
     m.sheenColor = glm::vec3(p.sheenColor);  // KHR_materials_sheen
     m.sheenRoughness = float(p.sheenRoughness);
     m.iridescence = float(p.iridescence);  // KHR_materials_iridescence
@@ -367,6 +367,8 @@ TEST(GltfBrdf, LayeredSamplingIsConsistent) {
             p.sheenColor = glm::dvec3(u(rng), u(rng), u(rng));
             p.sheenRoughness = u(rng);
         }
+        if (k % 4 == 1)  // a coat normal bent by its normal texture, up to about 35 degrees from n
+            p.clearcoatNormal = glm::dvec3(0.7 * (u(rng) - 0.5), 0.7 * (u(rng) - 0.5), 0.5);
         if (k % 5 == 0) {  // a thin film
             p.iridescence = u(rng);
             p.iridescenceIor = 1.0 + u(rng);
@@ -382,7 +384,10 @@ TEST(GltfBrdf, LayeredSamplingIsConsistent) {
         if (pdf == 0.0f) {  // the coat's mirror
             ++deltas;
             EXPECT_EQ(p.clearcoatRoughness, 0.0);
-            EXPECT_NEAR(dir.z, v.z, 1e-5f);
+            // The mirror about the coat's normal (about n where that one would go below the surface).
+            const glm::vec3 nc = m.coatNormal, bent = 2.0f * glm::dot(nc, v) * nc - v;
+            const glm::vec3 mirror = bent.z > 0.0f ? bent : glm::vec3(-v.x, -v.y, v.z);
+            EXPECT_LT(glm::length(dir - mirror), 1e-5f) << "coat normal " << nc.x << " " << nc.y << " " << nc.z;
             continue;
         }
         EXPECT_NEAR(pdf, raymath::materialPdf(m, n, -v, dir), 1e-3f * pdf);
@@ -403,7 +408,11 @@ TEST(GltfBrdf, LayeredSamplingIsConsistent) {
     GltfParams velvet{glm::dvec3(0.3, 0.05, 0.1), 0.0, 0.8};
     velvet.sheenColor = glm::dvec3(1.0, 0.6, 0.8);
     velvet.sheenRoughness = 0.4;
-    expectSamplesFollowThePdf({coated, tinted, velvet}, 37);
+    GltfParams bent = coated;  // the coat's normal bent by its normal texture, toward and away from v
+    bent.clearcoatNormal = glm::dvec3(0.3, 0.1, 1.0);
+    GltfParams bentAway = tinted;
+    bentAway.clearcoatNormal = glm::dvec3(-0.4, 0.2, 1.0);
+    expectSamplesFollowThePdf({coated, tinted, velvet, bent, bentAway}, 37);
 
     GltfParams smoothCoat{glm::dvec3(0.9, 0.3, 0.3), 0.0, 0.7};
     smoothCoat.clearcoat = 1.0;

@@ -25,8 +25,10 @@ struct GltfParams {
     // KHR_materials_specular: the specular layer's weight and F0 colour.
     double specularFactor = 1.0;
     glm::dvec3 specularColor{1.0};
-    // KHR_materials_clearcoat: the coat's weight and roughness (its normal is n).
+    // KHR_materials_clearcoat: the coat's weight and roughness, and its normal (the coat's normal
+    // texture bends it away from n; only the sampler tests set it, the reference formulas take n).
     double clearcoat = 0.0, clearcoatRoughness = 0.0;
+    glm::dvec3 clearcoatNormal{0.0, 0.0, 1.0};
     // KHR_materials_sheen: the sheen's colour (black: none) and roughness.
     glm::dvec3 sheenColor{0.0};
     double sheenRoughness = 0.0;
