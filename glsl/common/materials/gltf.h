@@ -314,7 +314,11 @@ GPURT_FN float gltfCoatLobe(MaterialRecord m, vec3 v, vec3 l) {
 
 // The BRDF f(l, v): the base's, under a sheen where there is one (KHR_materials_sheen: sheen colour
 // D V + base x min(1 - max(colour) E(n.v), 1 - max(colour) E(n.l))), under the coat where there is
-// one (KHR_materials_clearcoat: mix(that, coat lobe, coat weight)).
+// one (KHR_materials_clearcoat: mix(that, coat lobe, coat weight)). Every caller weighs f by the
+// cosine about the shading normal n; the coat's lobe lies about the coat's own normal (its normal
+// texture's, or the surface's where the base has a normal texture and the coat none), whose
+// cosine it takes as the glTF Sample Viewer does: times (coat normal . l) / (n . l), exactly 1
+// where the two normals are the same.
 GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
     vec3 f = gltfBaseBrdf(m, n, v, l);
 #if defined(__cplusplus) || defined(SCENE_SHEEN)
@@ -329,7 +333,9 @@ GPURT_FN vec3 gltfBrdf(MaterialRecord m, vec3 n, vec3 v, vec3 l) {
 #if defined(__cplusplus) || defined(SCENE_CLEARCOAT)
     if (m.coat > 0.0f) {
         float w = gltfCoatWeight(m, v);
-        f = f * (1.0f - w) + vec3(w * gltfCoatLobe(m, v, l));
+        float nl = dot(n, l);
+        float cosines = nl > 0.0f ? max(dot(m.coatNormal, l), 0.0f) / nl : 0.0f;
+        f = f * (1.0f - w) + vec3(w * (gltfCoatLobe(m, v, l) * cosines));
     }
 #endif
     return f;
