@@ -29,8 +29,8 @@
 // bestU, bestV); with anyHit the first hit nearer than bestT. tests counts the triangle tests.
 // Entries are in ascending id order and the test is strict, so the lowest id wins a tie.
 GPURT_INLINE_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay ray, vec3 d, float tExit, bool anyHit,
-                           GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU,
-                           GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
+                                  GPURT_INOUT(float) bestT, GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU,
+                                  GPURT_INOUT(float) bestV, GPURT_INOUT(int) tests) {
     for (uint k = range.x; k < range.x + range.y; ++k) {
         vec3 v0;
         vec3 v1;
@@ -56,9 +56,9 @@ GPURT_INLINE_FN void gridCellHits(GPURT_GRID_PARAMS uvec2 range, WatertightRay r
 // cell (cell and tMax, the DDA's state). False when the ray is done: it hit (bestId >= 0), the
 // next cell starts beyond its limit, or it left the grid.
 GPURT_INLINE_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay ray, float tLimit, bool anyHit,
-                        GPURT_INOUT(ivec3) cell, GPURT_INOUT(vec3) tMax, GPURT_INOUT(float) bestT,
-                        GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV,
-                        GPURT_INOUT(int) tests) {
+                               GPURT_INOUT(ivec3) cell, GPURT_INOUT(vec3) tMax, GPURT_INOUT(float) bestT,
+                               GPURT_INOUT(int) bestId, GPURT_INOUT(float) bestU, GPURT_INOUT(float) bestV,
+                               GPURT_INOUT(int) tests) {
     float tExit = ddaCellExit(tMax);
     uvec2 range = GPURT_GRID_RANGE(cell);
     gridCellHits(GPURT_GRID_ARGS range, ray, d, tExit, anyHit, bestT, bestId, bestU, bestV, tests);
@@ -72,8 +72,8 @@ GPURT_INLINE_FN bool gridVisit(GPURT_GRID_PARAMS vec3 o, vec3 d, WatertightRay r
 // maxSteps), tests the triangle tests, state is RAY_INACTIVE (the ray misses the box), RAY_DEAD,
 // or RAY_OVERFLOW (maxSteps cells visited: a bug or a damaged grid, reported, never a hang).
 GPURT_INLINE_FN int gridTrace(GPURT_GRID_PARAMS vec3 o, vec3 d, float tLimit, bool anyHit, int maxSteps,
-                       GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV, GPURT_OUT(int) steps,
-                       GPURT_OUT(int) tests, GPURT_OUT(int) state) {
+                              GPURT_OUT(float) bestT, GPURT_OUT(float) bestU, GPURT_OUT(float) bestV,
+                              GPURT_OUT(int) steps, GPURT_OUT(int) tests, GPURT_OUT(int) state) {
     bestT = tLimit;
     bestU = 0.0f;
     bestV = 0.0f;

@@ -7,6 +7,8 @@
 
 #ifdef __cplusplus
 #define GPURT_FN inline
+// GPURT_INLINE_FN: a function of a traversal's inner loop, inlined into each caller on the cpu
+// (so that closest hit and any hit get a copy each, anyHit a constant); GLSL inlines every function.
 #define GPURT_INLINE_FN inline __attribute__((always_inline))
 #define GPURT_OUT(T) T&
 #define GPURT_INOUT(T) T&
@@ -139,7 +141,7 @@ GPURT_FN float ddaCellExit(vec3 tMax) { return min(tMax.x, min(tMax.y, tMax.z));
 // One 3D-DDA step to the next cell along the axis whose boundary is nearest (ties: x, then y,
 // then z). Returns false when the ray leaves the grid.
 GPURT_INLINE_FN bool ddaStep(vec3 o, vec3 d, vec3 gridMin, vec3 cellSize, ivec3 res,
-                      GPURT_INOUT(ivec3) voxel, GPURT_INOUT(vec3) tMax) {
+                             GPURT_INOUT(ivec3) voxel, GPURT_INOUT(vec3) tMax) {
     int a = (tMax.x <= tMax.y && tMax.x <= tMax.z) ? 0 : (tMax.y <= tMax.z ? 1 : 2);
     voxel[a] += d[a] > 0.0f ? 1 : -1;
     if (voxel[a] < 0 || voxel[a] >= res[a]) return false;
