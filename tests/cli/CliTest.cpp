@@ -44,7 +44,15 @@ struct Result {
 
 // Runs `gpurt ARGS` from the project root; stdout and stderr are captured separately.
 Result gpurt(const std::string& args, const std::string& env = "") {
-    const fs::path dir = fs::temp_directory_path() / ("gpurt-cli-" + std::to_string(::getpid()));
+    // One folder for the process's captured streams, removed when the process ends.
+    static const struct Scratch {
+        fs::path dir = fs::temp_directory_path() / ("gpurt-cli-" + std::to_string(::getpid()));
+        ~Scratch() {
+            std::error_code ignored;
+            fs::remove_all(dir, ignored);
+        }
+    } scratch;
+    const fs::path& dir = scratch.dir;
     fs::create_directories(dir);
     const std::string command = env + " " + GPURT_BINARY + " " + args + " > " + (dir / "out").string() + " 2> " +
                                 (dir / "err").string();

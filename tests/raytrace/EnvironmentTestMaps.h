@@ -57,11 +57,17 @@ inline void writeExrMap(const std::filesystem::path& path, const EnvironmentImag
     out.writePixels(image.height);
 }
 
-// A scratch folder for the maps of one test process.
+// A scratch folder for the maps of one test process, removed when the process ends.
 inline std::filesystem::path mapFolder() {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gpurt-env-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    static const struct Scratch {
+        std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gpurt-env-" + std::to_string(::getpid()));
+        ~Scratch() {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    } scratch;
+    std::filesystem::create_directories(scratch.dir);
+    return scratch.dir;
 }
 
 // The map written as NAME (.hdr or .exr) and read back as an environment of the scene.
