@@ -179,14 +179,12 @@ def render(args):
         scene.render.threads_mode = "FIXED"
         scene.render.threads = args.threads
     for material in bpy.data.materials:
-        for node in material.node_tree.nodes if material.node_tree else []:
+        for node in list(material.node_tree.nodes) if material.node_tree else []:  # glTF_clearcoat adds nodes
             if node.type == "BSDF_PRINCIPLED":
                 node.distribution = args.distribution
+                glTF_clearcoat(material, node)
             if node.type == "VOLUME_ABSORPTION" and not node.inputs["Color"].is_linked:
                 beer_lambert(node)
-        for node in list(material.node_tree.nodes) if material.node_tree else []:
-            if node.type == "BSDF_PRINCIPLED":
-                glTF_clearcoat(material, node)
     if args.lambert:
         # Every material a Lambert Diffuse BSDF (roughness 0) of one colour: light transport without
         # the Principled BSDF's differences from glTF's Appendix B, to compare with gpurt's classic

@@ -436,8 +436,9 @@ const SceneSection kAlphaSection{
 // Only when some material is single-sided (glTF doubleSided false): likewise.
 const SceneSection kSideSection{
     "SIDE", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.doubleSided; }); },
-    false, writeFlags<&Material::doubleSided>,
-    [](const PackedSection& s, LoadedScene& l) { readFlags<&Material::doubleSided>(s, l.scene, "materials' sides", "double-sided"); }};
+    false, writeFlags<&Material::doubleSided>, [](const PackedSection& s, LoadedScene& l) {
+        readFlags<&Material::doubleSided>(s, l.scene, "materials' sides", "double-sided");
+    }};
 // Only when some material's emission only glows (glTF's): likewise.
 const SceneSection kGlowSection{
     "GLOW", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return !m.emissionIsLight; }); },
@@ -474,8 +475,9 @@ const SceneSection kFilmSection{
 // (a file of an older gpurt, which had none, keeps its solids).
 const SceneSection kThinSection{
     "THIN", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.thinWalled; }); },
-    false, writeFlags<&Material::thinWalled>,
-    [](const PackedSection& s, LoadedScene& l) { readFlags<&Material::thinWalled>(s, l.scene, "materials' walls", "thin wall"); }};
+    false, writeFlags<&Material::thinWalled>, [](const PackedSection& s, LoadedScene& l) {
+        readFlags<&Material::thinWalled>(s, l.scene, "materials' walls", "thin wall");
+    }};
 
 // Only when some material has anisotropy (KHR_materials_anisotropy): likewise.
 const SceneSection kAnisotropySection{
