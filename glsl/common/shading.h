@@ -62,17 +62,49 @@ GPURT_FN vec3 shadingNormal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 ng
     return dot(s, ng) < 0.0f ? -s : s;
 }
 
+// Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
+// languages evaluate the same operations.
+GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }
+
+// Whether the ray d meets the side of the triangle (edges e1, e2) its winding faces: the outside
+// of a dielectric's closed surface.
+GPURT_FN bool frontFace(vec3 e1, vec3 e2, vec3 d) { return dot(cross(e1, e2), d) < 0.0f; }
+
+// The normal n (unit, facing as ng) turned towards the geometric normal ng just far enough that
+// the mirror image of wo (unit, towards the viewer, in front of ng) about it rises t =
+// min(0.9 ng.wo, 0.01) above the surface, as Cycles' ensure_valid_reflection does with the normals
+// of its normal map node and coats: a normal bent away from the viewer would otherwise mirror
+// everything into the surface, where no light comes from. n itself where its mirror already rises
+// t. The new normal lies in the plane of n and ng, on n's side, and is the half vector of wo and
+// that lifted mirror r, which keeps wo's component across the plane (negated, as any mirror about
+// a normal in the plane does) and takes the rest of its length along n's side of the plane.
+GPURT_FN vec3 validReflectionNormal(vec3 n, vec3 ng, vec3 wo) {
+    float cosO = dot(ng, wo);
+    float t = min(0.9f * cosO, 0.01f);
+    if (!(cosO > 0.0f) || dot(mirrorDirection(-wo, n), ng) >= t) return n;
+    vec3 x = n - ng * dot(n, ng);
+    float xx = dot(x, x);
+    if (!(xx > 1e-24f)) return ng;
+    x = x / sqrt(xx);
+    vec3 y = cross(ng, x);
+    float oy = dot(wo, y);
+    vec3 r = x * sqrt(max(0.0f, 1.0f - oy * oy - t * t)) - y * oy + ng * t;
+    return contractNormalize(wo + r);
+}
+
 // The tangent-space normal `texel` (a normal map's linear value, its x and y times `scale`) in the
-// frame (t, b, n) of the front side's unit normal n, as the shading normal facing as ng: flipped
-// for a back hit (`front` false), ns where it is degenerate or would face away from the ray.
-GPURT_FN vec3 bentNormal(vec3 ns, vec3 ng, bool front, vec3 n, vec3 t, vec3 b, vec3 texel, float scale) {
+// frame (t, b, n) of the front side's unit normal n, as the shading normal facing as ng for a ray
+// along d (flipped for a back hit, `front` false), turned so that the mirror of -d about it stays
+// above the surface (validReflectionNormal); ns where it is degenerate or would face away from the
+// ray.
+GPURT_FN vec3 bentNormal(vec3 ns, vec3 ng, vec3 d, bool front, vec3 n, vec3 t, vec3 b, vec3 texel, float scale) {
     vec3 m = texel * 2.0f - vec3(1.0f);
     vec3 bent = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
     float bb = dot(bent, bent);
     if (!(bb > 1e-24f)) return ns;
     bent = bent / sqrt(bb);
     if (!front) bent = -bent;
-    return dot(bent, ng) > 0.0f ? bent : ns;
+    return dot(bent, ng) > 0.0f ? validReflectionNormal(bent, ng, -contractNormalize(d)) : ns;
 }
 
 // The tangent frame (t, b) about the front side's unit normal n made per triangle from its edges
@@ -118,15 +150,15 @@ GPURT_FN bool givenTangentFrame(vec3 n, vec4 tangent, GPURT_OUT(vec3) t, GPURT_O
 
 // The shading normal ns (facing as ng) bent by a tangent-space normal map (glTF normalTexture):
 // `texel` the map's linear value at the hit, its x and y times `scale`, in the frame generated per
-// triangle (generatedTangentFrame). `front`: the ray sees the triangle's front (frontFace); the
-// map bends the front side's normal and a back hit sees it flipped. Where the frame or the result
-// is degenerate (no texture coordinates, a normal facing away), ns stays.
-GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, bool front, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, vec3 texel,
-                           float scale) {
+// triangle (generatedTangentFrame), for the ray along d. The map bends the front side's normal and
+// a ray that sees the triangle's back (frontFace false) sees it flipped. Where the frame or the
+// result is degenerate (no texture coordinates, a normal facing away), ns stays.
+GPURT_FN vec3 normalMapped(vec3 ns, vec3 ng, vec3 d, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2, vec3 texel, float scale) {
+    bool front = frontFace(e1, e2, d);
     vec3 n = front ? ns : -ns;
     vec3 t, b;
     if (!generatedTangentFrame(n, e1, e2, dt1, dt2, t, b)) return ns;
-    return bentNormal(ns, ng, front, n, t, b, texel, scale);
+    return bentNormal(ns, ng, d, front, n, t, b, texel, scale);
 }
 
 // The vertex tangent at barycentrics (u, v) from the corners' t0, t1, t2 (glTF TANGENT: xyz the
@@ -138,12 +170,13 @@ GPURT_FN vec4 interpolateTangent(vec4 t0, vec4 t1, vec4 t2, float u, float v) {
 
 // normalMapped in the frame of a given vertex tangent (givenTangentFrame), or where it has none,
 // the generated one (normalMapped).
-GPURT_FN vec3 normalMappedTangent(vec3 ns, vec3 ng, bool front, vec4 tangent, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2,
+GPURT_FN vec3 normalMappedTangent(vec3 ns, vec3 ng, vec3 d, vec4 tangent, vec3 e1, vec3 e2, vec2 dt1, vec2 dt2,
                                   vec3 texel, float scale) {
+    bool front = frontFace(e1, e2, d);
     vec3 n = front ? ns : -ns;
     vec3 t, b;
-    if (!givenTangentFrame(n, tangent, t, b)) return normalMapped(ns, ng, front, e1, e2, dt1, dt2, texel, scale);
-    return bentNormal(ns, ng, front, n, t, b, texel, scale);
+    if (!givenTangentFrame(n, tangent, t, b)) return normalMapped(ns, ng, d, e1, e2, dt1, dt2, texel, scale);
+    return bentNormal(ns, ng, d, front, n, t, b, texel, scale);
 }
 
 // KHR_materials_anisotropy's direction in scene space at a hit (the record's anisotropyDirection):
@@ -166,10 +199,6 @@ GPURT_FN vec3 anisotropyFrameDirection(vec3 n, bool hasTangent, vec4 tangent, ve
     }
     return t * direction.x + b * direction.y;
 }
-
-// Mirror direction of i about n; the formula of GLSL's reflect(), spelled out so that both
-// languages evaluate the same operations.
-GPURT_FN vec3 mirrorDirection(vec3 i, vec3 n) { return i - 2.0f * dot(n, i) * n; }
 
 // Origin of a shadow or reflected ray leaving hit point p: off the surface along its facing
 // normal by eps (UniformGrid::rayOffset, 1e-4 of the grid box's largest extent).
@@ -273,10 +302,6 @@ GPURT_FN vec3 shadingReflection(vec3 d, vec3 ns, vec3 ng) {
     vec3 r = reflectedDirection(d, ns);
     return dot(r, ng) > 0.0f ? r : reflectedDirection(d, ng);
 }
-
-// Whether the ray d meets the side of the triangle (edges e1, e2) its winding faces: the outside
-// of a dielectric's closed surface.
-GPURT_FN bool frontFace(vec3 e1, vec3 e2, vec3 d) { return dot(cross(e1, e2), d) < 0.0f; }
 
 // The exact Fresnel reflectance of unpolarised light at a smooth dielectric boundary, for the
 // cosine cosI of the angle of incidence and eta = n_transmitted / n_incident: the mean of the

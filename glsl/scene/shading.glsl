@@ -133,10 +133,10 @@ vec3 fetchNormalMapped(int map, float scale, int id, vec3 e1, vec3 e2, vec3 d, v
     vec2 dt1, dt2;
     fetchTexcoordEdges(id, dt1, dt2);
 #ifdef SCENE_VERTEX_TANGENTS
-    return normalMappedTangent(ns, ng, frontFace(e1, e2, d), fetchVertexTangent(id, uv), e1, e2, dt1, dt2,
+    return normalMappedTangent(ns, ng, d, fetchVertexTangent(id, uv), e1, e2, dt1, dt2,
                                textureLinear(map, t), scale);
 #else
-    return normalMapped(ns, ng, frontFace(e1, e2, d), e1, e2, dt1, dt2, textureLinear(map, t), scale);
+    return normalMapped(ns, ng, d, e1, e2, dt1, dt2, textureLinear(map, t), scale);
 #endif
 #else
     return ns;

@@ -23,6 +23,7 @@
 #include "../common/GLTest.h"
 #include "EnvironmentTestMaps.h"
 #include "GltfReference.h"
+#include "LiftedNormal.h"
 #include "TestScenes.h"
 #include "raytrace/accel/bvh/BvhAccelerator.h"
 #include "raytrace/accel/grid/GridAccelerator.h"
@@ -419,6 +420,46 @@ CameraSpec quadView(bool back) {
     spec.target = {0.0f, 0.0f, 0.0f};
     spec.fovy = 30.0f;
     return spec;
+}
+
+// A normal map bent away from a grazing view (the quad seen 10 degrees above its plane, the map's
+// normal leaning 22 degrees away from the camera and a little sideways) would mirror the view into
+// the quad: both backends turn it towards the geometric normal until the mirror rises Cycles'
+// threshold, as the bisection of LiftedNormal.h finds for each pixel's ray.
+TEST_F(GltfMaterials, NormalMapBentAwayFromAGrazingViewIsTurnedUntilItsMirrorRises) {
+    const uint32_t r = 150, g = 170, b = 230;
+    const glm::dvec3 bent = glm::normalize(glm::dvec3(2.0 * r / 255.0 - 1.0, 2.0 * g / 255.0 - 1.0, 2.0 * b / 255.0 - 1.0));
+    Scene scene;
+    Material mat;
+    mat.model = GPURT_MODEL_DEBUG_NORMAL;
+    scene.materials.push_back(mat);
+    scene.materials[0].normalTexture = addFlatTexture(scene, r | (g << 8) | (b << 16) | 0xff000000u);
+    addTexturedQuad(scene, 0);
+    CameraSpec spec;
+    const double elevation = 10.0 * M_PI / 180.0;
+    spec.eye = glm::vec3(0.0f, float(-100.0 * std::cos(elevation)), float(100.0 * std::sin(elevation)));
+    spec.target = {0.0f, 0.0f, 0.0f};
+    spec.up = {0.0f, 0.0f, 1.0f};
+    spec.fovy = 0.25f;
+    const UniformGrid grid = buildGrid(scene, GridOptions{});
+    const CameraBasis camera = makeCamera(spec, 16, 16);
+    CpuTracer cpu(scene, grid);
+    GpuTracer gl(scene, grid);
+    for (const RenderOutput& out : {gl.render(camera, smallImage()), cpu.render(camera, smallImage())}) {
+        size_t hits = 0;
+        for (int j = 0; j < 16; ++j)
+            for (int i = 0; i < 16; ++i) {
+                const size_t at = size_t(j * 16 + i);
+                if (out.prim[at] < 0.0f) continue;
+                ++hits;
+                const glm::dvec3 wo = -glm::dvec3(primaryDirection(camera, i, j));
+                const glm::dvec3 expected = test::liftedNormalByBisection(bent, {0.0, 0.0, 1.0}, wo);
+                ASSERT_GT(glm::length(expected - bent), 0.2) << "the map's own normal mirrors into the quad";
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(out.color[at][c], 0.5 * expected[c] + 0.5, 2e-3) << "pixel " << i << ", " << j;
+            }
+        EXPECT_GT(hits, 40u);
+    }
 }
 
 // glTF TANGENT: a quad whose given tangent is the texture's u direction turned 90 degrees about

@@ -9,6 +9,7 @@
 #include "raytrace/render/CpuTracer.h"
 #include "raytrace/common/RayMath.h"
 #include "raytrace/accel/grid/UniformGrid.h"
+#include "LiftedNormal.h"
 
 namespace gpurt::raymath {
 #include "../../glsl/common/shading.h"
@@ -180,6 +181,50 @@ TEST(ShadingTest, MirrorsFacingEachOtherBounceMaxBouncesTimes) {
     const RenderOutput three = renderCentre(scene, 3);
     expectColor(three.color[0], localA + rA * localB + rA * rB * localA + rA * rB * rA * localB);
     EXPECT_EQ(three.stats.secondaryRays, 3u);
+}
+
+// A unit vector from two numbers in [0, 1), uniform on the sphere.
+glm::dvec3 sphereDirection(double a, double b) {
+    const double z = 1.0 - 2.0 * a, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * M_PI * b;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// validReflectionNormal against Cycles' rule found by bisection (LiftedNormal.h): over random
+// geometric normals, normals in front of them and view directions in front, a normal whose mirror
+// rises above the threshold stays bit for bit; any other turns in the plane of itself and ng,
+// towards ng, until its mirror rises exactly the threshold, as the bisection's.
+TEST(ShadingTest, ValidReflectionNormalLiftsMirrorsBelowTheSurfaceAsCycles) {
+    uint32_t state = 12345u;
+    const auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return double(state >> 8) / double(1u << 24);
+    };
+    int kept = 0, turned = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const glm::dvec3 ng = sphereDirection(next(), next());
+        glm::dvec3 n = sphereDirection(next(), next()), wo = sphereDirection(next(), next());
+        if (glm::dot(n, ng) < 0.0) n = -n;
+        if (glm::dot(wo, ng) < 0.0) wo = -wo;
+        if (glm::dot(n, ng) < 0.05 || glm::dot(wo, ng) < 1e-3) continue;  // not a normal a map makes
+        const double height = glm::dot(2.0 * glm::dot(n, wo) * n - wo, ng);
+        if (std::abs(height - std::min(0.9 * glm::dot(ng, wo), 0.01)) < 1e-4) continue;  // float or double may differ
+        const glm::vec3 got = raymath::validReflectionNormal(glm::vec3(n), glm::vec3(ng), glm::vec3(wo));
+        const glm::dvec3 expected = test::liftedNormalByBisection(glm::dvec3(glm::vec3(n)), glm::dvec3(glm::vec3(ng)),
+                                                                  glm::dvec3(glm::vec3(wo)));
+        SCOPED_TRACE(testing::Message() << "case " << i);
+        if (expected == glm::dvec3(glm::vec3(n))) {
+            ++kept;
+            ASSERT_EQ(got, glm::vec3(n));
+            continue;
+        }
+        ++turned;
+        ASSERT_NEAR(glm::length(glm::dvec3(got) - expected), 0.0, 2e-4);
+        ASSERT_NEAR(glm::length(glm::dvec3(got)), 1.0, 1e-5);
+        const glm::dvec3 r = 2.0 * glm::dot(glm::dvec3(got), wo) * glm::dvec3(got) - wo;
+        ASSERT_NEAR(glm::dot(r, ng), std::min(0.9 * glm::dot(ng, wo), 0.01), 2e-4);
+    }
+    EXPECT_GT(kept, 500);
+    EXPECT_GT(turned, 500);
 }
 
 }  // namespace

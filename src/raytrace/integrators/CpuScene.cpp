@@ -57,13 +57,12 @@ glm::vec3 CpuScene::normalMappedAt(const TraceHit& hit, glm::vec3 d, glm::vec3 n
     const PreparedTriangle& tri = triangles_[size_t(hit.prim)];
     const uint32_t prim = uint32_t(hit.prim);
     const glm::vec3 texel = sampleLinear(scene_.textures[size_t(map)], texcoordAt(scene_, prim, hit.u, hit.v));
-    const bool front = frontFace(tri.e1, tri.e2, d);
     glm::vec2 dt1, dt2;
     texcoordEdgesAt(scene_, prim, dt1, dt2);
     if (!scene_.tangents.empty())  // SCENE_VERTEX_TANGENTS
-        return normalMappedTangent(ns, ng, front, vertexTangentAt(scene_, prim, hit.u, hit.v), tri.e1, tri.e2, dt1, dt2,
+        return normalMappedTangent(ns, ng, d, vertexTangentAt(scene_, prim, hit.u, hit.v), tri.e1, tri.e2, dt1, dt2,
                                    texel, scale);
-    return normalMapped(ns, ng, front, tri.e1, tri.e2, dt1, dt2, texel, scale);
+    return normalMapped(ns, ng, d, tri.e1, tri.e2, dt1, dt2, texel, scale);
 }
 
 }  // namespace gpurt
