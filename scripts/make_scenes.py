@@ -31,6 +31,8 @@ from geometry generated here, so that every shipped asset can be regenerated and
   L  thin_walls.json  KHR_materials_transmission's thin walls (JSON thin_walled) beside solids:
                    clear glass solid and thin (a bubble), a thin tinted one, rough glass thin
                    (frosted) and solid
+  M  dispersion.json  KHR_materials_dispersion (JSON dispersion): five clear glass spheres of index
+                   1.6, dispersion 0, 1, 3, 6 and 12 (Abbe numbers none, 20, 6.7, 3.3, 1.7)
 
 Standard library only; deterministic (its own random generator, fixed number formatting), so
 running it again rewrites the files byte for byte:  /usr/bin/python3 scripts/make_scenes.py
@@ -644,6 +646,32 @@ def scene_l():
     return 0
 
 
+def scene_m():
+    """KHR_materials_dispersion (JSON dispersion): sphere.obj five times on slab.obj before a row of
+    glowing white bars (bars.obj) under a dim sky, clear glass of index 1.6 whose dispersion grows
+    left to right, 0 (none), 1 (Abbe number 20, a dense flint), 3, 6 and 12: the bars seen through
+    each sphere split into ever wider red, green and blue images."""
+    obj = ObjWriter("Twenty-four upright bars 0.1 x 3.6 x 0.1, 0.6 apart, standing on y = -1 at z = -3")
+    for k in range(24):
+        add_box(obj, (0.6 * (k - 11.5), 0.8, -3.0), (0.05, 1.8, 0.05), 0.0)
+    obj.save("bars.obj")
+    meshes = [{"file": "slab.obj", "material": {"name": "slab", "diffuse": [0.3, 0.3, 0.3], "metallic": 0, "roughness": 0.6}},
+              {"file": "bars.obj", "material": {"name": "bars", "diffuse": [0.0, 0.0, 0.0], "emission": [3.0, 3.0, 3.0]}}]
+    for k, dispersion in enumerate((0, 1, 3, 6, 12)):
+        material = {"name": "glass dispersion %g" % dispersion, "diffuse": [1.0, 1.0, 1.0], "metallic": 0,
+                    "roughness": 0, "transmission": 1, "ior": 1.6}
+        if dispersion:
+            material["dispersion"] = dispersion
+        meshes.append({"file": "sphere.obj", "transform": {"translate": [2.4 * (k - 2.0), 0.0, 0.0]}, "material": material})
+    write("dispersion.json", to_json({
+        "meshes": meshes,
+        "environment": {"file": "sky.hdr", "strength": 0.15, "rotation": 30},
+        "camera": {"eye": [0.0, 1.2, 10.0], "target": [0.0, 0.0, 0.0], "up": [0.0, 1.0, 0.0], "fovy": 36.0},
+        "render": {"size": [720, 300], "max_bounces": 12},
+    }) + "\n")
+    return obj.triangles
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "globe":
         print("globe %6d triangles" % globe(sys.argv[2]))
@@ -652,7 +680,8 @@ def main():
     for name, make in (("A boxes", scene_a), ("B room", scene_b), ("C highlow", scene_c), ("D cornell", scene_d),
                        ("E cornell blocks", scene_e), ("F metal rough spheres", scene_f), ("G rough glass", scene_g),
                        ("H layers", scene_h), ("I volume", scene_i),
-                       ("J iridescence", scene_j), ("K anisotropy", scene_k), ("L thin walls", scene_l)):
+                       ("J iridescence", scene_j), ("K anisotropy", scene_k), ("L thin walls", scene_l),
+                       ("M dispersion", scene_m)):
         print("%-10s %6d triangles" % (name, make()))
     return 0
 

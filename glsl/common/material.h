@@ -55,6 +55,7 @@ struct MaterialRecord {
     vec3 absorption;      // glTF, KHR_materials_volume: the absorption coefficient (per unit length)
                           // of the medium the ray arrives through: the solid's, seen from inside
                           // it (materialFacing), else 0
+    float dispersion;     // glTF, KHR_materials_dispersion: 20 / the Abbe number of a solid (0: none)
 };
 
 #include "raytree.h"
@@ -109,6 +110,43 @@ GPURT_FN vec3 materialTransmittance(MaterialRecord m, float t) {
     if (m.absorption != vec3(0.0f)) return exp(-m.absorption * t);
 #endif
     return vec3(1.0f);
+}
+
+// KHR_materials_dispersion: the index of a solid of index nd (at the Fraunhofer d line, 587.6 nm)
+// and dispersion 20 / V_d (V_d its Abbe number) at wavelength lambda (nm), as the extension
+// defines it: max(nd + (nd - 1) / V_d (523655 / lambda^2 - 1.5168), 1), a Cauchy form whose
+// indices at the F (486.1 nm) and C (656.3 nm) lines differ by (nd - 1) / V_d.
+GPURT_FN float dispersedIor(float nd, float dispersion, float lambda) {
+    return max(nd + (nd - 1.0f) * (dispersion / 20.0f) * (523655.0f / (lambda * lambda) - 1.5168f), 1.0f);
+}
+
+// The wavelength (nm) that stands for colour channel c under dispersion: the C, d and F lines of
+// the Abbe number's definition for red, green and blue, so that green sees the file's index.
+GPURT_FN float channelWavelength(int c) { return c == 0 ? 656.3f : (c == 1 ? 587.6f : 486.1f); }
+
+// The colour channel c alone (1 there, 0 in the others).
+GPURT_FN vec3 channelMask(int c) { return vec3(c == 0 ? 1.0f : 0.0f, c == 1 ? 1.0f : 0.0f, c == 2 ? 1.0f : 0.0f); }
+
+// Whether record m's index depends on the wavelength (a solid with a dispersion; the scene
+// defines SCENE_DISPERSION when a material has one).
+GPURT_FN bool materialDisperses(MaterialRecord m) {
+#if defined(__cplusplus) || defined(SCENE_DISPERSION)
+    return m.dispersion > 0.0f && m.ior > 0.0f;
+#else
+    return false;
+#endif
+}
+
+// Record m as light of colour channel c sees it: a dispersing solid's index at the channel's
+// wavelength, relative across the boundary as materialFacing made it (an index below 1 is the
+// solid's seen from inside: glTF's indices are 0 or >= 1); m itself where it does not disperse.
+GPURT_FN MaterialRecord materialAtChannel(MaterialRecord m, int c) {
+    if (!materialDisperses(m)) return m;
+    bool inside = m.ior < 1.0f;
+    float n = dispersedIor(inside ? 1.0f / m.ior : m.ior, m.dispersion, channelWavelength(c));
+    m.ior = inside ? 1.0f / n : n;
+    m.dispersion = 0.0f;
+    return m;
 }
 
 // The albedo that the denoiser's feature buffer records at a hit (Open Image Denoise's: the

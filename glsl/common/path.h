@@ -23,6 +23,8 @@
 // The sample dimensions of hit depth b (sampling.h): the emitter point is GPURT_DIM_EMITTER + b
 // as for Whitted; the new direction GPURT_DIM_SCATTER + 2 b, and (lobe, roulette) the next one.
 #define GPURT_DIM_SCATTER 1024u
+// The colour channel a path follows after a dispersing solid (integrators/path.h pathDisperse).
+#define GPURT_DIM_WAVELENGTH 8189u
 
 // The solid-angle pdf of reaching an emitter point at distance dist whose surface makes the
 // cosine cosQ with the ray, when the emitters are sampled uniformly by area (total area A).
@@ -39,9 +41,10 @@ GPURT_FN float powerHeuristic(float a, float b) {
 }
 
 // Radiance arriving through material m's BSDF from an unshadowed point light at lightPos (colour
-// times intensity, see the units above) at p, seen along d, shading normal n.
-GPURT_FN vec3 pathLightContribution(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
-                                    float intensity) {
+// times intensity, see the units above) at p, seen along d, shading normal n; for one index of
+// refraction (pathLightContribution takes a dispersing record's channels apart).
+GPURT_FN vec3 lightThroughBsdf(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
+                               float intensity) {
     vec3 toLight = lightPos - p;
     float dist2 = dot(toLight, toLight);
     vec3 l = contractNormalize(toLight);
@@ -59,6 +62,41 @@ GPURT_FN float emitterSampleWeight(MaterialRecord m, vec3 p, vec3 q, vec3 e1, ve
     vec3 l = contractNormalize(toQ);
     float cosQ = abs(dot(facingNormal(e1, e2, l), l));
     return powerHeuristic(emitterPdf(dist, cosQ, area), materialPdf(m, n, d, l));
+}
+
+// Next-event estimation under dispersion (KHR_materials_dispersion): the BSDF of a dispersing
+// solid is, channel by channel, the BSDF at that channel's index (common/material.h
+// materialAtChannel), and so is the pdf with which a path of that channel samples a direction
+// (pathDisperse), so each channel's light and multiple-importance weight are taken at its own
+// index: exact whatever channel the path has or will have taken. A record that does not disperse
+// is taken once.
+
+// Radiance arriving through material m's BSDF from an unshadowed point light at lightPos (colour
+// times intensity, see the units above) at p, seen along d, shading normal n.
+GPURT_FN vec3 pathLightContribution(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 lightPos, vec3 lightColor,
+                                    float intensity) {
+    if (!materialDisperses(m)) return lightThroughBsdf(m, p, n, d, lightPos, lightColor, intensity);
+    vec3 sum = vec3(0.0f);
+    for (int c = 0; c < 3; ++c)
+        sum = sum + channelMask(c) * lightThroughBsdf(materialAtChannel(m, c), p, n, d, lightPos, lightColor, intensity);
+    return sum;
+}
+
+// The light of the emitter point q (edges e1, e2 of its triangle, radiance `emission`, all
+// emitters of total area `area`), unshadowed, through material m's BSDF at p (shading normal n,
+// view ray d), weighed against the BSDF's sampling of its direction.
+GPURT_FN vec3 pathEmitterContribution(MaterialRecord m, vec3 p, vec3 n, vec3 d, vec3 q, vec3 e1, vec3 e2,
+                                      vec3 emission, float area) {
+    float intensity = emitterIntensity(p, q, e1, e2, area);
+    if (!materialDisperses(m))
+        return lightThroughBsdf(m, p, n, d, q, emission, intensity) * emitterSampleWeight(m, p, q, e1, e2, area, n, d);
+    vec3 sum = vec3(0.0f);
+    for (int c = 0; c < 3; ++c) {
+        MaterialRecord mc = materialAtChannel(m, c);
+        sum = sum + channelMask(c) * lightThroughBsdf(mc, p, n, d, q, emission, intensity) *
+                        emitterSampleWeight(mc, p, q, e1, e2, area, n, d);
+    }
+    return sum;
 }
 
 // The weight of the emission that a ray finds at distance t, on a triangle with facing normal ng,
@@ -80,12 +118,21 @@ GPURT_FN float environmentHitWeight(float prevPdf, float lightPdf) {
 
 // Radiance arriving through material m's BSDF (shading normal n, view ray d) from the
 // environment's radiance L in the unshadowed direction l that next-event estimation drew with
-// solid-angle pdf lightPdf, weighed against the BSDF's sampling of l.
-GPURT_FN vec3 pathEnvironmentContribution(MaterialRecord m, vec3 n, vec3 d, vec3 l, vec3 radiance, float lightPdf) {
-    if (!(lightPdf > 0.0f)) return vec3(0.0f);
+// solid-angle pdf lightPdf, weighed against the BSDF's sampling of l; for one index of refraction.
+GPURT_FN vec3 environmentThroughBsdf(MaterialRecord m, vec3 n, vec3 d, vec3 l, vec3 radiance, float lightPdf) {
     float cosP = max(0.0f, dot(n, l));
     float w = powerHeuristic(lightPdf, materialPdf(m, n, d, l));
     return min(materialEval(m, n, d, l) * GPURT_INV_PI * cosP * radiance * (w / lightPdf), vec3(1e30f));
+}
+
+// environmentThroughBsdf, a dispersing record's channels each at its own index.
+GPURT_FN vec3 pathEnvironmentContribution(MaterialRecord m, vec3 n, vec3 d, vec3 l, vec3 radiance, float lightPdf) {
+    if (!(lightPdf > 0.0f)) return vec3(0.0f);
+    if (!materialDisperses(m)) return environmentThroughBsdf(m, n, d, l, radiance, lightPdf);
+    vec3 sum = vec3(0.0f);
+    for (int c = 0; c < 3; ++c)
+        sum = sum + channelMask(c) * environmentThroughBsdf(materialAtChannel(m, c), n, d, l, radiance, lightPdf);
+    return sum;
 }
 
 // --clamp-direct and --clamp-indirect (Cycles' meaning; 0: off): the contribution c a path adds

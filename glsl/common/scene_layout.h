@@ -24,7 +24,7 @@
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024
-// Materials: RGBA32F, sixteen texels each on one row: (diffuse, shininess), (specular, diffuse
+// Materials: RGBA32F, seventeen texels each on one row: (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
 // of refraction | 0, negated for a thin wall), (metallic, roughness, normal scale, occlusion
 // strength), (roughness channel, metallic channel, normal texture | -1, emissive texture | -1),
@@ -34,10 +34,11 @@
 // (clearcoat normal scale, sheen roughness, sheen colour texture | -1, sheen roughness channel),
 // (sheen colour, iridescence channel), (volume absorption coefficient: Material::absorption,
 // iridescence thickness channel), (iridescence factor, its index, its thickness's minimum and
-// maximum, nm), (anisotropy strength, the cosine and sine of its rotation, its texture | -1); a
+// maximum, nm), (anisotropy strength, the cosine and sine of its rotation, its texture | -1),
+// (KHR_materials_dispersion's dispersion on a transmissive solid, else 0; 0, 0, 0); a
 // channel is 4 texture + channel (0 R .. 3 A), or -1. Back-face culling is in the accelerators'
 // triangle lists (coverage flags: common/alpha.h GPURT_COVER_*).
-#define GPURT_MATERIAL_TEXELS 16
+#define GPURT_MATERIAL_TEXELS 17
 // The sheen's directional albedo E(n.v, roughness) (KHR_materials_sheen's albedo scaling;
 // materials/SheenTable.cpp): R32F, GPURT_SHEEN_TABLE x GPURT_SHEEN_TABLE values, sqrt(n.v) along a
 // row and the roughness down, both from 0 to 1 at the ends, as a buffer (row-major).

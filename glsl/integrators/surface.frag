@@ -68,6 +68,7 @@ PathState arrivingPath(vec4 c, vec4 w) {
     st.weight = w.xyz;
     st.prevPdf = state.x;
     st.open = state.w == 0.0f;
+    st.dispersed = c.w > 0.0f;
     return st;
 }
 #endif
@@ -89,7 +90,7 @@ void main() {
     if (h.w < 0.0f) {
 #ifdef PATH
         pathMiss(st, depth);
-        color = vec4(st.color, 0.0f);
+        color = vec4(st.color, c.w);  // w: the path's dispersed flag (path/bounce.frag)
 #elif defined(SCENE_ENVIRONMENT)
         color = vec4(c.xyz + w.xyz * environmentRadiance(readStream(rayDir).xyz), 0.0f);
 #else
@@ -119,7 +120,7 @@ void main() {
     s.front = frontFace(e1, e2, d);
     s.m = materialFacing(m, s.front);
     pathArrive(st, s, h.x, depth);
-    color = vec4(st.color, 0.0f);
+    color = vec4(st.color, c.w);
 #else
     vec3 crossed = materialTransmittance(materialFacing(m, frontFace(e1, e2, d)), h.x);  // the medium the ray crossed
     color = vec4(c.xyz + w.xyz * crossed * materialEmitted(m, ns, d), 0.0f);

@@ -214,6 +214,9 @@ void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2
 #ifdef SCENE_VOLUME  // KHR_materials_volume: the absorption coefficient (Material::absorption)
     r.absorption = texelFetch(materials, at + ivec2(13, 0), 0).xyz;
 #endif
+#ifdef SCENE_DISPERSION  // KHR_materials_dispersion (Material::disperses)
+    r.dispersion = texelFetch(materials, at + ivec2(16, 0), 0).x;
+#endif
 #ifdef SCENE_IRIDESCENCE  // KHR_materials_iridescence: the film's weight (R of its map), index, thickness (G)
     vec4 film = texelFetch(materials, at + ivec2(14, 0), 0);
     r.iridescence = film.x * textureChannel(int(texelFetch(materials, at + ivec2(12, 0), 0).w), t);
@@ -286,6 +289,7 @@ MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     r.anisotropy = 0.0f;
     r.anisotropyDirection = vec3(1.0f, 0.0f, 0.0f);
     r.absorption = vec3(0.0f);
+    r.dispersion = 0.0f;
 #ifdef SCENE_MODEL_2
     vec4 f = texelFetch(materials, at + ivec2(5, 0), 0);
     vec4 g = texelFetch(materials, at + ivec2(6, 0), 0);

@@ -72,7 +72,7 @@ const std::set<std::string> kExtensionsRead = {
     "KHR_lights_punctual",        "KHR_materials_unlit",       "EXT_meshopt_compression",
     "KHR_materials_clearcoat",    "KHR_materials_specular",    "KHR_materials_sheen",
     "KHR_materials_volume",       "KHR_materials_iridescence", "KHR_materials_anisotropy",
-    "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing"};
+    "KHR_materials_pbrSpecularGlossiness", "EXT_mesh_gpu_instancing", "KHR_materials_dispersion"};
 
 // A skinned node's joint matrices: each joint's world transform times its inverse bind matrix
 // (the glTF spec, "Skins"); none for a node without a skin.
@@ -480,7 +480,6 @@ class GltfReader {
     static std::string whatIsLeftOut(const std::string& extension) {
         static const std::map<std::string, std::string> kLeftOut = {
             {"KHR_materials_variants", "each primitive's default material is drawn, not its variants"},
-            {"KHR_materials_dispersion", "the index of refraction is the same for every wavelength"},
             {"KHR_materials_diffuse_transmission", "no light passes through surfaces diffusely"},
             {"KHR_animation_pointer", "the scene is drawn at rest"}};
         const auto found = kLeftOut.find(extension);
@@ -1250,6 +1249,7 @@ class GltfReader {
         readClearcoat(g, at, named, m, uv, scene);
         readSheen(g, at, named, m, uv, scene);
         readVolume(g, at, named, m);
+        readDispersion(g, at, named, m);
         readIridescence(g, at, named, m, uv, scene);
         readAnisotropy(g, at, named, m, uv, scene);
     }
@@ -1340,6 +1340,20 @@ class GltfReader {
         m.attenuationDistance = float(distance);
         if (ext.IsObject() && ext.Has("thicknessTexture"))
             warn(named + ": KHR_materials_volume's thicknessTexture is not used (rays measure the distance inside)");
+    }
+
+    // KHR_materials_dispersion (glsl/common/material.h dispersedIor): 20 / the Abbe number, >= 0.
+    // The extension applies to volumes only: on a material without transmission and a volume it
+    // changes nothing, which a warning says.
+    void readDispersion(const tinygltf::Material& g, const std::string& at, const std::string& named, Material& m) {
+        const auto found = g.extensions.find("KHR_materials_dispersion");
+        if (found == g.extensions.end()) return;
+        const double dispersion = number(found->second, "dispersion", 0.0);
+        if (!(dispersion >= 0.0 && dispersion <= 1e3)) fail(at + ": dispersion must be a number in [0, 1000]");
+        m.dispersion = float(dispersion);
+        if (m.dispersion > 0.0f && !m.disperses())
+            warn(named + ": KHR_materials_dispersion is not used: it applies to transmissive volumes only "
+                         "(KHR_materials_transmission and KHR_materials_volume)");
     }
 
     // KHR_materials_sheen (glsl/common/materials/gltf.h sheenLobe): the sheen's colour

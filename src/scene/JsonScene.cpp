@@ -620,12 +620,25 @@ class SceneReader {
     }
     }
 
+    // KHR_materials_dispersion's "dispersion" (20 / the Abbe number, in [0, 1000]): only on a
+    // transmissive solid (transmission and ior, not thin_walled), where it changes the index with
+    // the wavelength; on any other material it would change nothing, so it is an error there
+    // (readMaterial checks once the transmission is read).
+    void readDispersion(const json& value, const Pointer& at, Material& material) const {
+        const json* given = find(value, "dispersion");
+        if (!given) return;
+        const double v = numberAtLeast(*given, at / "dispersion", 0.0);
+        if (v > 1e3) fail(at / "dispersion", "must be <= 1000, got " + formatNumber(v));
+        material.dispersion = static_cast<float>(v);
+        material.model = GPURT_MODEL_GLTF;
+    }
+
     Material readMaterial(const json& value, const Pointer& at, const std::string& fileName) const {
         requireObject(value, at, {"name", "diffuse", "specular", "shininess", "reflectivity", "emission", "ior", "transmission",
                                   "metallic", "roughness", "clearcoat", "clearcoat_roughness", "specular_factor",
                                   "specular_color", "sheen_color", "sheen_roughness", "attenuation_color",
                                   "attenuation_distance", "iridescence", "iridescence_ior", "iridescence_thickness",
-                                  "anisotropy", "anisotropy_rotation", "thin_walled", "doubleSided"});
+                                  "anisotropy", "anisotropy_rotation", "thin_walled", "dispersion", "doubleSided"});
         Material material;
         material.name = printable(fileName) + " (override)";
         if (const json* name = find(value, "name")) {
@@ -645,7 +658,10 @@ class SceneReader {
             material.ior = static_cast<float>(eta);
         }
         readGltfFactors(value, at, material);
+        readDispersion(value, at, material);
         readTransmission(value, at, material);
+        if (material.dispersion > 0.0f && !material.disperses())
+            fail(at / "dispersion", "applies to a transmissive solid only (\"transmission\" and \"ior\", not \"thin_walled\")");
         if (const json* shininess = find(value, "shininess"))
             material.shininess =
                 static_cast<float>(numberAtLeast(*shininess, at / "shininess", 0.0));

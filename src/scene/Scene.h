@@ -139,6 +139,10 @@ struct Material {
     bool thinWalled = false;
     glm::vec3 attenuationColor{1.0f};
     float attenuationDistance = std::numeric_limits<float>::infinity();
+    // glTF model, KHR_materials_dispersion: 20 / the Abbe number of a transmissive solid's
+    // medium; its index at each colour's wavelength under path tracing
+    // (glsl/common/material.h dispersedIor); 0: the same index for every wavelength.
+    float dispersion = 0.0f;
 
     bool hasAlpha() const { return alphaMode != 0; }
     // Whether it uses KHR_materials_specular's values (the kernels compile them in then).
@@ -150,6 +154,9 @@ struct Material {
     bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
     bool hasIridescence() const { return model == GPURT_MODEL_GLTF && iridescenceFactor > 0.0f; }
     bool hasAnisotropy() const { return model == GPURT_MODEL_GLTF && anisotropyStrength > 0.0f; }
+    // Whether the index depends on the wavelength: a dispersion on a solid that light passes into
+    // (the extension applies to volumes only, not to thin walls).
+    bool disperses() const { return model == GPURT_MODEL_GLTF && dispersion > 0.0f && transmits() && !thinWalled; }
     // The rotation as (cos, sin), as both backends read it (glsl/common/materials/gltf.h gltfAnisotropyAt).
     glm::vec2 anisotropyTurn() const {
         return {float(std::cos(double(anisotropyRotation))), float(std::sin(double(anisotropyRotation)))};

@@ -779,5 +779,73 @@ TEST(GltfBrdf, TransmissionSamplerEstimatesTheAlbedoAndFollowsThePdf) {
     }
 }
 
+// KHR_materials_dispersion's index (common/material.h dispersedIor): the Abbe number its indices
+// at the d, F and C lines make, (n_d - 1) / (n_F - n_C), is 20 / dispersion, as the extension
+// defines the factor; the d line sees n_d (to the formula's 1.5168, 1.7e-4 off 523655 / 587.6^2);
+// no index falls below 1. materialAtChannel gives each channel its wavelength's index, and a record
+// seen from inside the solid (materialFacing's 1 / index) one over it.
+TEST(GltfBrdf, DispersionKeepsTheAbbeNumberItNames) {
+    for (double nd : {1.33, 1.5, 1.7, 2.42})
+        for (double dispersion : {0.05, 0.5, 1.0, 5.0}) {
+            SCOPED_TRACE(testing::Message() << "n_d " << nd << ", dispersion " << dispersion);
+            const double nF = raymath::dispersedIor(float(nd), float(dispersion), 486.1f);
+            const double nDLine = raymath::dispersedIor(float(nd), float(dispersion), 587.6f);
+            const double nC = raymath::dispersedIor(float(nd), float(dispersion), 656.3f);
+            EXPECT_NEAR((nDLine - 1.0) / (nF - nC), 20.0 / dispersion, 2e-3 * 20.0 / dispersion);
+            EXPECT_NEAR(nDLine, nd, 2e-4 * (nd - 1.0) * dispersion + 1e-6);
+            EXPECT_GT(nF, nDLine);
+            EXPECT_LT(nC, nDLine);
+        }
+    EXPECT_EQ(raymath::dispersedIor(1.05f, 1000.0f, 656.3f), 1.0f);
+    MaterialRecord m{};
+    m.model = GPURT_MODEL_GLTF;
+    m.ior = 1.6f;
+    m.dispersion = 2.0f;
+    for (int c = 0; c < 3; ++c) {
+        const float n = raymath::dispersedIor(1.6f, 2.0f, raymath::channelWavelength(c));
+        EXPECT_EQ(raymath::materialAtChannel(m, c).ior, n);
+        EXPECT_EQ(raymath::materialAtChannel(m, c).dispersion, 0.0f);
+        MaterialRecord inside = m;
+        inside.ior = 1.0f / 1.6f;
+        EXPECT_NEAR(raymath::materialAtChannel(inside, c).ior, 1.0f / n, 1e-6f);
+    }
+    EXPECT_EQ(raymath::channelWavelength(0), 656.3f);
+    EXPECT_EQ(raymath::channelWavelength(2), 486.1f);
+    MaterialRecord still = m;
+    still.dispersion = 0.0f;
+    EXPECT_EQ(raymath::materialAtChannel(still, 2).ior, 1.6f);
+}
+
+// Next-event estimation at a dispersing solid (common/path.h pathLightContribution; lights are
+// sampled on the side the ray comes from): each channel of a point light's contribution off a
+// rough glass of dispersion 5, seen from outside and from inside (its record as materialFacing
+// makes it), is the reference BRDF's at that channel's index (the extension's formula) times
+// pi cos I / r^2, as if the glass did not disperse.
+TEST(GltfBrdf, DispersingNextEventTakesEachChannelAtItsIndex) {
+    std::mt19937 rng(11);
+    const glm::vec3 n(0.0f, 0.0f, 1.0f), p(0.0f);
+    const double nd = 1.55, dispersion = 5.0, lambdas[3] = {656.3, 587.6, 486.1};
+    for (int k = 0; k < 500; ++k) {
+        const bool inside = k % 2 == 1;
+        GltfParams glass{glm::dvec3(0.9, 0.8, 0.7), 0.0, 0.35};
+        glass.transmission = 1.0;
+        glass.ior = inside ? 1.0 / nd : nd;
+        MaterialRecord m = record(glass);
+        m.dispersion = float(dispersion);
+        const glm::dvec3 v = hemisphere(rng), l = hemisphere(rng);
+        const double dist = 2.5;
+        const glm::vec3 light = p + glm::vec3(l) * float(dist);
+        const glm::vec3 got = raymath::pathLightContribution(m, p, n, -glm::vec3(v), light, glm::vec3(1.0f), 3.0f);
+        for (int c = 0; c < 3; ++c) {
+            GltfParams at = glass;
+            const double nc = gltfref::specDispersedIor(nd, dispersion, lambdas[c]);
+            at.ior = inside ? 1.0 / nc : nc;
+            // A point light of intensity I gives pi I / r^2 (common/path.h, units).
+            const double expected = gltfReferenceBrdf(at, glm::dvec3(n), v, l)[c] * l.z * gltfref::kPi * 3.0 / (dist * dist);
+            EXPECT_NEAR(got[c], expected, 2e-3 * expected + 1e-5) << k << " channel " << c;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace gpurt::test

@@ -46,6 +46,12 @@ namespace gltfref {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// KHR_materials_dispersion's index at wavelength lambda (nm), written from the extension's text:
+// max(n_d + (n_d - 1) / V_d (523655 / lambda^2 - 1.5168), 1), V_d = 20 / dispersion.
+inline double specDispersedIor(double nd, double dispersion, double lambda) {
+    return std::max(nd + (nd - 1.0) / (20.0 / dispersion) * (523655.0 / (lambda * lambda) - 1.5168), 1.0);
+}
+
 inline double schlick(double c) { return std::pow(std::clamp(1.0 - c, 0.0, 1.0), 5.0); }
 
 // The dielectric's reflectance Fd at v.h: Schlick's with F0 = ((ior - 1) / (ior + 1))^2 (0.04 at

@@ -245,6 +245,7 @@ void expectSameScene(const LoadedScene& a, const LoadedScene& b) {
                     sameBits(a.anisotropyRotation, b.anisotropyRotation) && a.anisotropyTexture == b.anisotropyTexture)
             << m;  // ANIS
         EXPECT_EQ(a.thinWalled, b.thinWalled) << m;  // THIN
+        EXPECT_TRUE(sameBits(a.dispersion, b.dispersion)) << m;  // DISP
         EXPECT_TRUE(sameBits(a.specularFactor, b.specularFactor) && sameBits(a.specularColor, b.specularColor) &&
                     sameBits(a.clearcoat, b.clearcoat) && sameBits(a.clearcoatRoughness, b.clearcoatRoughness) &&
                     sameBits(a.clearcoatNormalScale, b.clearcoatNormalScale))
@@ -987,6 +988,32 @@ TEST_F(PackedSceneTest, AnisotropyTravelsInItsOwnSection) {
     thin.scene.materials[2].ior = 1.6e-38f;
     const std::string message = test::refusalOf([&] { encodePackedScene(thin, *makeStructure(grid_), "thin"); }, "thin: ");
     EXPECT_NE(message.find("material 2: a glTF material's ior must be 0 or >= 1"), std::string::npos) << message;
+}
+
+// KHR_materials_dispersion (DISP, one f32 per material): only when some material has one; kept bit
+// for bit; a negative value and a count that is not the materials' refused.
+TEST_F(PackedSceneTest, DispersionTravelsInItsOwnSection) {
+    EXPECT_FALSE(findSection(bytes_, "DISP")) << "a scene without dispersion";
+    LoadedScene flint = source_;
+    Material& m = flint.scene.materials[2];
+    m.model = GPURT_MODEL_GLTF;
+    m.ior = 1.7f;
+    m.transmission = glm::vec3(1.0f);
+    m.thickness = 1.0f;
+    m.dispersion = 0.5f;
+    const size_t materials = flint.scene.materials.size();
+    const Bytes b = encodePackedScene(flint, *makeStructure(grid_), "flint");
+    const Entry disp = section(b, "DISP");
+    EXPECT_EQ(disp.size, 8 + 4 * materials);
+    EXPECT_EQ(get64(b, disp.offset), materials);
+    const size_t at = disp.offset + 8 + 4 * 2;  // material 2's record
+    EXPECT_EQ(get32(b, at), 0x3f000000u);       // 0.5f
+    const LoadedScene packed = decodePackedScene(b, "flint.gpscene");
+    expectSameScene(flint, packed);
+    EXPECT_TRUE(packed.scene.materials[2].disperses());
+    EXPECT_EQ(encodePackedScene(packed, *packed.accel, "again"), b);
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put32(p, at, 0xbf800000u); }), "material 2: the dispersion must be in [0, 1000]");
+    EXPECT_REFUSED(patched(b, [&](Bytes& p) { put64(p, disp.offset, materials + 1); }), "section DISP");
 }
 
 // Thin walls (THIN, one u32 per material: glTF's transmission without a volume): written only when

@@ -132,7 +132,8 @@ TEST(SceneTextureLayoutTest, TexelsAreWhereSceneLayoutSays) {
             0.0f,               0.0f,               0.0f,               -1.0f,  // no iridescence map
             0.0f,               0.0f,               0.0f,               -1.0f,  // no volume, no thickness map
             0.0f,               1.3f,               100.0f,             400.0f,  // no film, the extension's defaults
-            0.0f,               1.0f,               0.0f,               -1.0f};  // no anisotropy: rotation 0, no map
+            0.0f,               1.0f,               0.0f,               -1.0f,  // no anisotropy: rotation 0, no map
+            0.0f,               0.0f,               0.0f,               0.0f};  // no dispersion
         for (int k = 0; k < 4 * GPURT_MATERIAL_TEXELS; ++k)
             EXPECT_EQ(materials.floats[m * 4 * GPURT_MATERIAL_TEXELS + size_t(k)], expected[k]) << m << " " << k;
     }

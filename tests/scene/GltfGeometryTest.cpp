@@ -750,7 +750,7 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
         "\"KHR_materials_ior\", "
         "\"KHR_texture_transform\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\", "
         "\"KHR_draco_mesh_compression\", "
-        "\"KHR_materials_variants\", \"KHR_materials_dispersion\", \"EXT_texture_webp\"], \"extensionsRequired\": "
+        "\"KHR_materials_variants\", \"KHR_materials_diffuse_transmission\", \"EXT_texture_webp\"], \"extensionsRequired\": "
         "[\"KHR_materials_variants\", \"EXT_texture_webp\"], "
         "\"animations\": [{\"channels\": [], \"samplers\": []}], "
         "\"scenes\": [{\"nodes\": [0, 1]}], \"nodes\": [{\"mesh\": 0}, {\"mesh\": 0}], \"meshes\": "
@@ -776,8 +776,8 @@ TEST(GltfWarnings, WhatIsNotUsedIsNamedOnce) {
     const std::vector<std::string> expected = {
         "scene.gltf: warning: extension KHR_materials_variants is not used (the file requires it): each "
         "primitive's default material is drawn, not its variants\n",
-        "scene.gltf: warning: extension KHR_materials_dispersion is not used: the index of refraction is the "
-        "same for every wavelength\n",
+        "scene.gltf: warning: extension KHR_materials_diffuse_transmission is not used: no light passes through "
+        "surfaces diffusely\n",
         "scene.gltf: warning: extension EXT_texture_webp is not used (the file requires it: the picture may be "
         "wrong)\n",
         "scene.gltf: warning: 1 animation is not used; the scene is drawn at rest (its nodes' own "

@@ -703,6 +703,34 @@ TEST(GltfLoaderMaterials, VolumeIsRead) {
     fs::remove_all(dir);
 }
 
+// KHR_materials_dispersion: read on a transmissive volume (KHR_materials_volume's thickness above
+// 0), without a warning; on a thin wall (no volume) it changes nothing and a warning names it;
+// a negative value is refused naming the material.
+TEST(GltfLoaderMaterials, DispersionIsReadOnVolumes) {
+    const fs::path dir = fs::temp_directory_path() / ("gpurt-dispersion-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "bands.bmp", std::ios::binary) << test::TransmissionQuad::image();
+    ::testing::internal::CaptureStderr();
+    const Scene scene = parseGltf(windowWith("\"KHR_materials_volume\": {\"thicknessFactor\": 0.5}, "
+                                             "\"KHR_materials_dispersion\": {\"dispersion\": 0.4}"),
+                                  "window.gltf", dir);
+    std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warnings.find("dispersion"), std::string::npos) << warnings;
+    EXPECT_EQ(scene.materials[1].dispersion, 0.4f);
+    EXPECT_TRUE(scene.materials[1].disperses());
+    ::testing::internal::CaptureStderr();
+    const Material thin = parseGltf(windowWith("\"KHR_materials_dispersion\": {\"dispersion\": 0.4}"), "window.gltf", dir).materials[1];
+    warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("material 0 ('window'): KHR_materials_dispersion is not used: it applies to transmissive volumes only"),
+              std::string::npos)
+        << warnings;
+    EXPECT_FALSE(thin.disperses());
+    const std::string message = test::refusalOf(
+        [&] { parseGltf(windowWith("\"KHR_materials_dispersion\": {\"dispersion\": -1}"), "window.gltf", dir); }, "window.gltf: ");
+    EXPECT_NE(message.find("material 0: dispersion must be a number in [0, 1000]"), std::string::npos) << message;
+    fs::remove_all(dir);
+}
+
 // KHR_materials_iridescence: the factor, index and thickness range are read (the extension's
 // defaults without them: 0, 1.3, 100..400 nm), the factor's map is the texture's R and the
 // thickness's its G, read through the slot's texCoord and transform; factor 0 reads no map; bad

@@ -483,6 +483,27 @@ TEST_F(JsonSceneTest, AnisotropyStretchesTheLobe) {
                 {"/meshes/0/material/anisotropy_rotation: expected a number"});
 }
 
+// KHR_materials_dispersion's key: "dispersion" (20 / the Abbe number) on a transmissive solid makes
+// glTF's model; anywhere else (no transmission, a thin wall) it would change nothing and is an
+// error naming the key, as are bad values.
+TEST_F(JsonSceneTest, DispersionGoesWithTransmissiveSolids) {
+    write("tri.obj", kTriangleObj);
+    const Scene scene = loadJsonScene(write("scene.json", R"({"meshes": [
+        {"file": "tri.obj", "material": {"transmission": 1, "ior": 1.7, "dispersion": 0.6}}]})"));
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.model, GPURT_MODEL_GLTF);
+    EXPECT_EQ(m.dispersion, 0.6f);
+    EXPECT_TRUE(m.disperses());
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"metallic": 0, "dispersion": 0.5}}]})",
+                {"/meshes/0/material/dispersion: applies to a transmissive solid only"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"transmission": 1, "thin_walled": true, "dispersion": 0.5}}]})",
+                {"/meshes/0/material/dispersion: applies to a transmissive solid only"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"transmission": 1, "dispersion": -1}}]})",
+                {"/meshes/0/material/dispersion: must be >= 0"});
+    expectError(R"({"meshes": [{"file": "tri.obj", "material": {"transmission": 1, "dispersion": 2000}}]})",
+                {"/meshes/0/material/dispersion: must be <= 1000"});
+}
+
 TEST_F(JsonSceneTest, TypeErrorsNameTheJsonPointer) {
     write("tri.obj", kTriangleObj);
     expectError(R"({"meshes": {}})", {"/meshes: expected an array, got object"});

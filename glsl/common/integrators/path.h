@@ -31,6 +31,7 @@ struct PathState {
     vec3 weight;
     float prevPdf;
     bool open;
+    bool dispersed;  // it follows one colour channel since a dispersing solid (pathDisperse)
 };
 
 // The path of a camera ray o + t d (features: the sample's features are wanted).
@@ -42,6 +43,7 @@ GPURT_FN PathState pathStart(vec3 o, vec3 d, bool features) {
     st.weight = vec3(1.0f);
     st.prevPdf = 0.0f;
     st.open = features;
+    st.dispersed = false;
     return st;
 }
 
@@ -80,6 +82,22 @@ GPURT_FN void pathArrive(GPURT_INOUT(PathState) st, SurfaceHit s, float t, int b
     pathAdd(st, materialEmitted(s.m, s.ns, st.d) * mis, b);
 }
 
+// Dispersion (KHR_materials_dispersion): light of each colour bends by its own index, so a path
+// that scatters at a dispersing solid follows one colour channel from there on: the channel the
+// sample's number of GPURT_DIM_WAVELENGTH picks, uniformly and once for the whole path (every
+// later dispersing surface sees the same), its throughput that channel alone, times 3 (the
+// channel's probability divided out). Returns record m at that channel's index (m itself where it
+// does not disperse).
+GPURT_FN MaterialRecord pathDisperse(GPURT_INOUT(PathState) st, MaterialRecord m) {
+    if (!materialDisperses(m)) return m;
+    int c = min(int(pixelSampleChoice(GPURT_DIM_WAVELENGTH).x * 3.0f), 2);
+    if (!st.dispersed) {
+        st.weight = st.weight * channelMask(c) * 3.0f;
+        st.dispersed = true;
+    }
+    return materialAtChannel(m, c);
+}
+
 // The path's next ray from its hit s at depth b: a direction the material samples from the
 // sample's numbers of this depth, the throughput times f cos / pdf, Russian roulette (or the same
 // ray on past a surface hidden from it, common/material.h materialHiddenFrom). False when the path
@@ -96,7 +114,8 @@ GPURT_FN bool pathScatter(GPURT_INOUT(PathState) st, SurfaceHit s, int b) {
     vec3 factor;
     float pdf;
     float side;
-    if (!materialSample(s.m, st.d, s.n, s.ns, s.front, u, choice.x, dir, factor, pdf, side)) return false;
+    MaterialRecord m = pathDisperse(st, s.m);
+    if (!materialSample(m, st.d, s.n, s.ns, s.front, u, choice.x, dir, factor, pdf, side)) return false;
     st.weight = st.weight * factor;
     st.open = featuresOpenAfter(st.open, pdf);
     if (!russianRoulette(b, st.weight, choice.y)) return false;
@@ -129,8 +148,7 @@ GPURT_FN vec3 pathDirectLight(SurfaceHit s, vec3 d, int b) {
     vec3 e2;
     vec3 emission;
     if (emitterVisible(b, s.p, s.n, q, e1, e2, emission))
-        local = local + pathLightContribution(s.m, s.p, s.ns, d, q, emission, emitterIntensity(s.p, q, e1, e2, emitterArea)) *
-                            emitterSampleWeight(s.m, s.p, q, e1, e2, emitterArea, s.ns, d);
+        local = local + pathEmitterContribution(s.m, s.p, s.ns, d, q, e1, e2, emission, emitterArea);
     return local;
 }
 

@@ -76,9 +76,8 @@ bool nextRay(vec4 s, inout PathState st) {
         vec3 qv0, qe1, qe2;
         int emitterMaterial;
         fetchTriangle(int(q.w), qv0, qe1, qe2, emitterMaterial);
-        local = local + pathLightContribution(hit.m, hit.p, hit.ns, st.d, q.xyz, fetchEmission(emitterMaterial),
-                                              emitterIntensity(hit.p, q.xyz, qe1, qe2, emitterArea)) *
-                            emitterSampleWeight(hit.m, hit.p, q.xyz, qe1, qe2, emitterArea, hit.ns, st.d);
+        local = local + pathEmitterContribution(hit.m, hit.p, hit.ns, st.d, q.xyz, qe1, qe2, fetchEmission(emitterMaterial),
+                                                emitterArea);
     }
 #endif
     pathAdd(st, local, depth);
@@ -102,9 +101,11 @@ void main() {
     ivec2 pixel = pathPixel(ps, depth);
     samplePixel = uvec2(pixel);
     PathState st;
-    st.color = readStream(colorState).xyz;
+    vec4 c = readStream(colorState);
+    st.color = c.xyz;
     st.weight = w.xyz;
     st.open = ps.w == 0.0f;
+    st.dispersed = c.w > 0.0f;
     // A path that missed in this round (its background added by the surface pass) ends.
     if (s.w < 0.0f || !nextRay(s, st)) {
         imageStore(pixelColor, pixel - ivec2(0, tileRow), vec4(st.color, 0.0f));  // the stream element of the pixel
@@ -121,10 +122,10 @@ void main() {
     imageStore(nextDir, at, direction);
     imageStore(nextWeight, at, vec4(st.weight, 1.0f));
     imageStore(nextState, at, state);
-    imageStore(nextColor, at, vec4(st.color, 0.0f));
+    imageStore(nextColor, at, vec4(st.color, st.dispersed ? 1.0f : 0.0f));
     lives = vec4(1.0f, 0.0f, 0.0f, 0.0f);
 #else
-    colorOut = vec4(st.color, 0.0f);
+    colorOut = vec4(st.color, st.dispersed ? 1.0f : 0.0f);
     weightOut = vec4(st.weight, 1.0f);
     rayOriginOut = origin;
     rayDirOut = direction;

@@ -92,10 +92,12 @@ void main() {
     PathState st;
     st.o = readStream(rayOrigin).xyz;
     st.d = readStream(rayDir).xyz;
-    st.color = readStream(colorState).xyz;
+    vec4 c = readStream(colorState);
+    st.color = c.xyz;
     st.weight = w.xyz;
     st.prevPdf = state.x;
     st.open = state.w == 0.0f;
+    st.dispersed = c.w > 0.0f;
 #endif
     beginPixel(pixel);
     bool alive;
@@ -112,6 +114,6 @@ void main() {
     imageStore(nextDir, at, vec4(st.d, GPURT_A_RAY));
     imageStore(nextWeight, at, vec4(st.weight, 1.0f));
     imageStore(nextState, at, vec4(st.prevPdf, float(pixel.x), float(pixel.y), st.open ? 0.0f : 1.0f));
-    imageStore(nextColor, at, vec4(st.color, 0.0f));
+    imageStore(nextColor, at, vec4(st.color, st.dispersed ? 1.0f : 0.0f));
     lives = vec4(1.0f, 0.0f, 0.0f, 0.0f);
 }

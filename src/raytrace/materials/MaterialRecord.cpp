@@ -103,6 +103,7 @@ raymath::MaterialRecord materialRecord(const Material& m) {
     r.anisotropy = 0.0f;  // materialRecord(scene, ...): in the tangent frame at the hit
     r.anisotropyDirection = glm::vec3(1.0f, 0.0f, 0.0f);
     r.absorption = m.absorption();  // SCENE_VOLUME
+    r.dispersion = m.disperses() ? m.dispersion : 0.0f;  // SCENE_DISPERSION
     return r;
 }
 

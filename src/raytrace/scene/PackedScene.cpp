@@ -35,7 +35,7 @@ constexpr const packed::SceneSection* kSectionOrder[] = {
     &packed::kEnvironmentSection, &packed::kColorSection,     &packed::kAlphaSection, &packed::kTangentSection,
     &packed::kSideSection,      &packed::kTransmissionMapSection, &packed::kLensSection, &packed::kGlowSection,
     &packed::kLightKindSection, &packed::kLayerSection, &packed::kVolumeSection, &packed::kFilmSection,
-    &packed::kAnisotropySection, &packed::kThinSection};
+    &packed::kAnisotropySection, &packed::kThinSection, &packed::kDispersionSection};
 // Where the structure's sections go: after this one.
 constexpr const packed::SceneSection* kStructureAfter = &packed::kRenderSection;
 

@@ -117,7 +117,8 @@ TextureTexels materialTexels(const Scene& scene) {
             vec4(mat.absorption(), channel(mat.iridescenceThicknessTexture)),
             vec4(mat.hasIridescence() ? mat.iridescenceFactor : 0.0f, mat.iridescenceIor, mat.iridescenceThicknessMin,
                  mat.iridescenceThicknessMax),
-            vec4(mat.hasAnisotropy() ? mat.anisotropyStrength : 0.0f, turn.x, turn.y, float(mat.anisotropyTexture))};
+            vec4(mat.hasAnisotropy() ? mat.anisotropyStrength : 0.0f, turn.x, turn.y, float(mat.anisotropyTexture)),
+            vec4(mat.disperses() ? mat.dispersion : 0.0f, 0.0f, 0.0f, 0.0f)};
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
             for (int c = 0; c < 4; ++c)
                 materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =

@@ -175,6 +175,7 @@ SceneTextures::SceneTextures(const Scene& scene, float rayOffset)
         if (m.thin()) hasThinWalls_ = true;
         if (m.hasIridescence()) hasIridescence_ = true;
         if (m.hasAnisotropy()) hasAnisotropy_ = true;
+        if (m.disperses()) hasDispersion_ = true;
         if (m.model == GPURT_MODEL_GLTF && m.hasSheen() && !sheenTable_)
             sheenTable_.emplace(uploadTexels(sheenTableTexels(), GPUFormat::R32F, GPUStorage::Buffer));
         if (m.model == GPURT_MODEL_GLTF && m.transmits()) {
@@ -202,6 +203,7 @@ void SceneTextures::bind(GPUKernel& kernel) const {
     if (hasThinWalls_) kernel.addDefine("SCENE_THIN_WALLS");  // common/materials/gltf.h gltfThin
     if (hasIridescence_) kernel.addDefine("SCENE_IRIDESCENCE");  // common/materials/gltf.h thinFilmFresnel
     if (hasAnisotropy_) kernel.addDefine("SCENE_ANISOTROPY");  // common/materials/anisotropic_ggx.h
+    if (hasDispersion_) kernel.addDefine("SCENE_DISPERSION");  // common/material.h materialDisperses
     if (sheenTable_) kernel.addDefine("SCENE_SHEEN").addInput(*sheenTable_, "sheenTable");  // gltf.h sheenAlbedo
     if (!emitterTable_.triangles.empty()) kernel.addDefine("SCENE_EMITTERS");
     for (int model : models_) kernel.addDefine("SCENE_MODEL_" + std::to_string(model));  // common/material.h

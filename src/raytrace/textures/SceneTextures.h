@@ -88,6 +88,7 @@ class SceneTextures {
     bool hasThinWalls_ = false;      // a glTF material transmitting through a thin wall (SCENE_THIN_WALLS)
     bool hasIridescence_ = false;    // a glTF material with a thin film (SCENE_IRIDESCENCE)
     bool hasAnisotropy_ = false;     // a glTF material with anisotropy (SCENE_ANISOTROPY)
+    bool hasDispersion_ = false;     // a glTF solid with KHR_materials_dispersion (SCENE_DISPERSION)
     std::optional<GPUFloatArray> sheenTable_;  // a glTF material with a sheen: its albedo table (SCENE_SHEEN)
     bool hasAlpha_ = false;        // SCENE_ALPHA in the accelerators' kernels
     bool cullsBackFaces_ = false;  // SCENE_CULL_BACK in the accelerators' kernels

@@ -1,7 +1,7 @@
 // Packed sections of the materials: the classic values and names (MATS), the textures (TEXS), the
 // models (MODL), the glTF fields and maps (PBRM), alpha (ALPH), sides (SIDE), glow (GLOW),
 // transmission maps (TRNS), the layers of glTF's extensions (LAYR), the volumes (VOLM), the
-// thin films (IRID), the anisotropy (ANIS) and the thin walls (THIN).
+// thin films (IRID), the anisotropy (ANIS), the thin walls (THIN) and the dispersion (DISP).
 #include "raytrace/scene/packed/Sections.h"
 
 #include <algorithm>
@@ -46,6 +46,8 @@ constexpr size_t kVolumeBytes = 5 * 4;
 constexpr size_t kFilmBytes = 4 * 4 + 4 * 4;
 // ANIS per material: KHR_materials_anisotropy's strength and rotation (f32) and texture (i32, -1: none).
 constexpr size_t kAnisotropyBytes = 3 * 4;
+// DISP per material: KHR_materials_dispersion's dispersion (f32, 20 / the Abbe number).
+constexpr size_t kDispersionBytes = 4;
 constexpr size_t kMaterialMinBytes = 17 * 4 + 4;  // seventeen floats and the name's length
 
 std::string unknownModel(size_t material, int64_t model) {
@@ -402,6 +404,18 @@ void writeAnisotropy(ByteWriter& out, const LoadedScene& loaded) {
     }
 }
 
+// Each material's dispersion (count = the materials', then kDispersionBytes each).
+void readDispersion(const PackedSection& s, Scene& scene) {
+    ByteReader in = s.reader();
+    const uint64_t n = oneEach(in, s, kDispersionBytes, "materials' dispersion", kMaxTextureMaterials,
+                               scene.materials.size(), "materials");
+    for (uint64_t k = 0; k < n; ++k) scene.materials[size_t(k)].dispersion = in.f32();
+}
+void writeDispersion(ByteWriter& out, const LoadedScene& loaded) {
+    out.u64(loaded.scene.materials.size());
+    for (const Material& m : loaded.scene.materials) out.f32(m.dispersion);
+}
+
 // Whether some material has `has`.
 template <class Has>
 bool anyMaterial(const LoadedScene& l, Has has) {
@@ -484,6 +498,11 @@ const SceneSection kAnisotropySection{
     "ANIS", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.anisotropyStrength != 0.0f; }); },
     false, writeAnisotropy, [](const PackedSection& s, LoadedScene& l) { readAnisotropy(s, l.scene); }};
 
+// Only when some material disperses (KHR_materials_dispersion): likewise.
+const SceneSection kDispersionSection{
+    "DISP", [](const LoadedScene& l) { return anyMaterial(l, [](const Material& m) { return m.dispersion != 0.0f; }); },
+    false, writeDispersion, [](const PackedSection& s, LoadedScene& l) { readDispersion(s, l.scene); }};
+
 // Every material's values (finite, in the ranges a JSON scene allows: the shading relies on
 // them) and model, then every material's texture.
 void checkMaterials(const FileLoc& file, const Scene& scene) {
@@ -542,6 +561,8 @@ void checkMaterials(const FileLoc& file, const Scene& scene) {
                              ": the iridescence factor must be in [0, 1], its index in [1, 1000], its thicknesses in [0, 1e6] nm");
         if (!unit(mat.anisotropyStrength) || !std::isfinite(mat.anisotropyRotation))
             failAt(file, "material " + std::to_string(m) + ": the anisotropy strength must be in [0, 1], its rotation finite");
+        if (!(mat.dispersion >= 0.0f && mat.dispersion <= 1e3f))
+            failAt(file, "material " + std::to_string(m) + ": the dispersion must be in [0, 1000]");
         if (mat.alphaMode < 0 || mat.alphaMode > GPURT_ALPHA_BLEND || !(mat.alphaFactor >= 0.0f && mat.alphaFactor <= 1.0f) ||
             !(mat.alphaCutoff >= 0.0f && mat.alphaCutoff <= 1.0f))
             failAt(file, "material " + std::to_string(m) + ": alpha mode " + std::to_string(mat.alphaMode) +

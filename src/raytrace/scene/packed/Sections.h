@@ -34,7 +34,7 @@ struct SceneSection {
 extern const SceneSection kTriangleSection, kNormalSection, kTexcoordSection, kColorSection, kTangentSection;
 extern const SceneSection kMaterialSection, kTextureSection, kModelSection, kPbrSection, kAlphaSection, kSideSection,
     kGlowSection, kTransmissionMapSection, kLayerSection, kVolumeSection, kFilmSection,
-    kAnisotropySection, kThinSection;
+    kAnisotropySection, kThinSection, kDispersionSection;
 extern const SceneSection kLightSection, kLightKindSection, kEnvironmentSection;
 extern const SceneSection kCameraSection, kLensSection, kAnimationSection, kBackgroundSection, kRenderSection;
 
