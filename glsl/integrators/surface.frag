@@ -33,7 +33,7 @@ uniform sampler2D rayOrigin;
 uniform sampler2D rayDir;
 uniform sampler2D hitState;
 uniform sampler2D weight;      // (product of reflectivities, alive)
-uniform sampler2D colorState;  // in place
+uniform sampler2D colorState;  // in place (path: w 1 once the path follows one colour channel, pathDisperse)
 uniform vec3 background;
 
 layout(location = 0) out vec4 color;          // (accumulated colour, 0)

@@ -5,7 +5,7 @@ uniform sampler2D surfaceNormal;   // (facing geometric normal, material)
 uniform sampler2D surfaceView;     // (ray direction, barycentric u)
 uniform sampler2D surfaceShading;  // (shading normal, barycentric v)
 uniform sampler2D localColor;      // (the light gathered at the hit, the hit's distance along the ray)
-uniform sampler2D colorState;      // the path's colour so far
+uniform sampler2D colorState;      // the path's colour so far; w: 1 once it follows one colour channel (path: pathDisperse)
 uniform sampler2D weightState;     // (throughput, alive)
 uniform sampler2D pathStateIn;     // Whitted: (depth, stack height, rays after the first, 0); path: (pdf of the ray's direction, pixel x, pixel y, features closed)
 

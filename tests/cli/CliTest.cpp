@@ -29,6 +29,7 @@
 #include "CliRunner.h"
 #include "image/ImageIO.h"
 #include "../common/TransmissionQuad.h"
+#include "../../glsl/common/scene_layout.h"
 
 namespace {
 
@@ -880,7 +881,7 @@ TEST_F(Cli, PackDumpWritesTheTexturesAndTheOccupancy) {
         EXPECT_EQ(triangles.bottomFirst[size_t(c)], vertices[size_t(firstVertex - 1)][size_t(c)]);
     EXPECT_EQ(triangleW.bottomFirst[0], 0.0f);
     const Pfm materials = readPfm(dir / "dump/materials.pfm");
-    EXPECT_EQ(materials.width, 16);  // the teapot has only the default material: sixteen texels (scene_layout.h)
+    EXPECT_EQ(materials.width, GPURT_MATERIAL_TEXELS);  // the teapot has only the default material (scene_layout.h)
     EXPECT_EQ(materials.height, 1);
     for (const char* axis : {"x", "y", "z"})
         EXPECT_EQ(slurp(dir / "dump" / (std::string("occupancy_") + axis + ".png")).substr(0, 8),
