@@ -24,7 +24,8 @@
 // Triangles: RGBA32F, three texels each, one triangle never split across rows:
 // (v0.xyz, material id), (e1 = v1 - v0, 0), (e2 = v2 - v0, 0).
 #define GPURT_TRIANGLES_PER_ROW 1024
-// Materials: RGBA32F, seventeen texels each on one row: (diffuse, shininess), (specular, diffuse
+// Materials: RGBA32F, seventeen texels each, GPURT_MATERIALS_PER_ROW materials a row (a material
+// never split across rows; material m at GPURT_MATERIAL_TEXEL(m, 0)): (diffuse, shininess), (specular, diffuse
 // texture | -1), (reflectivity, model), (emission, occlusion channel), (transmission filter, index
 // of refraction | 0, negated for a thin wall), (metallic, roughness, normal scale, occlusion
 // strength), (roughness channel, metallic channel, normal texture | -1, emissive texture | -1),
@@ -39,6 +40,10 @@
 // channel is 4 texture + channel (0 R .. 3 A), or -1. Back-face culling is in the accelerators'
 // triangle lists (coverage flags: common/alpha.h GPURT_COVER_*).
 #define GPURT_MATERIAL_TEXELS 17
+#define GPURT_MATERIALS_PER_ROW 512
+// Texel k of material m.
+#define GPURT_MATERIAL_TEXEL(m, k) \
+    ivec2(GPURT_MATERIAL_TEXELS * ((m) % GPURT_MATERIALS_PER_ROW) + (k), (m) / GPURT_MATERIALS_PER_ROW)
 // The sheen's directional albedo E(n.v, roughness) (KHR_materials_sheen's albedo scaling;
 // materials/SheenTable.cpp): R32F, GPURT_SHEEN_TABLE x GPURT_SHEEN_TABLE values, sqrt(n.v) along a
 // row and the roughness down, both from 0 to 1 at the ends, as a buffer (row-major).

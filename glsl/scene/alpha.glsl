@@ -44,7 +44,7 @@ bool hitCovered(int id, float flags, float u, float v, uint key, vec3 d, vec3 e1
     if ((f & GPURT_COVER_ALPHA) == 0) return true;
     ivec2 at = ivec2(3 * (id % GPURT_TRIANGLES_PER_ROW), id / GPURT_TRIANGLES_PER_ROW);
     int m = int(texelFetch(triangles, at, 0).w);
-    vec4 alpha = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 7, 0), 0);
+    vec4 alpha = texelFetch(materials, GPURT_MATERIAL_TEXEL(m, 7), 0);
     int mode = int(alpha.x);
     float a = alpha.y * textureChannel(int(alpha.w), fetchTexcoord(id, u, v));
     return alphaCovers(mode, a, alpha.z, key, id);

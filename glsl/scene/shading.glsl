@@ -150,8 +150,8 @@ vec3 fetchNormalMapped(int map, float scale, int id, vec3 e1, vec3 e2, vec3 d, v
 // are zero or degenerate), else in the frame generated from its texture coordinates.
 vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns, vec2 t, vec2 uv) {
 #ifdef SCENE_NORMAL_MAPS
-    vec4 f = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 5, 0), 0);
-    vec4 g = texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 6, 0), 0);
+    vec4 f = texelFetch(materials, GPURT_MATERIAL_TEXEL(m, 5), 0);
+    vec4 g = texelFetch(materials, GPURT_MATERIAL_TEXEL(m, 6), 0);
     return fetchNormalMapped(int(g.z), f.z, id, e1, e2, d, ng, ns, t, uv);
 #else
     return ns;
@@ -159,7 +159,7 @@ vec3 fetchMappedNormal(int m, int id, vec3 e1, vec3 e2, vec3 d, vec3 ng, vec3 ns
 }
 
 // The radiance an emitter's material m emits (the light a shadow ray towards it carries).
-vec3 fetchEmission(int m) { return texelFetch(materials, ivec2(GPURT_MATERIAL_TEXELS * m + 3, 0), 0).xyz; }
+vec3 fetchEmission(int m) { return texelFetch(materials, GPURT_MATERIAL_TEXEL(m, 3), 0).xyz; }
 
 // The shading normal of triangle `id` at barycentrics (u, v), facing as ng (common/shading.h).
 vec3 fetchShadingNormal(int id, float u, float v, vec3 ng) {
@@ -255,7 +255,7 @@ void fetchLayers(inout MaterialRecord r, ivec2 at, int id, vec2 uv, vec3 d, vec2
 // normal faces the ray: CpuScene::surfaceAt). What a kernel does not use the compiler drops.
 MaterialRecord fetchMaterialRecord(int m, int id, vec2 uv, vec3 d) {
     vec2 t = fetchTexcoord(id, uv.x, uv.y);
-    ivec2 at = ivec2(GPURT_MATERIAL_TEXELS * m, 0);
+    ivec2 at = GPURT_MATERIAL_TEXEL(m, 0);
     vec4 a = texelFetch(materials, at, 0);
     vec4 b = texelFetch(materials, at + ivec2(1, 0), 0);
     vec4 c = texelFetch(materials, at + ivec2(2, 0), 0);

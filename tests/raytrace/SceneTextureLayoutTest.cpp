@@ -220,5 +220,26 @@ TEST(SceneTextureLayoutTest, AnEmptySceneStillHasOneRowOfEach) {
     }
 }
 
+// Materials wrap onto a new row every GPURT_MATERIALS_PER_ROW (scene_layout.h): 1100 materials
+// make three rows as wide as that many materials, and material m's first texel, (diffuse,
+// shininess), is at row m / GPURT_MATERIALS_PER_ROW, texel GPURT_MATERIAL_TEXELS times the rest.
+TEST(SceneTextureLayoutTest, MaterialsWrapOntoRowsOfAFixedCount) {
+    Scene scene;
+    for (int m = 0; m < 1100; ++m) {
+        Material mat;
+        mat.diffuse = vec3(float(m), 0.5f, 0.25f);
+        scene.materials.push_back(mat);
+    }
+    const TextureTexels t = materialTexels(scene);
+    EXPECT_EQ(t.width, GPURT_MATERIALS_PER_ROW * GPURT_MATERIAL_TEXELS);
+    EXPECT_EQ(t.rows, 3);
+    for (int m : {0, 511, 512, 700, 1023, 1024, 1099}) {
+        const size_t at = size_t(m / GPURT_MATERIALS_PER_ROW) * size_t(t.width) +
+                          size_t(m % GPURT_MATERIALS_PER_ROW) * GPURT_MATERIAL_TEXELS;
+        EXPECT_EQ(t.floats[4 * at], float(m)) << m;
+        EXPECT_EQ(t.floats[4 * at + 1], 0.5f) << m;
+    }
+}
+
 }  // namespace
 }  // namespace gpurt

@@ -88,7 +88,9 @@ TextureTexels triangleTexels(const Scene& scene) {
 
 TextureTexels materialTexels(const Scene& scene) {
     const size_t n = std::max<size_t>(1, scene.materials.size());
-    TextureTexels materials = emptyTexture("materials", n * GPURT_MATERIAL_TEXELS, 1, 4, true);
+    const size_t perRow = std::min<size_t>(n, GPURT_MATERIALS_PER_ROW);
+    TextureTexels materials =
+        emptyTexture("materials", perRow * GPURT_MATERIAL_TEXELS, textureRowsFor(n, GPURT_MATERIALS_PER_ROW), 4, true);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& mat = scene.materials[m];
         // A texture channel as one number (glsl/scene/shading.glsl textureChannel): 4 texture +
@@ -119,10 +121,11 @@ TextureTexels materialTexels(const Scene& scene) {
                  mat.iridescenceThicknessMax),
             vec4(mat.hasAnisotropy() ? mat.anisotropyStrength : 0.0f, turn.x, turn.y, float(mat.anisotropyTexture)),
             vec4(mat.disperses() ? mat.dispersion : 0.0f, 0.0f, 0.0f, 0.0f)};
+        // Row m / GPURT_MATERIALS_PER_ROW, from texel GPURT_MATERIAL_TEXELS (m % GPURT_MATERIALS_PER_ROW).
+        const size_t first = (m / GPURT_MATERIALS_PER_ROW) * size_t(materials.width) +
+                             (m % GPURT_MATERIALS_PER_ROW) * GPURT_MATERIAL_TEXELS;
         for (int k = 0; k < GPURT_MATERIAL_TEXELS; ++k)
-            for (int c = 0; c < 4; ++c)
-                materials.floats[(m * GPURT_MATERIAL_TEXELS + size_t(k)) * 4 + size_t(c)] =
-                    texel[k][c];
+            for (int c = 0; c < 4; ++c) materials.floats[(first + size_t(k)) * 4 + size_t(c)] = texel[k][c];
     }
     return materials;
 }

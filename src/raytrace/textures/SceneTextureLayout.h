@@ -49,8 +49,8 @@ TextureTexels emptyTexture(const char* name, size_t width, size_t rows, int chan
 TextureTexels triangleListTexels(const Scene& scene, const std::vector<uint32_t>& ids, const char* name);
 // RGBA32F, three texels a triangle: (v0, material id), (v1 - v0, 0), (v2 - v0, 0).
 TextureTexels triangleTexels(const Scene& scene);
-// RGBA32F, one row: (diffuse, shininess), (specular, 0), (reflectivity, 0), (emission, 0) per
-// material.
+// RGBA32F, GPURT_MATERIAL_TEXELS texels a material (glsl/common/scene_layout.h), at most
+// GPURT_MATERIALS_PER_ROW materials a row.
 TextureTexels materialTexels(const Scene& scene);
 // RGBA32F, as the triangle texture: (n0, 0), (n1, 0), (n2, 0) per triangle of scene.normals;
 // one triangle of zeros when it is empty.

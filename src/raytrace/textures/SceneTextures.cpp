@@ -62,7 +62,9 @@ GPUFloatArray makeTriangles(const Scene& scene) {
 }
 
 GPUFloatArray makeMaterials(const Scene& scene) {
-    checkFits("material", std::max<size_t>(1, scene.materials.size()) * GPURT_MATERIAL_TEXELS, 1);
+    const size_t n = std::max<size_t>(1, scene.materials.size());
+    checkFits("material", std::min<size_t>(n, GPURT_MATERIALS_PER_ROW) * GPURT_MATERIAL_TEXELS,
+              textureRowsFor(n, GPURT_MATERIALS_PER_ROW));
     return uploadTexels(materialTexels(scene), GPUFormat::RGBA32F, GPUStorage::Texture2D);
 }
 
