@@ -901,6 +901,12 @@ TEST_F(GltfMaterials, DispersionGivesEachChannelTheIndexOfItsWavelength) {
     const int size = 24;
     const double nd = 1.5, dispersion = 20.0;
     const double lambdas[3] = {656.3, 587.6, 486.1};
+    const CameraBasis camera = makeCamera(spec, size, size);
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.samples = 64;
+    settings.maxBounces = 8;
+    settings.integrator = Integrator::Path;
     for (const double roughness : {0.0, 0.3}) {
         SCOPED_TRACE("roughness " + std::to_string(roughness));
         const auto sphere = [&](double ior, double disperse) {
@@ -919,12 +925,6 @@ TEST_F(GltfMaterials, DispersionGivesEachChannelTheIndexOfItsWavelength) {
         };
         const Scene dispersed = sphere(nd, dispersion);
         ASSERT_TRUE(dispersed.materials[0].disperses());
-        const CameraBasis camera = makeCamera(spec, size, size);
-        RenderSettings settings;
-        settings.width = settings.height = size;
-        settings.samples = 64;
-        settings.maxBounces = 8;
-        settings.integrator = Integrator::Path;
         for (int form = 0; form < 3; ++form) {
             SCOPED_TRACE(form == 0 ? "cpu" : form == 1 ? "wavefront" : "megakernel");
             GpuTracerOptions options;

@@ -2,6 +2,7 @@
 // formulas of glsl/common/shading.h: diffuse + specular, inverse-square falloff, shadows, lights
 // behind the surface, the headlight, and mirror bounces (Christen 2005, eq. 5.1).
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -194,11 +195,9 @@ glm::dvec3 sphereDirection(double a, double b) {
 // rises above the threshold stays bit for bit; any other turns in the plane of itself and ng,
 // towards ng, until its mirror rises exactly the threshold, as the bisection's.
 TEST(ShadingTest, ValidReflectionNormalLiftsMirrorsBelowTheSurfaceAsCycles) {
-    uint32_t state = 12345u;
-    const auto next = [&] {
-        state = state * 1664525u + 1013904223u;
-        return double(state >> 8) / double(1u << 24);
-    };
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const auto next = [&] { return uniform(rng); };
     int kept = 0, turned = 0;
     for (int i = 0; i < 4000; ++i) {
         const glm::dvec3 ng = sphereDirection(next(), next());
